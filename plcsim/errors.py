@@ -1,0 +1,61 @@
+"""Errors plcsim raises: one base class, a few subclasses, each naming the place and the fix."""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable
+
+
+class PlcError(Exception):
+    """Base class of every error plcsim raises on purpose."""
+
+
+class LiteralError(PlcError, ValueError):
+    """A TIME, number or date literal that cannot be parsed."""
+
+
+class AddressError(PlcError, ValueError):
+    """An absolute address with bad syntax, a bad range or the wrong width."""
+
+
+class UnknownTagError(PlcError, KeyError):
+    """A symbolic name that is not in the tag table or data block."""
+
+    def __str__(self) -> str:  # KeyError would repr() the message
+        return str(self.args[0]) if self.args else ""
+
+
+class PlcTypeError(PlcError, TypeError):
+    """A value of the wrong S7 type (a MOVE of REAL into BOOL, a string as a timer preset)."""
+
+
+class DeclarationError(PlcError, ValueError):
+    """A tag, data block or task declared twice, at a used address, or with a bad option."""
+
+
+class ProgramError(PlcError):
+    """A user program that cannot be loaded: syntax, the PLC subset of Python, labels and jumps."""
+
+
+class SubsetError(ProgramError):
+    """A construct outside the PLC subset of Python (imports, dunder access, open/exec/eval)."""
+
+
+class ConfigurationError(PlcError, ValueError):
+    """A CPU, wiring, scenario or exercise option with an invalid value."""
+
+
+def did_you_mean(name: str, choices: Iterable[str], n: int = 3) -> str:
+    """Return a "did you mean" hint listing the names nearest to ``name`` (empty if none is near).
+
+    >>> did_you_mean("TLACIDO", ["TLACIDLO", "LED"])
+    "; did you mean 'TLACIDLO'?"
+    """
+    choices = list(choices)
+    near = difflib.get_close_matches(name, choices, n=n, cutoff=0.6)
+    if not near:
+        lowered = {c.lower(): c for c in choices}
+        near = [lowered[c] for c in difflib.get_close_matches(name.lower(), list(lowered), n=n)]
+    if not near:
+        return ""
+    return "; did you mean " + " or ".join(repr(c) for c in near) + "?"
