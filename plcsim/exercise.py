@@ -1,0 +1,198 @@
+"""An exercise: the task, its I/O table and data blocks, the rig and wiring, scenarios, checks and
+the textbook's solutions (the reference and the deliberately wrong ones).
+
+Exercises are data plus a little code; they live in the top-level ``exercises`` package and are
+found by their textbook number (``4.3.6``) or slug (``conveyor-2``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from plcsim.check import Check
+from plcsim.cpu import CPU, CPUConfig
+from plcsim.errors import ConfigurationError
+from plcsim.plant import Plant
+from plcsim.program import Program
+from plcsim.scenario import Scenario
+from plcsim.sim import Simulation
+from plcsim.tags import DataBlock, Tag, TagTable
+from plcsim.types import type_by_name
+from plcsim.wiring import Wire
+
+
+@dataclass(frozen=True)
+class IO:
+    """One row of an exercise's I/O table (the textbook's tag table).
+
+    Attributes:
+        tag: the tag name as in the textbook (``TLACIDLO``).
+        gloss: what it means in English (``push-button``).
+        type: the S7 type name (``Bool``).
+        address: the absolute address (``%I0.0``), or None for a symbolic HMI/DB tag.
+        wiring: ``NO`` or ``NC`` for a sensor, None otherwise.
+        signal: the plant signal wired to it (defaults to the tag name for inputs and outputs).
+        comment: provenance or a note (``address proposed; not in the textbook``).
+    """
+
+    tag: str
+    gloss: str
+    type: str = "Bool"
+    address: str | None = None
+    wiring: str | None = None
+    signal: str | None = None
+    comment: str = ""
+
+    @property
+    def direction(self) -> str:
+        if self.address is None:
+            return "memory"
+        area = self.address.lstrip("%")[0].upper()
+        return {"I": "input", "Q": "output"}.get(area, "memory")
+
+
+@dataclass(frozen=True)
+class Solution:
+    """A program shipped with an exercise.
+
+    Attributes:
+        name: ``reference``, ``solution-2``, ``wrong-4`` ...
+        path: the program file.
+        kind: ``reference`` (must pass every check), ``alternative`` (also correct) or ``wrong``.
+        explanation: what the solution shows; for a wrong one, the textbook's explanation of its flaw.
+        fails: for a wrong solution, the names of the checks that expose its flaw (it must fail them).
+        scenarios: the scenarios this solution is graded on (None: all).
+    """
+
+    name: str
+    path: Path
+    kind: str = "reference"
+    explanation: str = ""
+    fails: tuple[str, ...] = ()
+    scenarios: tuple[str, ...] | None = None
+
+    def program(self) -> Program:
+        return Program.from_file(self.path)
+
+
+@dataclass
+class GradedCheck:
+    """A check, its points and the scenarios it applies to (None: all)."""
+
+    check: Check
+    scenarios: tuple[str, ...] | None = None
+
+    @property
+    def name(self) -> str:
+        return self.check.title
+
+
+def only(check: Check, *scenarios: str) -> GradedCheck:
+    """Apply a check only in some scenarios: ``only(never(...), "normal", "two parts")``."""
+    return GradedCheck(check, tuple(scenarios))
+
+
+@dataclass
+class Exercise:
+    """Everything needed to run and grade one exercise."""
+
+    number: str
+    slug: str
+    title: str
+    task: str
+    io: Sequence[IO]
+    rig: Callable[[], Plant] | None
+    scenarios: Sequence[Scenario]
+    checks: Sequence[Check | GradedCheck]
+    solutions: Sequence[Solution]
+    title_sk: str = ""
+    dbs: Mapping[str, DataBlock] = field(default_factory=dict)
+    cpu: Mapping[str, Any] = field(default_factory=dict)
+    scenario_cpu: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
+    dt: str = "1ms"
+    record_changes_only: bool = False
+    notes: str = ""
+    plant_name: str = ""
+
+    def __post_init__(self) -> None:
+        self.checks = [c if isinstance(c, GradedCheck) else GradedCheck(c) for c in self.checks]
+        names = [c.name for c in self.checks]
+        dupes = {n for n in names if names.count(n) > 1}
+        if dupes:
+            raise ConfigurationError(f"exercise {self.number}: two checks share the name(s) {sorted(dupes)}; "
+                                     f"name them with .named(...)")
+        scenario_names = {s.name for s in self.scenarios}
+        for c in self.checks:
+            for s in c.scenarios or ():
+                if s not in scenario_names:
+                    raise ConfigurationError(f"exercise {self.number}: check {c.name!r} refers to scenario {s!r}; "
+                                             f"scenarios: {sorted(scenario_names)}")
+        for sol in self.solutions:
+            for f in sol.fails:
+                if f not in names:
+                    raise ConfigurationError(f"exercise {self.number}: solution {sol.name} should fail {f!r}, "
+                                             f"which is not a check; checks: {names}")
+
+    # -- building a run -----------------------------------------------------------------------
+
+    def tag_table(self) -> TagTable:
+        """The exercise's tags: its I/O table and data blocks."""
+        table = TagTable()
+        for row in self.io:
+            dtype = type_by_name(row.type)
+            if row.address is None:
+                table.add(row.tag, dtype(), source=f"exercise {self.number}")  # type: ignore[operator]
+            else:
+                table.add(row.tag, Tag(row.address, dtype), source=f"exercise {self.number}")  # type: ignore[arg-type]
+        for name, db in self.dbs.items():
+            table.add(name, db, source=f"exercise {self.number}")
+        return table
+
+    def wires(self) -> list[Wire]:
+        """The wiring implied by the I/O table (sensors with their NO/NC contact, outputs)."""
+        out = []
+        for row in self.io:
+            if row.direction in ("input", "output") and (row.signal or row.wiring or row.direction == "output"):
+                out.append(Wire(row.signal or row.tag, row.tag, row.wiring or "NO"))
+        return out
+
+    def scenario(self, name: str) -> Scenario:
+        for s in self.scenarios:
+            if s.name == name:
+                return s
+        raise ConfigurationError(f"exercise {self.number} has no scenario {name!r}; "
+                                 f"scenarios: {', '.join(s.name for s in self.scenarios)}")
+
+    def solution(self, name: str) -> Solution:
+        for s in self.solutions:
+            if s.name == name:
+                return s
+        raise ConfigurationError(f"exercise {self.number} has no solution {name!r}; "
+                                 f"solutions: {', '.join(s.name for s in self.solutions)}")
+
+    @property
+    def reference(self) -> Solution:
+        return next(s for s in self.solutions if s.kind == "reference")
+
+    def checks_for(self, scenario: str) -> list[GradedCheck]:
+        return [c for c in self.checks if c.scenarios is None or scenario in c.scenarios]  # type: ignore[union-attr]
+
+    def simulation(self, program: Program, scenario: Scenario | str, *, seed: int = 0,
+                   **cpu_options: Any) -> Simulation:
+        """A ready-to-run simulation of ``program`` on this exercise's rig and scenario."""
+        if isinstance(scenario, str):
+            scenario = self.scenario(scenario)
+        options = {**self.cpu, **self.scenario_cpu.get(scenario.name, {}), **cpu_options}
+        cpu = CPU(self.tag_table(), program, CPUConfig(seed=seed, **options))
+        plant = self.rig() if self.rig is not None else None
+        wires = self.wires() if plant is not None else None
+        return Simulation(cpu, plant, wires, scenario, dt=self.dt, seed=seed,
+                          changes_only=self.record_changes_only)
+
+    def describe_io(self) -> list[dict[str, str]]:
+        """The I/O table as rows for printing."""
+        return [{"tag": r.tag, "gloss": r.gloss, "type": r.type, "address": r.address or "-",
+                 "direction": r.direction, "wiring": r.wiring or "-", "comment": r.comment} for r in self.io]

@@ -1,0 +1,151 @@
+"""What the trace records from a CPU, and the fast per-scan row getter.
+
+By default: every input, output and memory tag, every scalar member of a data block, each timer's
+Q and ET, each counter's CV, QU and QD. Clock and system memory bits are left out unless the
+program uses them. Reading for the trace never refreshes a timer (observing changes nothing).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import Any
+
+from plcsim.cpu import CLOCK_BITS, CPU, SYSTEM_BITS
+from plcsim.errors import UnknownTagError, did_you_mean
+from plcsim.instructions.counters import IecCounter
+from plcsim.instructions.edges import EdgeTrigger
+from plcsim.instructions.timers import IecTimer
+from plcsim.tags import PlcStruct
+from plcsim.trace import Trace
+from plcsim.types import ElementaryType
+
+_SYSTEM_NAMES = {name for _, name, _ in CLOCK_BITS} | {name for _, name in SYSTEM_BITS}
+
+
+def _type_name(dtype: Any) -> str:
+    if isinstance(dtype, ElementaryType):
+        return {"bool": "bool", "real": "real"}.get(dtype.kind, "int")
+    return "int"
+
+
+def default_signals(cpu: CPU) -> list[str]:
+    """The signals traced when none are chosen."""
+    used: set[str] = set()
+    if cpu.compiled is not None:
+        for facts in cpu.compiled.analysis.functions.values():
+            used |= facts.reads | facts.writes
+    names: list[str] = []
+    for entry in cpu.table:
+        value = cpu.t.__dict__[entry.name]
+        if entry.name.startswith("%"):
+            continue
+        if entry.name in _SYSTEM_NAMES and entry.name not in used:
+            continue
+        if isinstance(entry.member.type, ElementaryType):
+            names.append(entry.name)
+        elif isinstance(value, IecTimer):
+            names += [f"{entry.name}.Q", f"{entry.name}.ET"]
+        elif isinstance(value, IecCounter):
+            names += [f"{entry.name}.CV", f"{entry.name}.QU", f"{entry.name}.QD"]
+        elif isinstance(value, EdgeTrigger):
+            names.append(f"{entry.name}.Q")
+        elif isinstance(value, PlcStruct):
+            for key, member in value._type.members.items():
+                if isinstance(member.type, ElementaryType):
+                    names.append(f"{entry.name}.{key}")
+    return names
+
+
+class Recorder:
+    """Writes one trace row per OB1 scan (and per interrupt execution) from a CPU.
+
+    Args:
+        cpu: the CPU to observe.
+        signals: names to record (``"S1"``, ``"DATA.D1_OBS"``, ``"TON_A.ET"``); default: :func:`default_signals`.
+        changes_only: write a row only when a value changed (for hours-long runs).
+    """
+
+    def __init__(self, cpu: CPU, signals: Sequence[str] | None = None, *, changes_only: bool = False):
+        self.cpu = cpu
+        names = list(signals) if signals is not None else default_signals(cpu)
+        kinds, types, sources = {}, {}, []
+        for name in names:
+            kind, dtype, source = self._locate(name)
+            kinds[name], types[name] = kind, dtype
+            sources.append(source)
+        self.trace = Trace(names, kinds, types)
+        self.row = _compile_getter(sources)
+        self.changes_only = changes_only
+        self._last: tuple[Any, ...] | None = None
+
+    def _locate(self, name: str) -> tuple[str, str, str]:
+        cpu = self.cpu
+        head, _, rest = name.partition(".")
+        if head not in cpu.t.__dict__:
+            raise UnknownTagError(f"cannot trace {name!r}: no tag {head!r}{did_you_mean(head, cpu.t.__dict__)}")
+        value = cpu.t.__dict__[head]
+        entry = cpu.table[head]
+        if not rest:
+            if not isinstance(entry.member.type, ElementaryType):
+                raise UnknownTagError(f"cannot trace {name!r}: it is a {entry.member.type.name}; trace its members")
+            area = entry.address.area if entry.address is not None else "M"
+            kind = {"I": "input", "Q": "output"}.get(area, "memory")
+            return kind, _type_name(entry.member.type), f"d[{head!r}]"
+        if isinstance(value, IecTimer):
+            member = {"Q": "_q", "ET": "_et", "PT": "PT", "IN": "IN"}.get(rest)
+            if member is None:
+                raise UnknownTagError(f"cannot trace {name!r}: a timer has Q, ET, PT and IN")
+            return "timer", "bool" if rest in ("Q", "IN") else "int", f"d[{head!r}].{member}"
+        if isinstance(value, IecCounter):
+            if rest not in ("CV", "PV", "QU", "QD", "CU", "CD", "R", "LD"):
+                raise UnknownTagError(f"cannot trace {name!r}: a counter has CV, PV, QU, QD, CU, CD, R, LD")
+            return "counter", "int" if rest in ("CV", "PV") else "bool", f"d[{head!r}].{rest}"
+        if isinstance(value, EdgeTrigger):
+            return "memory", "bool", f"d[{head!r}].{rest}"
+        container, key = cpu.resolve_path(name)
+        if not isinstance(container, PlcStruct):
+            raise UnknownTagError(f"cannot trace {name!r}: array elements are not traced; copy it to a tag")
+        mtype = container._type.members[key].type
+        if not isinstance(mtype, ElementaryType):
+            raise UnknownTagError(f"cannot trace {name!r}: it is a {mtype.name}; trace its members")
+        path = "d" + "".join(f"[{p!r}]" if i == 0 else f".__dict__[{p!r}]" for i, p in enumerate(name.split(".")))
+        return "db", _type_name(mtype), path
+
+    # -- hooks ---------------------------------------------------------------------------------
+
+    def attach(self) -> None:
+        """Start recording: every OB1 scan and every interrupt execution writes a row."""
+        self.cpu.on_scan_end = self.on_scan
+        self.cpu.on_task_end = self.on_task
+
+    def on_scan(self, cpu: CPU) -> None:
+        values = self.row(cpu.t.__dict__)
+        if self.changes_only:
+            if values == self._last:
+                return
+            self._last = values
+        self.trace.add_row(cpu.scan_start_ns, cpu.scan_end_ns, 1, values)
+
+    def on_task(self, cpu: CPU, task: str, start_ns: int, end_ns: int) -> None:
+        values = self.row(cpu.t.__dict__)
+        if self.changes_only:
+            if values == self._last:
+                return
+            self._last = values
+        self.trace.add_row(start_ns, end_ns, int(task[2:]) if task[2:].isdigit() else 0, values)
+
+    def on_stopped(self, t_ns: int, end_ns: int) -> None:
+        """A row while the CPU is in STOP (no scans run; outputs are off)."""
+        values = self.row(self.cpu.t.__dict__)
+        if self.changes_only and values == self._last:
+            return
+        self._last = values
+        self.trace.add_row(t_ns, end_ns, 0, values)
+
+
+def _compile_getter(sources: list[str]) -> Callable[[dict[str, Any]], tuple[Any, ...]]:
+    """A function returning the row as a tuple, generated once from the access paths (our code, not a program's)."""
+    if not sources:
+        return lambda d: ()
+    body = ", ".join(sources)
+    return eval(f"lambda d: ({body},)", {"__builtins__": {}})  # paths built above from tag names, not program text

@@ -1,0 +1,386 @@
+"""Scenarios: what the operator does and what goes wrong, on a timeline an instructor can read.
+
+>>> jam_run = Scenario(
+...     "jam",
+...     place("part", at="S1", t="0.5s"),
+...     jam("part", t="2s"),
+...     write("ACK", True, t="15s"),
+...     duration="20s",
+... )
+>>> [a.describe() for a in jam_run.actions][:2]
+["place 'part' at S1 at 500 ms", "jam 'part' at 2 s"]
+
+Times are literals (``"2s"``) or seeded ranges (``"2s..3s"``); an action may instead wait for the
+plant (``when=held("S2", "1s")``: after S2 has been interrupted for 1 s). Parts are placed with the
+pose noise of the textbook rigs (±5 mm, ±5°) unless ``noise=False``. Each action remembers the
+file and line that created it, so a bad name is reported where the instructor wrote it.
+"""
+
+from __future__ import annotations
+
+import random
+import sys
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from typing import Any
+
+from plcsim.errors import ConfigurationError, PlcError, did_you_mean
+from plcsim.literals import format_ns, to_ns
+
+
+class ScenarioError(ConfigurationError):
+    """An action naming a station, signal, button or tag that does not exist, or a bad time."""
+
+
+def _caller() -> str:
+    frame = sys._getframe(2)
+    while frame is not None and frame.f_globals.get("__name__") == __name__:
+        frame = frame.f_back  # type: ignore[assignment]
+    if frame is None:
+        return "?"
+    return f"{frame.f_code.co_filename}:{frame.f_lineno}"
+
+
+@dataclass(frozen=True)
+class TimeSpec:
+    """A time on the timeline: fixed, or drawn uniformly from ``lo..hi`` with the scenario's seed."""
+
+    lo_ns: int
+    hi_ns: int
+
+    @classmethod
+    def parse(cls, value: str | int | TimeSpec) -> TimeSpec:
+        if isinstance(value, TimeSpec):
+            return value
+        if isinstance(value, str) and ".." in value:
+            lo, hi = value.split("..", 1)
+            spec = cls(to_ns(lo.strip()), to_ns(hi.strip()))
+            if spec.hi_ns < spec.lo_ns:
+                raise ScenarioError(f"time range {value!r} runs backwards")
+            return spec
+        ns = to_ns(value, "time")
+        return cls(ns, ns)
+
+    def draw(self, rng: random.Random) -> int:
+        return self.lo_ns if self.lo_ns == self.hi_ns else rng.randint(self.lo_ns, self.hi_ns)
+
+    def __str__(self) -> str:
+        if self.lo_ns == self.hi_ns:
+            return format_ns(self.lo_ns)
+        return f"{format_ns(self.lo_ns)}..{format_ns(self.hi_ns)}"
+
+
+@dataclass(frozen=True)
+class Trigger:
+    """Wait for the plant: a sensor held at a value for a time, or a plant event."""
+
+    signal: str | None = None
+    value: Any = True
+    for_ns: int = 0
+    event: str | None = None
+    subject: str | None = None
+
+    def describe(self) -> str:
+        if self.event:
+            return f"after '{self.event}'" + (f" of {self.subject}" if self.subject else "")
+        state = "interrupted/actuated" if self.value is True else f"= {self.value}"
+        return f"when {self.signal} has been {state} for {format_ns(self.for_ns)}"
+
+
+def held(signal: str, duration: str | int = 0, value: Any = True) -> Trigger:
+    """Trigger when a plant sensor has had ``value`` (default: actuated) for ``duration``."""
+    return Trigger(signal=signal, value=value, for_ns=to_ns(duration))
+
+
+def after_event(kind: str, subject: str | None = None) -> Trigger:
+    """Trigger when the plant reports an event (``part entered``, ``part fell off`` ...)."""
+    return Trigger(event=kind, subject=subject)
+
+
+@dataclass
+class Action:
+    """One step of a scenario. ``verb`` says what, ``target`` on what, ``t`` or ``when`` says when."""
+
+    verb: str
+    target: str = ""
+    t: TimeSpec | None = None
+    when: Trigger | None = None
+    delay: TimeSpec = field(default_factory=lambda: TimeSpec(0, 0))
+    args: dict[str, Any] = field(default_factory=dict)
+    defined_at: str = "?"
+
+    def describe(self) -> str:
+        what = {
+            "place": f"place {self.target!r} at {self.args.get('station')}",
+            "press": f"press {self.target}",
+            "release": f"release {self.target}",
+            "switch": f"switch {self.target} {'on' if self.args.get('on') else 'off'}",
+            "write": f"write {self.target} = {self.args.get('value')!r}",
+            "remove": f"remove {self.target!r}",
+            "jam": f"jam {self.target!r}",
+            "unjam": f"free {self.target!r}",
+            "knock_off": f"knock {self.target!r} off",
+            "stick": f"stick {self.target} at {self.args.get('value')!r}",
+            "break_wire": f"break the wire of {self.target}",
+            "chatter": f"make {self.target} chatter",
+            "clear": f"clear the fault on {self.target}",
+            "shift": f"shift sensor {self.target} by {self.args.get('mm')} mm",
+            "jam_motor": f"jam motor {self.target}",
+            "free_motor": f"free motor {self.target}",
+            "stop_cpu": "switch the CPU to STOP",
+            "start_cpu": "switch the CPU to RUN",
+            "power_cycle": "power the CPU off and on",
+        }.get(self.verb, self.verb)
+        if self.when is not None:
+            when = self.when.describe() + (f" + {self.delay}" if self.delay.hi_ns else "")
+        else:
+            when = f"at {self.t}"
+        return f"{what} {when}"
+
+
+def _action(verb: str, target: str, t: Any, when: Trigger | None, delay: Any = 0, **args: Any) -> Action:
+    if (t is None) == (when is None):
+        raise ScenarioError(f"{_caller()}: {verb} {target}: give exactly one of t='2s' or when=held(...)")
+    try:
+        spec = None if t is None else TimeSpec.parse(t)
+        delay_spec = TimeSpec.parse(delay)
+    except PlcError as exc:
+        raise ScenarioError(f"{_caller()}: {verb} {target}: {exc}") from None
+    return Action(verb, target, spec, when, delay_spec, args, _caller())
+
+
+def press(button: str, t: Any = None, *, hold: Any = None, when: Trigger | None = None, delay: Any = 0) -> list[Action]:
+    """Press a push button at ``t``; with ``hold="200ms"`` release it again after that long."""
+    actions = [_action("press", button, t, when, delay)]
+    if hold is not None:
+        if t is None:
+            raise ScenarioError(f"{_caller()}: press {button}: hold= needs a fixed t=")
+        actions.append(
+            Action(
+                "release",
+                button,
+                None,
+                None,
+                TimeSpec(0, 0),
+                {"after": actions[0], "hold": TimeSpec.parse(hold)},
+                _caller(),
+            )
+        )
+    return actions
+
+
+def release(button: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Release a push button."""
+    return _action("release", button, t, when, delay)
+
+
+def switch(name: str, on: bool, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Turn a switch on or off."""
+    return _action("switch", name, t, when, delay, on=on)
+
+
+def write(tag: str, value: Any, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Write a tag once, as an HMI button or a watch table does (``ACK``, ``DATA.x``, ``NULUJ``)."""
+    return _action("write", tag, t, when, delay, value=value)
+
+
+def place(
+    part: str,
+    *,
+    at: str,
+    t: Any = None,
+    when: Trigger | None = None,
+    delay: Any = 0,
+    noise: bool = True,
+    offset_mm: float | None = None,
+    angle_deg: float | None = None,
+    **properties: Any,
+) -> Action:
+    """Put a new part named ``part`` at station ``at`` (with ±5 mm / ±5° pose noise unless noise=False)."""
+    return _action(
+        "place",
+        part,
+        t,
+        when,
+        delay,
+        station=at,
+        noise=noise,
+        offset_mm=offset_mm,
+        angle_deg=angle_deg,
+        properties=properties,
+    )
+
+
+def remove(target: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Take a part away (by its name, or the station it is at)."""
+    return _action("remove", target, t, when, delay)
+
+
+def jam(part: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Hold a part where it is: the belt slips under it."""
+    return _action("jam", part, t, when, delay)
+
+
+def unjam(part: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Free a jammed part."""
+    return _action("unjam", part, t, when, delay)
+
+
+def knock_off(part: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Push a part off the machine."""
+    return _action("knock_off", part, t, when, delay)
+
+
+def stuck(signal: str, value: Any, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Stuck-at fault on a wired signal (by signal or tag name)."""
+    return _action("stick", signal, t, when, delay, value=value)
+
+
+def wire_break(signal: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Broken wire: the input reads FALSE (an NC sensor then reads 'object present')."""
+    return _action("break_wire", signal, t, when, delay)
+
+
+def chatter(
+    signal: str,
+    t: Any = None,
+    *,
+    when: Trigger | None = None,
+    delay: Any = 0,
+    transitions: tuple[int, int] = (3, 5),
+    width: tuple[str, str] = ("2ms", "10ms"),
+) -> Action:
+    """Contact bounce on a sensor from ``t`` on: every change comes with a few short extra toggles."""
+    return _action("chatter", signal, t, when, delay, transitions=transitions, width=width)
+
+
+def clear(signal: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Remove a wiring fault."""
+    return _action("clear", signal, t, when, delay)
+
+
+def shift_sensor(sensor: str, mm: float, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Misalign a sensor by ``mm`` along the belt."""
+    return _action("shift", sensor, t, when, delay, mm=mm)
+
+
+def jam_motor(actuator: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Block a motor: commanded, it does not move."""
+    return _action("jam_motor", actuator, t, when, delay)
+
+
+def free_motor(actuator: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Unblock a jammed motor."""
+    return _action("free_motor", actuator, t, when, delay)
+
+
+def stop_cpu(t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Switch the CPU to STOP (the mode switch)."""
+    return _action("stop_cpu", "CPU", t, when, delay)
+
+
+def start_cpu(t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Switch the CPU to RUN."""
+    return _action("start_cpu", "CPU", t, when, delay)
+
+
+def power_cycle(t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Power the CPU off and on (retain tags survive)."""
+    return _action("power_cycle", "CPU", t, when, delay)
+
+
+def _flatten(items: Iterable[Any]) -> list[Action]:
+    out: list[Action] = []
+    for item in items:
+        if isinstance(item, Action):
+            out.append(item)
+        elif isinstance(item, (list, tuple)):
+            out.extend(_flatten(item))
+        else:
+            raise ScenarioError(f"a scenario holds actions such as press(...) or place(...), not {item!r}")
+    return out
+
+
+class Scenario:
+    """A named timeline of actions with a duration and a short description."""
+
+    def __init__(self, name: str, *actions: Action | list[Action], duration: str | int = "10s", description: str = ""):
+        self.name = name
+        self.actions = _flatten(actions)
+        self.duration_ns = to_ns(duration, "duration")
+        self.description = description
+        self.defined_at = _caller()
+
+    def __repr__(self) -> str:
+        return f"<Scenario {self.name}: {len(self.actions)} actions, {format_ns(self.duration_ns)}>"
+
+
+@dataclass
+class Planned:
+    """An action with its drawn time (or its trigger still pending)."""
+
+    action: Action
+    at_ns: int | None
+    order: int
+    done: bool = False
+    armed_since: int | None = None
+
+
+def plan(scenario: Scenario, rng: random.Random) -> list[Planned]:
+    """Draw the random times of a scenario (in the order the actions were written)."""
+    planned: list[Planned] = []
+    starts: dict[int, int] = {}
+    for order, action in enumerate(scenario.actions):
+        if action.verb == "release" and "after" in action.args:
+            start = starts[id(action.args["after"])]
+            at = start + action.args["hold"].draw(rng)
+        elif action.t is not None:
+            at = action.t.draw(rng)
+        else:
+            at = None
+        if at is not None:
+            starts[id(action)] = at
+        planned.append(Planned(action, at, order))
+    return planned
+
+
+def check_names(
+    scenario: Scenario,
+    *,
+    stations: Iterable[str],
+    buttons: Iterable[str],
+    signals: Iterable[str],
+    tags: Iterable[str],
+    actuators: Iterable[str],
+) -> None:
+    """Check every name in the scenario before the run, naming the line and the valid choices."""
+    stations, buttons, signals = list(stations), list(buttons), list(signals)
+    tags, actuators = list(tags), list(actuators)
+    parts: set[str] = {a.target for a in scenario.actions if a.verb == "place"}
+    for a in scenario.actions:
+
+        def fail(what: str, name: str, choices: list[str], a: Action = a) -> None:
+            listed = ", ".join(choices) if choices else "none"
+            raise ScenarioError(
+                f"{a.defined_at}: scenario {scenario.name!r}: {a.describe()}: no {what} {name!r}"
+                f"{did_you_mean(name, choices)}; valid: {listed}"
+            )
+
+        if a.verb == "place" and a.args["station"] not in stations:
+            fail("station", a.args["station"], stations)
+        if a.verb in ("press", "release", "switch") and a.target not in buttons:
+            fail("button or switch", a.target, buttons)
+        if a.verb == "write" and a.target.split(".")[0].split("[")[0] not in tags:
+            fail("tag", a.target, tags)
+        if a.verb in ("remove",) and a.target not in parts and a.target not in stations:
+            fail("part or station", a.target, sorted(parts) + stations)
+        if a.verb in ("jam", "unjam", "knock_off") and a.target not in parts:
+            fail("part", a.target, sorted(parts))
+        if a.verb in ("stick", "break_wire", "chatter", "clear") and a.target not in signals:
+            fail("wired signal", a.target, signals)
+        if a.verb == "shift" and a.target not in signals:
+            fail("sensor", a.target, signals)
+        if a.verb in ("jam_motor", "free_motor") and a.target not in actuators:
+            fail("motor", a.target, actuators)
+        if a.when is not None and a.when.signal is not None and a.when.signal not in signals:
+            fail("signal to wait for", a.when.signal, signals)

@@ -1,0 +1,282 @@
+"""The run's record: one row per scan of I/O images and chosen tags, plant events, plant geometry.
+
+Rows are appended as tuples (cheap on the hot path) and packed into numpy blocks of
+:data:`BLOCK` rows; queries see one float64 column per signal. Booleans are stored as 0.0/1.0.
+
+An output is valid from the end of the scan that wrote it, an input from the start of the scan
+that read it:
+
+>>> tr = Trace(["S1", "D1"], kinds={"S1": "input", "D1": "output"}, types={"S1": "bool", "D1": "bool"})
+>>> for k, (s1, d1) in enumerate([(0, 0), (1, 0), (1, 1), (0, 1), (0, 0)]):
+...     tr.add_row(k * 1_000_000, (k + 1) * 1_000_000, 1, (bool(s1), bool(d1)))
+>>> tr.rises("S1").tolist(), tr.rises("D1").tolist()
+([1000000], [3000000])
+>>> tr.intervals("D1")
+[(3000000, 5000000)]
+>>> tr.value_at("D1", 3_500_000)
+True
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from plcsim.errors import UnknownTagError, did_you_mean
+from plcsim.plant import Drawable, PlantEvent
+
+BLOCK = 4096
+"""Rows per packed numpy block."""
+HEAD = 3
+"""Leading columns of every row: scan start, scan end, task number."""
+
+
+@dataclass(frozen=True)
+class TraceEvent:
+    """An event of the run: a plant event, a scenario action, a CPU mode change or diagnostic."""
+
+    t_ns: int
+    source: str  # "plant", "scenario", "cpu", "wiring"
+    kind: str
+    subject: str = ""
+    part: str | None = None
+    detail: str = ""
+
+    def __str__(self) -> str:
+        who = f" {self.subject}" if self.subject else ""
+        part = f" ({self.part})" if self.part else ""
+        detail = f": {self.detail}" if self.detail else ""
+        return f"{self.t_ns / 1e9:10.3f} s  {self.source:8s} {self.kind}{who}{part}{detail}"
+
+
+@dataclass
+class GeometryFrame:
+    """The plant's moving shapes at one instant."""
+
+    t_ns: int
+    drawables: list[Drawable]
+
+
+@dataclass
+class Trace:
+    """Columns of a run plus its events and geometry.
+
+    Attributes:
+        names: the signal names, in column order.
+        kinds: name -> ``input``, ``output``, ``memory``, ``db``, ``timer``, ``counter``, ``analog``.
+        types: name -> ``bool``, ``int`` or ``real``.
+    """
+
+    names: list[str]
+    kinds: dict[str, str] = field(default_factory=dict)
+    types: dict[str, str] = field(default_factory=dict)
+    meta: dict[str, Any] = field(default_factory=dict)
+    events: list[TraceEvent] = field(default_factory=list)
+    frames: list[GeometryFrame] = field(default_factory=list)
+    static_drawables: list[Drawable] = field(default_factory=list)
+    bounds: tuple[float, float, float, float] | None = None
+
+    def __post_init__(self) -> None:
+        self._index = {name: i for i, name in enumerate(self.names)}
+        self._pending: list[tuple[Any, ...]] = []
+        self._blocks: list[np.ndarray] = []
+        self._packed: np.ndarray | None = None
+        self._empty = np.zeros((0, HEAD + len(self.names)))
+
+    # -- writing -------------------------------------------------------------------------------
+
+    def add_row(self, t_ns: int, t_end_ns: int, task: int, values: Sequence[Any]) -> None:
+        """Append one row: scan start, scan end, task number (1 = OB1), then the values in column order."""
+        pending = self._pending
+        pending.append((t_ns, t_end_ns, task, *values))
+        if len(pending) >= BLOCK:
+            self._pack()
+
+    def _pack(self) -> None:
+        if self._pending:
+            self._blocks.append(np.array(self._pending, dtype=np.float64))
+            self._pending = []
+            self._packed = None
+
+    def add_event(self, event: TraceEvent) -> None:
+        """Record an event."""
+        self.events.append(event)
+
+    def add_plant_events(self, events: Iterable[PlantEvent]) -> None:
+        """Record plant events."""
+        for e in events:
+            detail = ", ".join(f"{k}={v}" for k, v in e.data.items()) if e.data else ""
+            self.events.append(TraceEvent(e.t_ns, "plant", e.kind, e.subject, e.part, detail))
+
+    def add_frame(self, t_ns: int, drawables: list[Drawable]) -> None:
+        """Record the plant's moving shapes."""
+        self.frames.append(GeometryFrame(t_ns, drawables))
+
+    # -- reading -------------------------------------------------------------------------------
+
+    @property
+    def table(self) -> np.ndarray:
+        """All rows as one (rows, 3 + signals) float64 array: t_ns, t_end_ns, task, then the values."""
+        self._pack()
+        if self._packed is None:
+            self._packed = np.concatenate(self._blocks) if self._blocks else self._empty
+            self._blocks = [self._packed] if len(self._packed) else []
+        return self._packed
+
+    def __len__(self) -> int:
+        return sum(len(b) for b in self._blocks) + len(self._pending)
+
+    @property
+    def times(self) -> np.ndarray:
+        """Row times (scan start, when the inputs were read) as int64 ns."""
+        return self.table[:, 0].astype(np.int64)
+
+    @property
+    def end_times(self) -> np.ndarray:
+        """Row end times (when the outputs were written) as int64 ns."""
+        return self.table[:, 1].astype(np.int64)
+
+    @property
+    def tasks(self) -> np.ndarray:
+        """The OB number that wrote each row (1 = OB1 scan)."""
+        return self.table[:, 2].astype(np.int64)
+
+    def column(self, name: str) -> np.ndarray:
+        """The values of one signal, one per row (bool signals as a bool array)."""
+        i = self._index.get(name)
+        if i is None:
+            raise UnknownTagError(
+                f"the trace has no signal {name!r}{did_you_mean(name, self.names)}; traced: {', '.join(self.names)}"
+            )
+        col = self.table[:, HEAD + i]
+        if self.types.get(name) == "bool":
+            return col != 0.0
+        return col
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._index
+
+    def signal_times(self, name: str) -> np.ndarray:
+        """When each row's value of ``name`` became valid: scan end for outputs, scan start otherwise."""
+        return self.end_times if self.kinds.get(name) == "output" else self.times
+
+    def value_at(self, name: str, t_ns: int) -> Any:
+        """The value of a signal at time ``t_ns`` (the last row valid at or before it; the first row before)."""
+        when = self.signal_times(name)
+        k = int(np.searchsorted(when, t_ns, side="right")) - 1
+        col = self.column(name)
+        if len(col) == 0:
+            raise ValueError("the trace is empty")
+        value = col[max(k, 0)]
+        return bool(value) if self.types.get(name) == "bool" else value.item()
+
+    def _edges(self, name: str, rising: bool) -> np.ndarray:
+        col = self.column(name).astype(bool)
+        if len(col) < 2:
+            return np.zeros(0, dtype=np.int64)
+        change = (col[1:] & ~col[:-1]) if rising else (~col[1:] & col[:-1])
+        return self.signal_times(name)[1:][change]
+
+    def rises(self, name: str) -> np.ndarray:
+        """Times at which a Bool signal went FALSE -> TRUE."""
+        return self._edges(name, True)
+
+    def falls(self, name: str) -> np.ndarray:
+        """Times at which a Bool signal went TRUE -> FALSE."""
+        return self._edges(name, False)
+
+    def rise_scans(self, name: str) -> np.ndarray:
+        """Row numbers at which a Bool signal went FALSE -> TRUE."""
+        col = self.column(name).astype(bool)
+        return np.nonzero(col[1:] & ~col[:-1])[0] + 1
+
+    def intervals(self, name: str, value: bool = True) -> list[tuple[int, int | None]]:
+        """``[(start, end)]`` while a Bool signal had ``value``; the last end is None if it still has it."""
+        col = self.column(name).astype(bool)
+        if not value:
+            col = ~col
+        when = self.signal_times(name)
+        out: list[tuple[int, int | None]] = []
+        start = None
+        for k in np.flatnonzero(np.diff(np.concatenate(([False], col, [False])).astype(np.int8))):
+            if start is None:
+                start = int(when[k])
+            else:
+                out.append((start, int(when[k]) if k < len(when) else None))
+                start = None
+        return out
+
+    def events_of(
+        self, kind: str | None = None, subject: str | None = None, source: str | None = None
+    ) -> list[TraceEvent]:
+        """Events filtered by kind, subject and source."""
+        return [
+            e
+            for e in self.events
+            if (kind is None or e.kind == kind)
+            and (subject is None or e.subject == subject)
+            and (source is None or e.source == source)
+        ]
+
+    @property
+    def duration_ns(self) -> int:
+        """Simulated time the trace covers."""
+        return int(self.meta.get("end_ns", self.end_times[-1] if len(self) else 0))
+
+    # -- files ---------------------------------------------------------------------------------
+
+    def save(self, path: str | Path) -> Path:
+        """Save as ``.npz``: the row table, names, kinds, types, events and meta (geometry is not saved)."""
+        path = Path(path)
+        header = {
+            "names": self.names,
+            "kinds": self.kinds,
+            "types": self.types,
+            "meta": self.meta,
+            "events": [asdict(e) for e in self.events],
+        }
+        np.savez_compressed(path, table=self.table, header=np.array(json.dumps(header)))
+        return path
+
+    @classmethod
+    def load(cls, path: str | Path) -> Trace:
+        """Read a trace saved by :meth:`save`."""
+        with np.load(Path(path)) as data:
+            header = json.loads(str(data["header"]))
+            trace = cls(
+                header["names"],
+                header["kinds"],
+                header["types"],
+                header["meta"],
+                [TraceEvent(**e) for e in header["events"]],
+            )
+            trace._blocks = [data["table"]]
+        return trace
+
+    def digest(self) -> str:
+        """A hash of the rows and events, to prove two runs identical bit for bit."""
+        import hashlib
+
+        h = hashlib.sha256(self.table.tobytes())
+        h.update(json.dumps([asdict(e) for e in self.events]).encode())
+        return h.hexdigest()
+
+    def to_rrd(self, path: str | Path, **options: Any) -> Path:
+        """Export to a rerun recording (see :mod:`plcsim.trace_rerun`)."""
+        from plcsim.trace_rerun import export_rrd
+
+        return export_rrd(self, path, **options)
+
+    def plot(self, signals: Sequence[str] | None = None, **options: Any) -> Any:
+        """A matplotlib timing diagram (see :mod:`plcsim.trace_plot`)."""
+        from plcsim.trace_plot import timing_diagram
+
+        return timing_diagram(self, signals, **options)
+
+
+RowGetter = Callable[[], tuple[Any, ...]]

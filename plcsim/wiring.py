@@ -1,0 +1,293 @@
+"""Wiring: plant signals to PLC addresses, the way an electrician connects a training rig.
+
+A sensor reports its physical state (a light barrier is True while interrupted). Wired **NO**, the
+PLC input is TRUE while the sensor is actuated; wired **NC**, it is TRUE while the sensor is *not*
+actuated, and a broken wire reads like "actuated" (textbook 4.3.2, 4.3.10). Analog signals are scaled
+to the module's raw range (0..27 648). Faults live here too: stuck-at, wire break and contact chatter.
+
+>>> Wire("S1", "S1", "NC").level(True)
+False
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from plcsim.errors import ConfigurationError, did_you_mean
+from plcsim.literals import to_ns
+from plcsim.plant import Plant, SignalSpec
+from plcsim.tags import TagTable
+
+
+class WiringError(ConfigurationError):
+    """A wire to a signal or tag that does not exist, an address used twice, a sensor on an output."""
+
+
+@dataclass(frozen=True)
+class Wire:
+    """One connection between a plant signal and a PLC tag.
+
+    Attributes:
+        signal: the plant's signal name.
+        tag: the PLC tag (an %I tag for a sensor, a %Q tag for an actuator).
+        contact: ``NO`` or ``NC`` for a Boolean sensor.
+        raw: the raw module range of an analog signal (Siemens: 0..27 648).
+        noise: standard deviation of analog noise, in raw units (seeded).
+    """
+
+    signal: str
+    tag: str
+    contact: str = "NO"
+    raw: tuple[int, int] = (0, 27_648)
+    noise: float = 0.0
+
+    def level(self, actuated: bool) -> bool:
+        """The electrical level at the PLC input for a physical state."""
+        return (not actuated) if self.contact == "NC" else actuated
+
+
+def NO(signal: str, tag: str | None = None) -> Wire:
+    """A normally-open contact: the input is TRUE while the sensor is actuated."""
+    return Wire(signal, tag or signal, "NO")
+
+
+def NC(signal: str, tag: str | None = None) -> Wire:
+    """A normally-closed contact: the input is TRUE while the sensor is not actuated."""
+    return Wire(signal, tag or signal, "NC")
+
+
+def analog(signal: str, tag: str | None = None, raw: tuple[int, int] = (0, 27_648), noise: float = 0.0) -> Wire:
+    """An analog input or output scaled to the raw module range."""
+    return Wire(signal, tag or signal, "NO", raw, noise)
+
+
+@dataclass
+class _Fault:
+    kind: str  # "stuck", "wire break", "chatter"
+    value: Any = None
+    transitions: tuple[int, int] = (3, 5)
+    width_ns: tuple[int, int] = (2_000_000, 10_000_000)
+
+
+class Wiring:
+    """The connections of one rig to one CPU, with injected faults.
+
+    Args:
+        plant: the machine.
+        table: the CPU's tag table (``cpu.table``).
+        wires: the connections.
+        seed: seed of chatter and analog noise.
+    """
+
+    def __init__(self, plant: Plant, table: TagTable, wires: Iterable[Wire], *, seed: int = 0):
+        self.plant = plant
+        self.wires = list(wires)
+        self.rng = random.Random(seed)
+        self._validate(table)
+        self.by_signal = {w.signal: w for w in self.wires}
+        self.by_tag = {w.tag: w for w in self.wires}
+        self._inputs_bool: list[tuple[str, str, bool]] = []
+        self._inputs_analog: list[tuple[Wire, SignalSpec]] = []
+        self._outputs: list[tuple[Wire, SignalSpec]] = []
+        for w in self.wires:
+            spec = plant.signals[w.signal]
+            if spec.direction == "sensor":
+                if spec.kind == "bool":
+                    self._inputs_bool.append((w.signal, w.tag, w.contact == "NC"))
+                else:
+                    self._inputs_analog.append((w, spec))
+            else:
+                self._outputs.append((w, spec))
+        self.faults: dict[str, _Fault] = {}
+        self._chatter: dict[str, list[tuple[int, int]]] = {}
+        self._last_physical: dict[str, Any] = {}
+        self._sent: dict[str, Any] = {}
+        self._output_version = -1
+
+    # -- validation ---------------------------------------------------------------------------
+
+    def _validate(self, table: TagTable) -> None:
+        signals = self.plant.signals
+        seen_tags: dict[str, str] = {}
+        seen_addr: dict[str, str] = {}
+        seen_signals: set[str] = set()
+        for w in self.wires:
+            if w.signal not in signals:
+                raise WiringError(
+                    f"wiring: {self.plant.name} has no signal {w.signal!r}"
+                    f"{did_you_mean(w.signal, signals)}; its signals: {', '.join(signals)}"
+                )
+            if w.signal in seen_signals:
+                raise WiringError(f"wiring: signal {w.signal!r} is wired twice")
+            seen_signals.add(w.signal)
+            if w.tag not in table:
+                raise WiringError(
+                    f"wiring: {w.signal} goes to tag {w.tag!r}, which is not in the tag table"
+                    f"{did_you_mean(w.tag, [e.name for e in table])}"
+                )
+            entry = table[w.tag]
+            if entry.address is None:
+                raise WiringError(f"wiring: tag {w.tag!r} has no address; a wire needs an %I or %Q tag")
+            spec = signals[w.signal]
+            area = entry.address.area
+            if spec.direction == "sensor" and area != "I":
+                raise WiringError(
+                    f"wiring: sensor {w.signal} is wired to {w.tag} at {entry.address}; sensors go to inputs (%I)"
+                )
+            if spec.direction == "actuator" and area != "Q":
+                raise WiringError(
+                    f"wiring: actuator {w.signal} is wired to {w.tag} at {entry.address}; "
+                    f"actuators are driven by outputs (%Q)"
+                )
+            if w.tag in seen_tags:
+                raise WiringError(f"wiring: tag {w.tag!r} is wired to both {seen_tags[w.tag]} and {w.signal}")
+            seen_tags[w.tag] = w.signal
+            addr = str(entry.address)
+            if addr in seen_addr:
+                raise WiringError(
+                    f"wiring: address {addr} is already used by {seen_addr[addr]}; "
+                    f"{w.signal} needs an address of its own"
+                )
+            seen_addr[addr] = w.signal
+            if w.contact not in ("NO", "NC"):
+                raise WiringError(f"wiring: {w.signal}: contact must be 'NO' or 'NC', not {w.contact!r}")
+            if spec.kind == "bool" and entry.member.type.name != "Bool":
+                raise WiringError(f"wiring: {w.signal} is a Boolean signal but {w.tag} is {entry.member.type.name}")
+
+    def signal_for(self, name: str) -> str:
+        """The plant signal named by a signal or tag name."""
+        if name in self.by_signal:
+            return name
+        if name in self.by_tag:
+            return self.by_tag[name].signal
+        known = list(self.by_signal) + list(self.by_tag)
+        raise WiringError(f"no wired signal or tag {name!r}{did_you_mean(name, known)}")
+
+    # -- the hot path -------------------------------------------------------------------------
+
+    def read_inputs(self, inputs: dict[str, Any], now_ns: int) -> None:
+        """Copy the sensors' electrical levels into the CPU's input terminals."""
+        sensors = self.plant.sensors
+        if self.faults or self._chatter:
+            for signal, tag, invert in self._inputs_bool:
+                inputs[tag] = self._faulted_level(signal, invert, sensors[signal], now_ns)
+        else:
+            for signal, tag, invert in self._inputs_bool:
+                value = sensors[signal]
+                inputs[tag] = (not value) if invert else value
+        for wire, spec in self._inputs_analog:
+            inputs[wire.tag] = self._raw(wire, spec, sensors[wire.signal], wire.signal)
+
+    def write_outputs(self, outputs: Mapping[str, Any]) -> None:
+        """Send changed PLC outputs to the plant's actuators."""
+        plant = self.plant
+        sent = self._sent
+        for wire, spec in self._outputs:
+            value = outputs[wire.tag]
+            fault = self.faults.get(wire.signal)
+            if fault is not None and fault.kind == "stuck":
+                value = fault.value
+            elif fault is not None and fault.kind == "wire break":
+                value = False if spec.kind == "bool" else 0
+            if spec.kind == "analog":
+                lo_raw, hi_raw = wire.raw
+                value = spec.lo + (value - lo_raw) / (hi_raw - lo_raw) * (spec.hi - spec.lo)
+            if sent.get(wire.signal, _UNSET) != value:
+                sent[wire.signal] = value
+                plant.actuate(wire.signal, value)
+
+    def _faulted_level(self, signal: str, invert: bool, physical: bool, now_ns: int) -> bool:
+        fault = self.faults.get(signal)
+        if fault is not None:
+            if fault.kind == "stuck":
+                return fault.value
+            if fault.kind == "wire break":
+                return False
+            if fault.kind == "chatter":
+                last = self._last_physical.get(signal)
+                if last is not None and last != physical:
+                    self._chatter[signal] = self._bounces(fault, now_ns)
+                self._last_physical[signal] = physical
+        level = (not physical) if invert else physical
+        bounces = self._chatter.get(signal)
+        if bounces:
+            while bounces and bounces[0][1] <= now_ns:
+                bounces.pop(0)
+            if bounces and bounces[0][0] <= now_ns:
+                return not level
+        return level
+
+    def _bounces(self, fault: _Fault, now_ns: int) -> list[tuple[int, int]]:
+        count = self.rng.randint(*fault.transitions)
+        out, t = [], now_ns
+        for k in range(count):
+            width = self.rng.randint(*fault.width_ns)
+            if k % 2 == 0:
+                out.append((t, t + width))
+            t += width
+        return out
+
+    def _raw(self, wire: Wire, spec: SignalSpec, value: float, signal: str) -> int:
+        fault = self.faults.get(signal)
+        if fault is not None:
+            if fault.kind == "stuck":
+                return int(fault.value)
+            if fault.kind == "wire break":
+                return 32_767  # S7 analog modules report overflow on a broken wire
+        lo_raw, hi_raw = wire.raw
+        raw = lo_raw + (value - spec.lo) / (spec.hi - spec.lo) * (hi_raw - lo_raw)
+        if wire.noise:
+            raw += self.rng.gauss(0.0, wire.noise)
+        return max(-32_768, min(32_767, round(raw)))
+
+    # -- faults -------------------------------------------------------------------------------
+
+    def stick(self, name: str, value: Any) -> None:
+        """Stuck-at: the PLC input (or the actuator) sees ``value`` whatever happens."""
+        signal = self.signal_for(name)
+        self.faults[signal] = _Fault("stuck", value)
+        self._sent.pop(signal, None)
+
+    def break_wire(self, name: str) -> None:
+        """Wire break: the input reads FALSE (an NC sensor then reads 'actuated'); an actuator gets nothing."""
+        signal = self.signal_for(name)
+        self.faults[signal] = _Fault("wire break")
+        self._sent.pop(signal, None)
+
+    def chatter(
+        self, name: str, transitions: tuple[int, int] = (3, 5), width: tuple[str | int, str | int] = ("2ms", "10ms")
+    ) -> None:
+        """Contact bounce: every change of the sensor comes with a few extra short toggles."""
+        signal = self.signal_for(name)
+        self.faults[signal] = _Fault("chatter", transitions=transitions, width_ns=(to_ns(width[0]), to_ns(width[1])))
+        self._last_physical[signal] = self.plant.sensors.get(signal)
+
+    def clear(self, name: str | None = None) -> None:
+        """Remove a fault (or all faults)."""
+        signals = list(self.faults) if name is None else [self.signal_for(name)]
+        for signal in signals:
+            self.faults.pop(signal, None)
+            self._chatter.pop(signal, None)
+            self._sent.pop(signal, None)
+
+    def describe(self) -> list[dict[str, str]]:
+        """The wiring as rows: signal, tag, contact, meaning."""
+        rows = []
+        for w in self.wires:
+            spec = self.plant.signals[w.signal]
+            rows.append(
+                {
+                    "signal": w.signal,
+                    "tag": w.tag,
+                    "contact": w.contact if spec.kind == "bool" else "analog",
+                    "direction": spec.direction,
+                    "doc": spec.doc,
+                }
+            )
+        return rows
+
+
+_UNSET = object()
