@@ -1,11 +1,10 @@
 """4.3.1 LED control 1 (NO push-button). Plant: PANEL."""
 
-from plcsim.check import always, count, rises, same, action
+from exercises._common import solution
+from plants import Panel
+from plcsim.check import action, always, count, rises, same
 from plcsim.exercise import IO, Exercise
 from plcsim.scenario import Scenario, press
-from plants import Panel
-
-from exercises._common import solution
 
 NUMBER = "4.3.1"
 
@@ -35,8 +34,12 @@ EXERCISE = Exercise(
     ],
     rig=lambda: Panel(buttons=("TLACIDLO",), switches=(), lamps=("LED",)),
     scenarios=[
-        Scenario("presses", *press_pattern("TLACIDLO"), duration="4s",
-                 description="12 presses of random length (2..150 ms) at seeded times"),
+        Scenario(
+            "presses",
+            *press_pattern("TLACIDLO"),
+            duration="4s",
+            description="12 presses of random length (2..150 ms) at seeded times",
+        ),
     ],
     checks=[
         always(same("LED", "TLACIDLO")).named("LED equals the button in every scan"),
@@ -47,7 +50,12 @@ EXERCISE = Exercise(
         solution(NUMBER, "reference", explanation="NO contact -> coil"),
         solution(NUMBER, "solution-2", "alternative", "NC contact -> negated coil"),
         solution(NUMBER, "solution-3", "alternative", "SET while pressed, RESET while released"),
-        solution(NUMBER, "wrong-latch", "wrong", "SET without RESET: the LED never goes out",
-                 fails=("LED equals the button in every scan",)),
+        solution(
+            NUMBER,
+            "wrong-latch",
+            "wrong",
+            "SET without RESET: the LED never goes out",
+            fails=("LED equals the button in every scan",),
+        ),
     ],
 )

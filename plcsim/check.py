@@ -18,7 +18,8 @@ Building blocks:
   ``same("LED", "TLACIDLO")``.
 * **checks**: ``X.within(d).after(Y)``, ``X.between(lo, hi).after(Y)``, ``never(c)``, ``always(c)``,
   ``holds(c).until(Y)``, ``holds(c).for_at_least(d)``, ``eventually(c).before(t)``, ``count(X)``,
-  ``spacing(X)``, ``durations(c)``, ``duty(c)``, ``final("MOTOR.SEKUNDY")``, ``program_uses_no("SET")``.
+  ``spacing(X)``, ``durations(c)``, ``duty(c)``, ``final("MOTOR.SEKUNDY")``, ``program_uses_no("SET")``,
+  and ``measure(label, fn)`` for a number computed from the trace by a Python function.
 
 Durations are literals with scans: ``"1 scan"``, ``"10s + 2 scans"``, ``"0.5s - 1 scan"`` (a scan is the
 CPU's cycle time). Conditions are evaluated per scan on the values of that scan: an input as the
@@ -845,16 +846,19 @@ class Quantity(Check):
         return ctx.t(v) if self.unit == "ns" else _num(v)
 
     def describe(self) -> str:
-        bounds = ""
-        if self.lo is not None and self.lo == self.hi:
-            bounds = f" = {self.lo}"
-        elif self.lo is not None and self.hi is not None:
-            bounds = f" in {self.lo}..{self.hi}"
-        elif self.lo is not None:
-            bounds = f" >= {self.lo}"
-        elif self.hi is not None:
-            bounds = f" <= {self.hi}"
-        return f"{'every ' if self.every else ''}{self.label}{bounds}"
+        return f"{'every ' if self.every else ''}{self.label}{self._bounds_text(self.lo, self.hi)}"
+
+    @staticmethod
+    def _bounds_text(lo: Any, hi: Any) -> str:
+        if lo is not None and lo == hi:
+            return f" = {lo}"
+        if lo is not None and hi is not None:
+            return f" between {lo} and {hi}"
+        if lo is not None:
+            return f" at least {lo}"
+        if hi is not None:
+            return f" at most {hi}"
+        return ""
 
     def evaluate(self, ctx: Context) -> Verdict:
         lo, hi = self._bound(self.lo, ctx), self._bound(self.hi, ctx)
@@ -868,12 +872,12 @@ class Quantity(Check):
                 when = at[k] if k < len(at) else None
                 where = f" (at {ctx.t(when)})" if when is not None else ""
                 shown = "nothing" if v is None else self._show(v, ctx)
-                low = self._show(lo, ctx) if lo is not None else "-inf"
-                high = self._show(hi, ctx) if hi is not None else "inf"
-                bound = f"{low}..{high}"
+                bounds = self._bounds_text(
+                    None if lo is None else self._show(lo, ctx), None if hi is None else self._show(hi, ctx)
+                )
                 return Verdict(
                     False,
-                    f"expected {self.describe()} ({bound}); measured {shown}{where}",
+                    f"expected {'every ' if self.every else ''}{self.label}{bounds}; measured {shown}{where}",
                     when,
                     self.sources,
                     (when, when + (int(v) if self.unit == "ns" and v else 0)) if when is not None else None,
@@ -959,6 +963,27 @@ def final(name: str) -> Quantity:
         return float(col[-1]), [int(ctx.trace.times[-1])]
 
     return Quantity(f"{name} at the end", compute, [name])
+
+
+def measure(
+    label: str, compute: Callable[[Trace], float | list[float] | None], *signals: str, unit: str = ""
+) -> Quantity:
+    """A number an instructor computes from the trace with Python: the escape hatch of the language.
+
+    ``compute(trace)`` returns a number (or a list of numbers, each checked); ``signals`` are plotted
+    when the check fails. Example: the hours meter counts the seconds the belt ran::
+
+        measure("SEKUNDY minus seconds with D1 on", lambda tr: ..., "MOTOR.SEKUNDY", "D1").between(-1, 1)
+    """
+
+    def run(ctx: Context) -> tuple[Any, list[int]]:
+        value = compute(ctx.trace)
+        if isinstance(value, (list, tuple)):
+            return [float(v) for v in value], []
+        return (None if value is None else float(value)), []
+
+    q = Quantity(label, run, list(signals), unit=unit)
+    return q
 
 
 def value_at(name: str, when: str | int) -> Quantity:

@@ -135,6 +135,7 @@ def check_subset(tree: ast.Module, filename: str, known_names: Iterable[str]) ->
     """Reject anything outside the PLC subset of Python, naming the line and the fix."""
     known = set(known_names) | ALLOWED_BUILTINS
     module_names = _module_level_names(tree)
+    functions: list[ast.FunctionDef] = []
     for node in ast.walk(tree):
         reason = _FORBIDDEN_NODES.get(type(node))
         if reason:
@@ -150,7 +151,9 @@ def check_subset(tree: ast.Module, filename: str, known_names: Iterable[str]) ->
                 raise SubsetError(f"{_where(filename, node)}: names starting with _ are reserved ({node.name})")
             if node.args.vararg or node.args.kwarg:
                 raise SubsetError(f"{_where(filename, node)}: *args and **kwargs are not part of PLC programs")
-            _check_names(node, filename, known | module_names)
+            functions.append(node)
+    for func in functions:  # names last, so that `try ... except Exception` is reported as the try it is
+        _check_names(func, filename, known | module_names)
     for stmt in tree.body:
         if isinstance(stmt, ast.FunctionDef):
             continue
@@ -212,7 +215,11 @@ BOOL_EXPR = Bool
 
 @dataclass
 class Typing:
-    """What the compiler knows statically: the root tag schema and which root tags alias memory."""
+    """What the compiler knows statically: the root tag schema and which tags alias memory.
+
+    ``aliased`` names root tags (``"POM"``) and members of non-optimized DBs (``"DATA.INT_1"``)
+    whose bytes another tag shares; stores into them must go through byte memory.
+    """
 
     root: StructType
     aliased: frozenset[str] = frozenset()
@@ -332,6 +339,7 @@ class StoreRewriter(ast.NodeTransformer):
                     raise ProgramError(
                         f"{_where(self.typing.filename, sub)}: do not assign to {root}, it holds the tags"
                     )
+        self.env.update(self._bool_locals(node))
         self.generic_visit(node)
         if self.uses_root_dict:
             hoist = ast.parse(f"{ROOT_DICT} = {self.root_name}.__dict__").body[0]
@@ -349,6 +357,32 @@ class StoreRewriter(ast.NodeTransformer):
             node.body.insert(docstring, hoist)
         self.env, self.root_name, self.uses_root_dict = outer
         return node
+
+    def _bool_locals(self, func: ast.FunctionDef) -> dict[str, Any]:
+        """Local variables that only ever hold Bools (``edge = P(...)``), so storing them needs no check."""
+        values: dict[str, list[ast.expr | None]] = {}
+        for node in ast.walk(func):
+            if isinstance(node, ast.Assign):
+                for target in node.targets:
+                    if isinstance(target, ast.Name):
+                        values.setdefault(target.id, []).append(node.value)
+                    else:
+                        for sub in ast.walk(target):
+                            if isinstance(sub, ast.Name) and isinstance(sub.ctx, ast.Store):
+                                values.setdefault(sub.id, []).append(None)
+            elif isinstance(node, (ast.AugAssign, ast.AnnAssign, ast.For)):
+                for sub in ast.walk(node.target):
+                    if isinstance(sub, ast.Name):
+                        values.setdefault(sub.id, []).append(None)
+        params = {a.arg for a in func.args.args}
+        candidates = {name for name, vals in values.items() if name not in params and None not in vals}
+        while True:
+            env = {**self.env, **{name: Bool for name in candidates}}
+            keep = {name for name in candidates
+                    if all(_safe_type(self.typing, v, env) is Bool for v in values[name])}  # type: ignore[arg-type]
+            if keep == candidates:
+                return {name: Bool for name in keep}
+            candidates = keep
 
     # -- loops get a watchdog tick ------------------------------------------------------------
 
@@ -385,7 +419,7 @@ class StoreRewriter(ast.NodeTransformer):
             if kw.arg == "PT" and isinstance(kw.value, ast.Constant) and isinstance(kw.value.value, str):
                 try:
                     kw.value = ast.copy_location(ast.Constant(time_ms(kw.value.value)), kw.value)
-                except Exception as exc:
+                except Exception as exc:  # noqa: BLE001 - any bad literal is reported at its line
                     raise ProgramError(f"{_where(self.typing.filename, kw.value)}: {exc}") from None
         return node
 
@@ -438,7 +472,7 @@ class StoreRewriter(ast.NodeTransformer):
             return self._call_stmt(STORE, [base_node, ast.Constant(key), value], node)
         mtype = self.typing.member_type(base, key, node)
         is_root = base is self.typing.root
-        if is_root and key in self.typing.aliased:
+        if (key if is_root else f"{base.name}.{key}") in self.typing.aliased:
             return self._call_stmt(STORE, [base_node, ast.Constant(key), value], node)
         if not isinstance(mtype, ElementaryType):
             return self._call_stmt(STORE, [base_node, ast.Constant(key), value], node)

@@ -5,8 +5,9 @@ Timing model (documented choice; the textbook leaves the details open):
 
 * **OB1** runs again as soon as it ends. One execution ("scan") lasts the cycle time ``D`` of the
   scan-time model (default 1 ms): inputs are read into the process image at its start ``t0``, its
-  networks run at ``t0 + k*D/N`` (spread evenly; or ``k*network_cost``), and the output image is
-  written at ``t0 + D``.
+  networks run one after the other at ``t0``, and the output image is written at ``t0 + D``. The
+  network boundaries sit at ``t0 + k*D/N`` (spread evenly; or ``k*network_cost``): they are where a
+  due interrupt comes between two networks. An HMI write during a scan is seen by the next scan.
 * **Cyclic interrupts** (OB30..OB38) are due at ``start + phase + k*period``. A due interrupt of
   higher priority pre-empts a running OB **between networks**: it runs at its due time, and the
   interrupted OB's remaining networks and its end move later by the interrupt's duration
@@ -14,7 +15,8 @@ Timing model (documented choice; the textbook leaves the details open):
   therefore atomic. An interrupt refreshes only the inputs its networks use and writes only the
   outputs they use (its process-image partition); OB1 refreshes and writes all.
 * **OB100** runs at the STOP->RUN instant, before OB1 and before the first interrupt call.
-* A timer read inside network ``k`` sees the time of network ``k``.
+* Every network of one execution sees the execution's start time ``t0`` (later by the time an
+  interrupt pre-empted it), however the host steps the clock: timers count in whole scans.
 
 >>> cpu = CPU(program="def OB1(t):\\n    t.LED = t.TL\\n",
 ...           tags={"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")})
@@ -41,11 +43,11 @@ from plcsim.compiler import FB_STORE, STORE, TICK
 from plcsim.errors import ConfigurationError, PlcError, PlcTypeError, UnknownTagError, did_you_mean
 from plcsim.instructions import FB_WRITABLE
 from plcsim.instructions.counters import IecCounter
-from plcsim.instructions.edges import bit_resolver, make_edge_instructions
+from plcsim.instructions.edges import EdgeTrigger, bit_resolver, make_edge_instructions
 from plcsim.instructions.system import JumpTo, ReturnFromBlock, dtl_of, make_move, make_rd_loc_t
 from plcsim.instructions.timers import IecTimer, TimerDialect, preset_ms
 from plcsim.literals import datetime_literal, format_ns, to_ns
-from plcsim.memory import Address, parse_address
+from plcsim.memory import Address, ByteMemory, parse_address
 from plcsim.program import CompiledProgram, Program, TaskSpec, runtime_namespace
 from plcsim.tags import (
     MemoryLayout,
@@ -54,6 +56,7 @@ from plcsim.tags import (
     Tag,
     TagTable,
     build_runtime,
+    non_optimized_offsets,
     reset_to_start,
     store,
 )
@@ -286,6 +289,7 @@ class CPU:
         self.outputs: dict[str, Any] = {}
         self.forces: dict[str, Any] = {}
         self.on_scan_end: Callable[[CPU], None] | None = None
+        self.on_task_end: Callable[[CPU, str, int, int], None] | None = None
         self.scan_count = 0
         self.scan_start_ns = 0
         self.scan_end_ns = 0
@@ -346,6 +350,14 @@ class CPU:
         self.table = table
         self.t, self.memories, self.aliases = build_runtime(table, self, self.config.memory)
         self._cells = [(self.t, e.name, e.address, e.member.type) for e in table if e.address is not None]
+        numbers = table.db_numbers()
+        for e in table:  # members of non-optimized DBs, so that peek() composes %DBn.DB... from them
+            if e.db is not None and not e.db.optimized:
+                offsets = non_optimized_offsets(e.member.type)  # type: ignore[arg-type]
+                offsets.pop("__size__")
+                for key, (off, dtype) in offsets.items():
+                    addr = Address("DB", off.byte, off.bit, off.bits, numbers[e.name])
+                    self._cells.append((self.t.__dict__[e.name], key, addr, dtype))
         self.input_names = [e.name for e in table if e.address is not None and e.address.area == "I"]
         self.output_names = [e.name for e in table if e.address is not None and e.address.area == "Q"]
         self.inputs = {name: self.inputs.get(name, self.t.__dict__[name]) for name in self.input_names}
@@ -353,6 +365,11 @@ class CPU:
         aliased = {c.key for c in self.aliases if c.container is self.t}
         self._aliased_inputs = [n for n in self.input_names if n in aliased]
         self._plain_inputs = [n for n in self.input_names if n not in aliased]
+        # the input terminals of overlapping input tags (%IW64 and %I65.0) are one memory too
+        self._input_cells = {c.key: c for c in self.aliases if c.container is self.t and c.key in self.inputs}
+        self._terminals = ByteMemory("I", self.config.memory.inputs)
+        for name, cell in self._input_cells.items():
+            self._terminals.write(cell.address, cell.dtype, self.inputs[name])
         self._out_getter = _getter(self.output_names)
         self._last_out: tuple[Any, ...] = tuple(self.outputs[n] for n in self.output_names)
         if self.config.retentive_markers:
@@ -368,7 +385,7 @@ class CPU:
         self.stop(reason="download")
         table = program.declare_into(self.base_table)
         self._load_table(table, _address_strings(program))
-        aliased = frozenset(c.key for c in self.aliases if c.container is self.t)
+        aliased = frozenset(c.key if c.container is self.t else f"{c.container._path}.{c.key}" for c in self.aliases)
         compiled = program.compile(
             self.table, aliased, strict_timers=self.config.textbook_strict_timers, family=self.config.family
         )
@@ -437,6 +454,13 @@ class CPU:
         if self.program is None:
             raise ConfigurationError("no program is loaded; call cpu.load(program) first")
         now = self.clock.now
+        if self.config.retentive_markers:
+            # what the retentive %M bytes hold now (a tag that overlaps no other keeps its value only in t)
+            memory = self.memories[("M", None)]
+            for container, key, addr, dtype in self._cells:
+                if addr.area == "M" and addr.byte < self.config.retentive_markers:
+                    memory.write(addr, dtype, container.__dict__[key])
+            self._retentive_m = bytes(memory.data[: self.config.retentive_markers])
         reset_to_start(self.t)
         if self.config.retentive_markers:
             self.memories[("M", None)].data[: self.config.retentive_markers] = self._retentive_m
@@ -460,8 +484,6 @@ class CPU:
 
     def stop(self, reason: str = "requested") -> None:
         """RUN -> STOP: no OB runs, outputs are switched off (the output image keeps its values)."""
-        if self.config.retentive_markers and self.mode == RUN:
-            self._retentive_m = bytes(self.memories[("M", None)].data[: self.config.retentive_markers])
         was = self.mode
         self.mode = STOP
         self._stack.clear()
@@ -488,13 +510,22 @@ class CPU:
     def scan(self, count: int = 1) -> None:
         """Run ``count`` OB1 executions (scans), interrupts included; the clock stops at the last scan's end."""
         if self.mode == RUN:
-            self._run(_NEVER, self.scan_count + count)
+            # a scan that run_until() left unfinished (its networks already ran) is finished, not counted
+            pending = any(ex.task is self._ob1 for ex in self._stack)
+            self._run(_NEVER, self.scan_count + count + pending)
+
+    def next_event_ns(self) -> int:
+        """When the CPU next does something (a task start, a network, an output write); far future in STOP."""
+        if self.mode != RUN:
+            return _NEVER
+        t = self._stack[-1].next_time() if self._stack else self._ob1_next
+        return max(self.clock.now, min(t, self._next_irq))
 
     def run_until(self, until_ns: int) -> None:
         """Execute every PLC event before ``until_ns`` (task starts, networks, output writes).
 
-        Events at one instant run in this order: the end of an execution (its outputs), then the start
-        of the next one (its inputs and networks), interrupts first by priority. Whatever happens at
+        Events at one instant run in this order: the end of an execution that has run its networks
+        (its outputs), then due interrupts by priority, then the start of the next OB1 scan. Whatever happens at
         ``until_ns`` itself (an operator's press, a plant's new sensor values) is seen by the tasks
         that start at ``until_ns``.
         """
@@ -521,21 +552,22 @@ class CPU:
                 t_next = self._ob1_next
                 prio = 0
                 preempt = self._next_irq
-            if preempt <= t_next:
+            if preempt < t_next or (preempt == t_next and (ex is None or ex.index < ex.task.n)):
+                # an interrupt due at the instant a finished execution ends waits for that end
                 irq = self._due_interrupt(t_next, prio)
                 start = max(irq.next_due, self.clock.now)  # type: ignore[union-attr]
                 if start >= until_ns:
                     return
                 self._begin(irq, start)  # type: ignore[arg-type]
-                self._run_networks(stack[-1], until_ns)
+                self._run_networks(stack[-1], self._preemption_time(irq.priority))  # type: ignore[union-attr]
                 continue
             if t_next >= until_ns:
                 return
             if ex is None:
                 self._begin(ob1, t_next)  # type: ignore[arg-type]
-                self._run_networks(stack[-1], min(until_ns, self._next_irq))
+                self._run_networks(stack[-1], self._next_irq)
             elif ex.index < ex.task.n:
-                self._run_networks(ex, min(until_ns, preempt))
+                self._run_networks(ex, preempt)
             else:
                 self._end(ex)
                 if scan_target is not None and self.scan_count >= scan_target and ex.task is ob1:
@@ -578,14 +610,14 @@ class CPU:
                 ex.t0, ex.duration, ex.index, ex.shift = t0, duration, 0, 0
                 self.scan_start_ns = t0
                 stack.append(ex)
-                if whole is not None and t0 + ex.offsets[-1] < until_ns:
+                if whole is not None:
                     try:
                         whole(t)
                         ex.index = n
-                    except BaseException as exc:
-                        self._after_exception(ex, exc, until_ns)
+                    except BaseException as exc:  # noqa: BLE001 - sorted out in _after_exception
+                        self._after_exception(ex, exc, _NEVER)
             if ex.index < n:
-                self._run_networks(ex, until_ns)
+                self._run_networks(ex, _NEVER)
                 if ex.index < n or self.mode != RUN:
                     return
             end = ex.t0 + ex.shift + ex.duration
@@ -663,8 +695,10 @@ class CPU:
         self._next_irq = min(t.next_due for t in self._interrupts)
 
     def _run_networks(self, ex: _Execution, limit: int) -> None:
-        """Run the execution's networks due before ``limit``; each sees the execution's start time
-        (plus any time it was pre-empted), so timers count in whole scans as the textbook reasons."""
+        """Run the execution's networks whose boundary comes before ``limit`` (a due interrupt).
+
+        Each sees the execution's start time (plus any time it was pre-empted), so timers count in
+        whole scans as the textbook reasons."""
         task = ex.task
         n = task.n
         k = ex.index
@@ -675,8 +709,8 @@ class CPU:
         if stop <= k:
             return
         clock = self.clock
-        if base > clock.now:
-            clock.now = base
+        host_now = clock.now  # run_until() may have moved the clock past base: the networks still see base
+        clock.now = base
         nets = task.networks
         t = self.t
         try:
@@ -707,9 +741,12 @@ class CPU:
                     k = n
                     break
             ex.index = k
-        except Exception as exc:
+        except Exception as exc:  # noqa: BLE001 - a student's error must not crash the host
             ex.index = k
             self._run_failed(ex, exc)
+        finally:
+            if host_now > clock.now:
+                clock.now = host_now
 
     def _after_exception(self, ex: _Execution, exc: BaseException, until_ns: int) -> None:
         """Handle what a whole-execution call raised: a jump continues network by network, anything else
@@ -726,7 +763,7 @@ class CPU:
             self._run_networks(ex, until_ns)
         except ReturnFromBlock:
             ex.index = task.n
-        except Exception as problem:
+        except Exception as problem:  # noqa: BLE001 - a student's error must not crash the host
             self._run_failed(ex, problem)
 
     def _run_failed(self, ex: _Execution, exc: BaseException) -> None:
@@ -740,7 +777,7 @@ class CPU:
                 "cycle time monitoring exceeded",
                 f"the program loops without end; the watchdog ({self.config.watchdog_iterations} loop "
                 f"iterations, the stand-in for the 150 ms cycle monitoring) sent the CPU to STOP",
-                None,
+                exc,  # the loop's line, when the loop is in the program (not a backward JMP)
             )
         else:
             self._fault(task, k, "error in the program", _describe(exc), exc)
@@ -796,6 +833,8 @@ class CPU:
                 self._first_scan = False
                 self._diag_changed = False
                 self._set_system_bits()
+        elif self.on_task_end is not None:
+            self.on_task_end(self, task.name, ex.t0, end)
 
     def _fault(self, task: _Task, k: int, event: str, message: str, exc: BaseException | None) -> None:
         network = task.titles[k] if k < task.n else None
@@ -943,10 +982,19 @@ class CPU:
         return container[key]
 
     def read(self, name: str) -> Any:
-        """Read a tag, DB member or address as a watch table shows it (never refreshes a timer)."""
+        """Read a tag, DB member, instance member (``"TON_1.ET"``, ``"C1.CV"``) or address as a watch table
+        shows it (never refreshes a timer)."""
         text = name.strip()
         if text.startswith("%"):
             return self.peek(text)
+        head, _, member = text.rpartition(".")
+        owner = self._resolve_value(head) if head and "[" not in member else None
+        if isinstance(owner, (IecTimer, IecCounter, EdgeTrigger)):  # "TON_1.ET", "C1.CV": instance members
+            if isinstance(owner, IecTimer) and member in ("Q", "ET"):
+                return owner.peek()[member == "ET"]
+            if member.startswith("_") or not hasattr(owner, member):
+                raise UnknownTagError(f"{head} has no member {member!r}")
+            return getattr(owner, member)
         return self._resolve_value(text)
 
     def peek(self, address: str | Address) -> Any:
@@ -970,6 +1018,7 @@ class CPU:
             store(container, key, value)
         if key in self.inputs and container is self.t:
             self.inputs[key] = self.t.__dict__[key]
+            self._sync_terminals(key)
 
     def set_input(self, name: str, value: Any) -> None:
         """Drive a physical input terminal (a sensor or a button); the program sees it at its next task start."""
@@ -979,6 +1028,16 @@ class CPU:
             )
         member = self.table[name].member
         self.inputs[name] = member.type.coerce(value, name)  # type: ignore[union-attr]
+        self._sync_terminals(name)
+
+    def _sync_terminals(self, name: str) -> None:
+        """After input ``name`` changed, give every input tag that overlaps it the same terminals."""
+        cell = self._input_cells.get(name)
+        if cell is not None:
+            self._terminals.write(cell.address, cell.dtype, self.inputs[name])
+            for other in cell.others:
+                if other.key in self._input_cells:
+                    self.inputs[other.key] = self._terminals.read(other.address, other.dtype)
 
     def force(self, name: str, value: Any) -> None:
         """Force a tag: its value is re-applied at every image update, whatever the program writes."""

@@ -122,19 +122,24 @@ class Exercise:
         names = [c.name for c in self.checks]
         dupes = {n for n in names if names.count(n) > 1}
         if dupes:
-            raise ConfigurationError(f"exercise {self.number}: two checks share the name(s) {sorted(dupes)}; "
-                                     f"name them with .named(...)")
+            raise ConfigurationError(
+                f"exercise {self.number}: two checks share the name(s) {sorted(dupes)}; name them with .named(...)"
+            )
         scenario_names = {s.name for s in self.scenarios}
         for c in self.checks:
             for s in c.scenarios or ():
                 if s not in scenario_names:
-                    raise ConfigurationError(f"exercise {self.number}: check {c.name!r} refers to scenario {s!r}; "
-                                             f"scenarios: {sorted(scenario_names)}")
+                    raise ConfigurationError(
+                        f"exercise {self.number}: check {c.name!r} refers to scenario {s!r}; "
+                        f"scenarios: {sorted(scenario_names)}"
+                    )
         for sol in self.solutions:
             for f in sol.fails:
                 if f not in names:
-                    raise ConfigurationError(f"exercise {self.number}: solution {sol.name} should fail {f!r}, "
-                                             f"which is not a check; checks: {names}")
+                    raise ConfigurationError(
+                        f"exercise {self.number}: solution {sol.name} should fail {f!r}, "
+                        f"which is not a check; checks: {names}"
+                    )
 
     # -- building a run -----------------------------------------------------------------------
 
@@ -163,15 +168,17 @@ class Exercise:
         for s in self.scenarios:
             if s.name == name:
                 return s
-        raise ConfigurationError(f"exercise {self.number} has no scenario {name!r}; "
-                                 f"scenarios: {', '.join(s.name for s in self.scenarios)}")
+        raise ConfigurationError(
+            f"exercise {self.number} has no scenario {name!r}; scenarios: {', '.join(s.name for s in self.scenarios)}"
+        )
 
     def solution(self, name: str) -> Solution:
         for s in self.solutions:
             if s.name == name:
                 return s
-        raise ConfigurationError(f"exercise {self.number} has no solution {name!r}; "
-                                 f"solutions: {', '.join(s.name for s in self.solutions)}")
+        raise ConfigurationError(
+            f"exercise {self.number} has no solution {name!r}; solutions: {', '.join(s.name for s in self.solutions)}"
+        )
 
     @property
     def reference(self) -> Solution:
@@ -180,8 +187,9 @@ class Exercise:
     def checks_for(self, scenario: str) -> list[GradedCheck]:
         return [c for c in self.checks if c.scenarios is None or scenario in c.scenarios]  # type: ignore[union-attr]
 
-    def simulation(self, program: Program, scenario: Scenario | str, *, seed: int = 0,
-                   **cpu_options: Any) -> Simulation:
+    def simulation(
+        self, program: Program, scenario: Scenario | str, *, seed: int = 0, **cpu_options: Any
+    ) -> Simulation:
         """A ready-to-run simulation of ``program`` on this exercise's rig and scenario."""
         if isinstance(scenario, str):
             scenario = self.scenario(scenario)
@@ -189,10 +197,19 @@ class Exercise:
         cpu = CPU(self.tag_table(), program, CPUConfig(seed=seed, **options))
         plant = self.rig() if self.rig is not None else None
         wires = self.wires() if plant is not None else None
-        return Simulation(cpu, plant, wires, scenario, dt=self.dt, seed=seed,
-                          changes_only=self.record_changes_only)
+        return Simulation(cpu, plant, wires, scenario, dt=self.dt, seed=seed, changes_only=self.record_changes_only)
 
     def describe_io(self) -> list[dict[str, str]]:
         """The I/O table as rows for printing."""
-        return [{"tag": r.tag, "gloss": r.gloss, "type": r.type, "address": r.address or "-",
-                 "direction": r.direction, "wiring": r.wiring or "-", "comment": r.comment} for r in self.io]
+        return [
+            {
+                "tag": r.tag,
+                "gloss": r.gloss,
+                "type": r.type,
+                "address": r.address or "-",
+                "direction": r.direction,
+                "wiring": r.wiring or "-",
+                "comment": r.comment,
+            }
+            for r in self.io
+        ]

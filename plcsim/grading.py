@@ -104,8 +104,9 @@ class Report:
         return failing[0] if failing else found[0]
 
     def to_junit(self, path: str | Path | None = None) -> str:
-        suites = ET.Element("testsuites", name=f"plcsim {self.exercise}", tests=str(len(self.checks)),
-                            failures=str(len(self.failed())))
+        suites = ET.Element(
+            "testsuites", name=f"plcsim {self.exercise}", tests=str(len(self.checks)), failures=str(len(self.failed()))
+        )
         by_scenario: dict[str, list[CheckResult]] = {}
         for c in self.checks:
             by_scenario.setdefault(c.scenario, []).append(c)
@@ -114,8 +115,13 @@ class Report:
             case = ET.SubElement(suite, "testcase", name="load", classname=self.exercise)
             ET.SubElement(case, "failure", message=self.error, type=self.error_kind or "error")
         for scenario, results in by_scenario.items():
-            suite = ET.SubElement(suites, "testsuite", name=f"{self.exercise}.{scenario}", tests=str(len(results)),
-                                  failures=str(sum(not r.passed for r in results)))
+            suite = ET.SubElement(
+                suites,
+                "testsuite",
+                name=f"{self.exercise}.{scenario}",
+                tests=str(len(results)),
+                failures=str(sum(not r.passed for r in results)),
+            )
             for r in results:
                 case = ET.SubElement(suite, "testcase", name=r.check, classname=f"{self.exercise}.{scenario}")
                 if not r.passed:
@@ -141,9 +147,17 @@ class Limits:
 # --------------------------------------------------------------------------------------------
 
 
-def grade(exercise: Exercise, submission: Program | str | Path, *, seed: int = 1, name: str | None = None,
-          scenarios: Sequence[str] | None = None, rrd_dir: str | Path | None = None,
-          plots_dir: str | Path | None = None, traces_dir: str | Path | None = None) -> Report:
+def grade(
+    exercise: Exercise,
+    submission: Program | str | Path,
+    *,
+    seed: int = 1,
+    name: str | None = None,
+    scenarios: Sequence[str] | None = None,
+    rrd_dir: str | Path | None = None,
+    plots_dir: str | Path | None = None,
+    traces_dir: str | Path | None = None,
+) -> Report:
     """Grade a program in this process (trusted code, tests, notebooks). See :func:`grade_sandboxed`."""
     started = time.perf_counter()
     label = name or (submission.filename if isinstance(submission, Program) else str(submission))
@@ -167,8 +181,9 @@ def grade(exercise: Exercise, submission: Program | str | Path, *, seed: int = 1
         except PlcError as exc:  # a plant failure: the trace so far is graded
             error = str(exc)
         cpu_error = sim.cpu.error
-        run = ScenarioRun(scenario.name, seed, sim.now, sim.cpu.scan_count, sim.cpu.mode,
-                          str(cpu_error) if cpu_error else error)
+        run = ScenarioRun(
+            scenario.name, seed, sim.now, sim.cpu.scan_count, sim.cpu.mode, str(cpu_error) if cpu_error else error
+        )
         stem = f"{exercise.slug}-{scenario.name.replace(' ', '_')}"
         if rrd_dir is not None:
             run.rrd = str(_save_rrd(sim, Path(rrd_dir) / f"{stem}.rrd"))
@@ -190,8 +205,17 @@ def grade(exercise: Exercise, submission: Program | str | Path, *, seed: int = 1
             message = verdict.message
             if not verdict.passed and run.cpu_error and where != "static":
                 message += f" [the CPU stopped: {run.cpu_error}]"
-            result = CheckResult(where, gc.name, verdict.passed, message, weight if verdict.passed else 0.0,
-                                 weight, verdict.at_ns, verdict.signals, verdict.window)
+            result = CheckResult(
+                where,
+                gc.name,
+                verdict.passed,
+                message,
+                weight if verdict.passed else 0.0,
+                weight,
+                verdict.at_ns,
+                verdict.signals,
+                verdict.window,
+            )
             if not verdict.passed and plots_dir is not None and where != "static":
                 result.diagram = _diagram(sim, result, Path(plots_dir) / f"{stem}-{_slug(gc.name)}.png")
             report.checks.append(result)
@@ -206,8 +230,10 @@ def grade(exercise: Exercise, submission: Program | str | Path, *, seed: int = 1
 def _load_failure(report: Report, exc: PlcError, exercise: Exercise, started: float) -> Report:
     report.error = str(exc)
     report.error_kind = "subset violation" if isinstance(exc, SubsetError) else "program error"
-    report.max_score = sum(c.check.weight * (1 if isinstance(c.check, StaticCheck) else
-                                             len(c.scenarios or exercise.scenarios)) for c in exercise.checks)
+    report.max_score = sum(
+        c.check.weight * (1 if isinstance(c.check, StaticCheck) else len(c.scenarios or exercise.scenarios))
+        for c in exercise.checks
+    )
     report.elapsed_s = time.perf_counter() - started
     return report
 
@@ -230,11 +256,14 @@ def _diagram(sim: Any, result: CheckResult, path: Path) -> str | None:
     signals = [s for s in result.signals if s in sim.trace] or None
     start = end = None
     if result.window is not None:
-        start = max(0, result.window[0] - 3_000_000_000)
-        end = result.window[1] + 3_000_000_000
+        first = min(result.window[0], result.at_ns if result.at_ns is not None else result.window[0])
+        margin = max(1_000_000_000, (result.window[1] - first) // 4)
+        start = max(0, first - margin)
+        end = result.window[1] + margin
     highlight = (result.window[0], result.window[1], result.check) if result.window else None
-    save_timing_diagram(sim.trace, path, signals, start=start, end=end, highlight=highlight,
-                        title=f"{result.scenario}: {result.check}")
+    save_timing_diagram(
+        sim.trace, path, signals, start=start, end=end, highlight=highlight, title=f"{result.scenario}: {result.check}"
+    )
     return str(path)
 
 
@@ -256,14 +285,20 @@ def _child(conn: Any, exercise: Exercise, path: str, seed: int, limits: Limits, 
     except MemoryError:
         conn.send({"__error__": "memory limit", "message": f"the submission used more than {limits.memory_mb} MB"})
     except BaseException as exc:  # noqa: BLE001 - everything is reported to the parent
-        conn.send({"__error__": "grader error", "message": f"{type(exc).__name__}: {exc}",
-                   "trace": traceback.format_exc(limit=5)})
+        conn.send(
+            {
+                "__error__": "grader error",
+                "message": f"{type(exc).__name__}: {exc}",
+                "trace": traceback.format_exc(limit=5),
+            }
+        )
     finally:
         conn.close()
 
 
-def grade_sandboxed(exercise: Exercise, path: str | Path, *, seed: int = 1, limits: Limits | None = None,
-                    **options: Any) -> Report:
+def grade_sandboxed(
+    exercise: Exercise, path: str | Path, *, seed: int = 1, limits: Limits | None = None, **options: Any
+) -> Report:
     """Grade an untrusted submission file in a child process with CPU, memory and wall-time limits."""
     limits = limits or Limits()
     started = time.perf_counter()
@@ -304,9 +339,16 @@ def grade_sandboxed(exercise: Exercise, path: str | Path, *, seed: int = 1, limi
     return report
 
 
-def grade_batch(exercise: Exercise, paths: Iterable[str | Path], *, jobs: int = 1, seed: int = 1,
-                limits: Limits | None = None, progress: Callable[[int, int, Report], None] | None = None,
-                **options: Any) -> list[Report]:
+def grade_batch(
+    exercise: Exercise,
+    paths: Iterable[str | Path],
+    *,
+    jobs: int = 1,
+    seed: int = 1,
+    limits: Limits | None = None,
+    progress: Callable[[int, int, Report], None] | None = None,
+    **options: Any,
+) -> list[Report]:
     """Grade many submissions, ``jobs`` at a time, each in its own child process."""
     from concurrent.futures import ThreadPoolExecutor
 
@@ -341,8 +383,17 @@ def write_gradebook(reports: Sequence[Report], path: str | Path) -> Path:
         for r in reports:
             results = {f"{c.scenario}: {c.check}": ("pass" if c.passed else "FAIL") for c in r.checks}
             percent = f"{100 * r.score / r.max_score:.1f}" if r.max_score else "0.0"
-            writer.writerow([Path(r.submission).name, f"{r.score:g}", f"{r.max_score:g}", percent,
-                             "yes" if r.passed else "no", r.error or "", *(results.get(c, "-") for c in checks)])
+            writer.writerow(
+                [
+                    Path(r.submission).name,
+                    f"{r.score:g}",
+                    f"{r.max_score:g}",
+                    percent,
+                    "yes" if r.passed else "no",
+                    r.error or "",
+                    *(results.get(c, "-") for c in checks),
+                ]
+            )
     return path
 
 

@@ -7,7 +7,9 @@ scaling, faults). Units are mm, g and s; time is integer nanoseconds.
 
 Performance contract (the co-simulation budget depends on it): :attr:`Plant.sensors` is a live
 dict that :meth:`Plant.step` keeps up to date, so reading it costs a dict lookup; :meth:`Plant.actuate`
-is called only when an output changes.
+is called only when an output changes. A plant may also offer ``quiescent() -> bool``: True when a
+step would only advance its clock (nothing moves), so that any number of steps can be taken at
+once; the simulator then skips the idle steps between PLC events.
 """
 
 from __future__ import annotations
@@ -145,3 +147,127 @@ class Plant(Protocol):
 
     def bounds(self) -> tuple[float, float, float, float]:
         """The area to show: (xmin, ymin, xmax, ymax) in mm."""
+
+
+def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int = 1_000_000) -> dict[str, Any]:
+    """Check that ``plant`` keeps the protocol; raise ``AssertionError`` listing every problem found.
+
+    Independent of the CPU. It runs the same short exercise twice after ``reset(seed=seed)`` (every operator control
+    switched on, then every boolean actuator on, a part placed at the first station if there is one, ``steps`` steps
+    of ``dt_ns``, operator controls off again) and checks:
+
+    * the declared signals: names match their keys, directions and kinds are valid, every sensor is in
+      ``plant.sensors`` and ``plant.sensors`` holds nothing undeclared (so every declared signal is a sensor there or
+      an actuator); stations are :class:`Station` objects under their own names;
+    * ``reset`` gives time 0, no events and the same sensors; ``operate`` sets operator sensors;
+    * every ``step`` advances ``now_ns`` by exactly ``dt_ns``;
+    * events are :class:`PlantEvent` with integer times in ``[0, now_ns]``, in time order;
+    * drawables have ``(N, 2)`` finite float points (N ≥ 3 for polygons, ≥ 2 for lines, 1 for circles and labels),
+      RGB colours and a path; ``bounds`` is a proper rectangle;
+    * both runs give identical sensors, events and geometry (determinism).
+
+    Returns a summary: ``{"signals", "events", "drawables", "digest"}`` (digest = sha256 of the second run).
+    """
+    import hashlib
+
+    problems: list[str] = []
+
+    def need(cond: bool, msg: str) -> None:
+        if not cond:
+            problems.append(msg)
+
+    need(isinstance(plant, Plant), f"{type(plant).__name__} lacks members of the Plant protocol")
+    signals = dict(plant.signals)
+    for key, spec in signals.items():
+        need(isinstance(spec, SignalSpec), f"signal {key!r}: not a SignalSpec")
+        if not isinstance(spec, SignalSpec):
+            continue
+        need(spec.name == key, f"signal {key!r}: spec is named {spec.name!r}")
+        need(spec.direction in ("sensor", "actuator"), f"signal {key!r}: direction {spec.direction!r}")
+        need(spec.kind in ("bool", "analog"), f"signal {key!r}: kind {spec.kind!r}")
+        need(not spec.operator or spec.direction == "sensor", f"signal {key!r}: an operator signal must be a sensor")
+    sensor_names = [k for k, s in signals.items() if getattr(s, "direction", None) == "sensor"]
+    actuators = [k for k, s in signals.items() if getattr(s, "direction", None) == "actuator"]
+    operator = [k for k in sensor_names if signals[k].operator]
+    for key, st in dict(plant.stations).items():
+        need(isinstance(st, Station) and st.name == key, f"station {key!r}: not a Station of that name")
+
+    def check_drawables(where: str, items: list[Drawable]) -> None:
+        minimum = {"polygon": 3, "line": 2}
+        for d in items:
+            need(isinstance(d, Drawable), f"{where}: {d!r} is not a Drawable")
+            if not isinstance(d, Drawable):
+                continue
+            p = d.points
+            ok = isinstance(p, np.ndarray) and p.ndim == 2 and p.shape[1] == 2 and p.shape[0] >= 1
+            need(ok, f"{where} {d.path}: points must be an (N, 2) array, got {getattr(p, 'shape', type(p))}")
+            if ok:
+                need(bool(np.all(np.isfinite(p))), f"{where} {d.path}: points are not finite")
+                if d.kind in minimum:
+                    need(p.shape[0] >= minimum[d.kind], f"{where} {d.path}: a {d.kind} needs {minimum[d.kind]}+ points")
+                else:
+                    need(p.shape[0] == 1, f"{where} {d.path}: a {d.kind} has one point, got {p.shape[0]}")
+            need(d.kind in ("polygon", "line", "circle", "label"), f"{where} {d.path}: kind {d.kind!r}")
+            need(bool(d.path) and isinstance(d.path, str), f"{where}: drawable without a path")
+            need(len(d.color) == 3 and all(0 <= c <= 255 for c in d.color), f"{where} {d.path}: colour {d.color}")
+
+    def run() -> tuple:
+        plant.reset(seed=seed)
+        need(plant.now_ns == 0, f"reset: now_ns = {plant.now_ns}, expected 0")
+        need(len(plant.events) == 0, f"reset: {len(plant.events)} events left")
+        for k in sensor_names:
+            need(k in plant.sensors, f"sensor {k!r} is declared but missing from plant.sensors")
+        for k in plant.sensors:
+            need(k in signals and signals[k].direction == "sensor", f"plant.sensors has undeclared {k!r}")
+        start = dict(plant.sensors)
+        for k in operator:
+            plant.operate(k, True)
+            need(bool(plant.sensors.get(k)) is True, f"operate({k!r}, True) did not set the sensor")
+        for k in actuators:
+            if signals[k].kind == "bool":
+                plant.actuate(k, True)
+            else:
+                plant.actuate(k, 0.5 * (signals[k].lo + signals[k].hi))
+        if plant.stations:
+            plant.place(next(iter(plant.stations)))
+        for _ in range(steps):
+            t0 = plant.now_ns
+            plant.step(dt_ns)
+            if plant.now_ns != t0 + dt_ns:
+                problems.append(f"step({dt_ns}) moved now_ns from {t0} to {plant.now_ns}")
+                break
+        for k in operator:
+            plant.operate(k, False)
+            need(bool(plant.sensors.get(k)) is False, f"operate({k!r}, False) did not clear the sensor")
+        last = 0
+        for e in plant.events:
+            need(isinstance(e, PlantEvent), f"event {e!r} is not a PlantEvent")
+            if not isinstance(e, PlantEvent):
+                continue
+            need(isinstance(e.t_ns, int), f"event {e.kind!r}: t_ns {e.t_ns!r} is not an int")
+            need(0 <= e.t_ns <= plant.now_ns, f"event {e.kind!r}: t_ns {e.t_ns} outside [0, {plant.now_ns}]")
+            need(e.t_ns >= last, f"event {e.kind!r} at {e.t_ns} ns comes after one at {last} ns")
+            need(bool(e.kind) and isinstance(e.kind, str), f"event at {e.t_ns} ns has no kind")
+            last = max(last, e.t_ns)
+        static, dynamic = plant.static_drawables(), plant.dynamic_drawables()
+        check_drawables("static", static)
+        check_drawables("dynamic", dynamic)
+        b = plant.bounds()
+        need(len(b) == 4 and all(np.isfinite(b)) and b[0] < b[2] and b[1] < b[3], f"bounds {b} is not a rectangle")
+        h = hashlib.sha256()
+        for d in static + dynamic:
+            h.update(d.path.encode())
+            h.update(np.ascontiguousarray(d.points, dtype=float).tobytes())
+        events = tuple((e.t_ns, e.kind, e.subject, e.part) for e in plant.events)
+        return (start, dict(plant.sensors), plant.now_ns, events, h.hexdigest()), len(static) + len(dynamic)
+
+    first, _ = run()
+    second, n_draw = run()
+    names = ("sensors after reset", "sensors at the end", "now_ns", "events", "geometry")
+    for name, a, b in zip(names, first, second):
+        need(a == b, f"two runs with seed {seed} differ in {name}: {a!r} != {b!r}")
+    plant.reset(seed=seed)
+    if problems:
+        raise AssertionError(f"check_plant({getattr(plant, 'name', plant)!r}):\n  " + "\n  ".join(problems))
+    digest = hashlib.sha256(repr(second).encode()).hexdigest()
+    return {"signals": len(signals), "events": len(second[3]), "drawables": n_draw, "digest": digest}

@@ -271,7 +271,7 @@ class Program:
             exec(compile(self.tree, self.filename, "exec"), namespace)
         except PlcError as exc:
             raise type(exc)(f"{self.filename}, line {_error_line(exc, self.filename)}: {exc}") from None
-        except Exception as exc:
+        except Exception as exc:  # noqa: BLE001 - any error in a student's declarations is reported
             raise ProgramError(
                 f"{self.filename}, line {_error_line(exc, self.filename)}: {type(exc).__name__}: {exc}"
             ) from None

@@ -50,9 +50,18 @@ def default_signals(cpu: CPU) -> list[str]:
         elif isinstance(value, EdgeTrigger):
             names.append(f"{entry.name}.Q")
         elif isinstance(value, PlcStruct):
-            for key, member in value._type.members.items():
-                if isinstance(member.type, ElementaryType):
-                    names.append(f"{entry.name}.{key}")
+            names += _struct_members(value, entry.name)
+    return names
+
+
+def _struct_members(value: PlcStruct, path: str, depth: int = 2) -> list[str]:
+    """Scalar members of a DB, and of the structs in it (a DTL), as dotted names."""
+    names = []
+    for key, member in value._type.members.items():
+        if isinstance(member.type, ElementaryType):
+            names.append(f"{path}.{key}")
+        elif depth > 1 and isinstance(value.__dict__[key], PlcStruct):
+            names += _struct_members(value.__dict__[key], f"{path}.{key}", depth - 1)
     return names
 
 

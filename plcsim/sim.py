@@ -61,6 +61,7 @@ class Simulation:
         signals: what the trace records (default: every tag; see :mod:`plcsim.recorder`).
         geometry_hz: how often the plant's shapes are sampled for drawing (0: never).
         changes_only: record a trace row only when a value changed (hours-long runs).
+        fast_forward: skip physics steps while the plant is quiescent (see :meth:`_skip_quiet`).
     """
 
     def __init__(
@@ -75,6 +76,7 @@ class Simulation:
         signals: Sequence[str] | None = None,
         geometry_hz: float = 25.0,
         changes_only: bool = False,
+        fast_forward: bool = True,
     ):
         self.cpu = cpu
         self.plant = plant
@@ -105,6 +107,7 @@ class Simulation:
                 "scenario": scenario.name if scenario else None,
                 "program": cpu.program.filename if cpu.program else None,
                 "timer_dialect": str(cpu.config.timer_dialect),
+                "rtc_start": cpu.config.rtc_start,
             }
         )
         if plant is not None:
@@ -118,6 +121,8 @@ class Simulation:
         self._waiting: list[Planned] = []
         self._next_action = _NEVER
         self.paused = False
+        self.fast_forward = fast_forward
+        self._frame_still = False
         self._mode_seen = cpu.mode
         self._diag_seen = len(cpu.diagnostics)
         self._scenario_parts = {a.target for a in scenario.actions if a.verb == "place"} if scenario else set()
@@ -209,6 +214,7 @@ class Simulation:
         start = t
         next_report = t
         report_every = max(dt, (end_ns - t) // 200) if progress is not None and end_ns < _NEVER else _NEVER
+        quiet = getattr(plant, "quiescent", None) if self.fast_forward else None
         try:
             while t < end_ns and not self.paused:
                 if t >= self._next_action:
@@ -241,10 +247,11 @@ class Simulation:
                 t += dt
                 self.now = t
                 if t >= self._next_frame and self._frame_ns:
-                    self.trace.add_frame(t, plant.dynamic_drawables())  # type: ignore[union-attr]
-                    self._next_frame = t + self._frame_ns
+                    self._sample_frame(t, quiet)
                 if self._waiting:
                     self._check_triggers(t)
+                if quiet is not None and cpu.mode == RUN and quiet():
+                    t = self._skip_quiet(t, end_ns)
                 if progress is not None and t >= next_report:
                     progress(t - start, end_ns - start)
                     next_report = t + report_every
@@ -252,6 +259,37 @@ class Simulation:
                     break
         finally:
             self.now = t
+
+    def _sample_frame(self, t: int, quiet: Callable[[], bool] | None) -> None:
+        """Record the plant's shapes; a quiescent plant looks the same as at its last frame, so one is enough."""
+        still = quiet is not None and quiet()
+        if not (still and self._frame_still):
+            self.trace.add_frame(t, self.plant.dynamic_drawables())  # type: ignore[union-attr]
+        self._frame_still = still
+        self._next_frame = t + self._frame_ns
+
+    def _skip_quiet(self, t: int, end_ns: int) -> int:
+        """Jump over steps in which provably nothing can change: the plant is quiescent (no part, every
+        drive settled, so a step only advances its clock) and no PLC event, scenario action or armed
+        trigger falls before the next step boundary we stop at. Scans, actions and triggers then happen
+        at exactly the times they would have, so the trace rows and events are the same bit for bit."""
+        nxt = min(self.cpu.next_event_ns(), self._next_action, end_ns, self._trigger_due())
+        steps = (nxt - t) // self.dt_ns
+        if steps > 1 and not (self.wiring is not None and self.wiring.faults):
+            self.plant.step(steps * self.dt_ns)  # type: ignore[union-attr]
+            t += steps * self.dt_ns
+            self.now = t
+            self._next_frame = max(self._next_frame, t)
+        return t
+
+    def _trigger_due(self) -> int:
+        due = _NEVER
+        for item in self._waiting:
+            if item.at_ns is not None:
+                due = min(due, item.at_ns)
+            elif item.armed_since is not None:
+                due = min(due, item.armed_since + item.action.when.for_ns)  # type: ignore[union-attr]
+        return due
 
     def _finish(self) -> None:
         self.trace.meta["end_ns"] = self.now
@@ -346,8 +384,11 @@ class Simulation:
         sensors = self.plant.sensors if self.plant is not None else {}
         for item in list(self._waiting):
             trig: Trigger = item.action.when  # type: ignore[assignment]
-            if item.action.verb in _PART_VERBS and item.action.target in self._scenario_parts \
-                    and item.action.target not in self._parts:
+            if (
+                item.action.verb in _PART_VERBS
+                and item.action.target in self._scenario_parts
+                and item.action.target not in self._parts
+            ):
                 continue  # an action on a part waits until the part has been placed
             if item.at_ns is None and trig.signal is not None:
                 if sensors.get(trig.signal) == trig.value:
@@ -364,8 +405,11 @@ class Simulation:
     def _events_for_triggers(self, events: list[Any]) -> None:
         for item in self._waiting:
             trig: Trigger = item.action.when  # type: ignore[assignment]
-            if item.action.verb in _PART_VERBS and item.action.target in self._scenario_parts \
-                    and item.action.target not in self._parts:
+            if (
+                item.action.verb in _PART_VERBS
+                and item.action.target in self._scenario_parts
+                and item.action.target not in self._parts
+            ):
                 continue
             if item.at_ns is None and trig.event is not None:
                 for e in events:

@@ -110,7 +110,7 @@ class Trace:
     def add_plant_events(self, events: Iterable[PlantEvent]) -> None:
         """Record plant events."""
         for e in events:
-            detail = ", ".join(f"{k}={v}" for k, v in e.data.items()) if e.data else ""
+            detail = ", ".join(f"{k}={_short(v)}" for k, v in e.data.items()) if e.data else ""
             self.events.append(TraceEvent(e.t_ns, "plant", e.kind, e.subject, e.part, detail))
 
     def add_frame(self, t_ns: int, drawables: list[Drawable]) -> None:
@@ -280,3 +280,7 @@ class Trace:
 
 
 RowGetter = Callable[[], tuple[Any, ...]]
+
+
+def _short(value: Any) -> str:
+    return f"{value:.2f}" if isinstance(value, float) else str(value)

@@ -75,6 +75,7 @@ def bit_resolver(t: Any, resolve_path: Callable[[str], tuple[Any, str]]) -> Call
         cache[name] = ref
         return ref
 
+    lookup.cache = cache  # type: ignore[attr-defined]
     return lookup
 
 
@@ -94,24 +95,32 @@ def make_edge_instructions(lookup: Callable[[str], BitRef]) -> dict[str, Callabl
         else:
             cell.write(value)
 
+    cache = lookup.cache  # type: ignore[attr-defined]
+
     def P(operand: bool, memory: str) -> bool:
         """-|P|-: TRUE for one execution when ``operand`` went FALSE -> TRUE; updates ``memory`` at once."""
         if operand is not True and operand is not False:
             operand = _check_bool(operand, "P")
-        ref = lookup(memory)
-        old = ref[0][ref[1]]
+        d, key, cell = cache.get(memory) or lookup(memory)
+        old = d[key]
         if old is not operand:
-            write(ref, operand)
+            if cell is None:
+                d[key] = operand
+            else:
+                cell.write(operand)
         return operand and not old
 
     def N(operand: bool, memory: str) -> bool:
         """-|N|-: TRUE for one execution when ``operand`` went TRUE -> FALSE; updates ``memory`` at once."""
         if operand is not True and operand is not False:
             operand = _check_bool(operand, "N")
-        ref = lookup(memory)
-        old = ref[0][ref[1]]
+        d, key, cell = cache.get(memory) or lookup(memory)
+        old = d[key]
         if old is not operand:
-            write(ref, operand)
+            if cell is None:
+                d[key] = operand
+            else:
+                cell.write(operand)
         return old and not operand
 
     def P_COIL(rlo: bool, operand: str, memory: str) -> bool:

@@ -1,0 +1,135 @@
+"""4.3.7 Conveyor alarm (10 s transport watchdog). Plant: CONV1."""
+
+from __future__ import annotations
+
+from exercises._common import solution
+from plants import Conv1
+from plcsim.check import all_of, always, count, event, falls, holds, implies, never, off, rises
+from plcsim.exercise import IO, Exercise, only
+from plcsim.scenario import Scenario, after_event, held, jam, knock_off, place, remove, write
+
+NUMBER = "4.3.7"
+
+NOMINAL_TRANSPORT_S = 4.8  # spec §5.2: S1 -> S2 at 50 mm/s; the 10 s watchdog has a x2.1 margin
+
+ALARM_SCENARIOS = ("jam", "knocked off", "new object during the alarm")
+
+
+def shuttle(parts: int) -> list:
+    """Load a part at S1; the operator takes it from S2 after 1 s and loads the next one 1..2 s later."""
+    actions = [place("p1", at="S1", t="0.3s..0.8s")]
+    for k in range(1, parts + 1):
+        actions.append(remove(f"p{k}", when=held("S2", "1s")))
+        if k < parts:
+            actions.append(place(f"p{k + 1}", at="S1", when=after_event("part removed", f"p{k}"), delay="1s..2s"))
+    return actions
+
+
+def acknowledge(lo_s: float, hi_s: float) -> list:
+    """The operator presses the HMI button ACK between ``lo_s`` and ``hi_s`` (written TRUE, FALSE again
+    0.2..0.5 s after ``hi_s``)."""
+    return [write("ACK", True, t=f"{lo_s}s..{hi_s}s"), write("ACK", False, t=f"{hi_s + 0.2}s..{hi_s + 0.5}s")]
+
+
+# p1 is placed at 0.3..0.8 s, so the belt starts by 0.801 s and the watchdog fires by 10.802 s.
+JAMMED = [
+    place("p1", at="S1", t="0.3s..0.8s"),
+    jam("p1", when=after_event("part left", "p1"), delay="0.2s..2s"),
+]
+
+EXERCISE = Exercise(
+    number=NUMBER,
+    slug="conveyor-alarm",
+    title="Conveyor alarm (10 s transport watchdog)",
+    title_sk="Príklad 7 – Alarm dopravníka",
+    task=(
+        "The conveyor of 4.3.5: sensors S1 (belt start) and S2 (belt end), both normally open, output D1 "
+        "(conveyor forward). With the program of 4.3.5 the belt would run forever if the object fell off or "
+        "jammed.\n"
+        "Task: an object loaded at the beginning is detected by S1 and carried to the end, where S2 detects it; "
+        "after it has been removed a new one can be loaded. One object at a time. If S2 does not detect the "
+        "object within the protection time of 10 s, the conveyor stops and an alarm is raised: the memory bit "
+        "ALARM (alarm) is set and stays set until the operator acknowledges it with ACK (acknowledge, an HMI "
+        "button). While ALARM is TRUE the conveyor stays off; after ACK an object at S1 starts it again "
+        "(textbook version 3)."
+    ),
+    io=[
+        IO("S1", "sensor at the belt start", "Bool", "%I0.0", "NO", comment="address proposed"),
+        IO("S2", "sensor at the belt end", "Bool", "%I0.1", "NO", comment="address proposed"),
+        IO("D1", "conveyor forward", "Bool", "%Q0.2", comment="address stated in 4.3.14"),
+        IO("ALARM", "transport alarm", "Bool", "%M10.0", comment="internal memory bit (4.3.8); address proposed"),
+        IO("ACK", "acknowledge (HMI button)", "Bool", "%M10.1", comment="written by the HMI; address proposed"),
+    ],
+    rig=Conv1,
+    scenarios=[
+        Scenario("three objects", *shuttle(3), duration="25s",
+                 description="normal operation: load at S1, remove at S2 after 1 s, three times (14 s of belt "
+                 "time in all, so a watchdog that does not restart for each transport gives a false alarm)"),
+        Scenario("jam", *JAMMED, *acknowledge(13, 14), duration="16s",
+                 description="the object jams 0.2..2 s after leaving S1; the belt slips under it; the operator "
+                 "acknowledges the alarm 2..3.7 s after it was raised"),
+        Scenario("knocked off", place("p1", at="S1", t="0.3s..0.8s"),
+                 knock_off("p1", when=after_event("part left", "p1"), delay="1s..3s"),
+                 *acknowledge(12.5, 13.5), duration="15s",
+                 description="the object is pushed off the side of the belt on its way to S2"),
+        Scenario("new object during the alarm", *JAMMED,
+                 remove("p1", t="12s..12.5s"), place("p2", at="S1", t="13s..14s"),
+                 *acknowledge(16, 17), remove("p2", when=held("S2", "1s")), duration="25s",
+                 description="after the alarm the operator frees the belt and loads a new object before "
+                 "acknowledging; the belt must wait for ACK (version 3), then carry it to S2"),
+    ],
+    checks=[
+        # normal operation (criteria 1 and 5)
+        only(never("ALARM").named("no false alarm in normal operation"), "three objects"),
+        only(falls("D1").within("1 scan").after(rises("S2")).named("D1 stops when the object reaches S2"),
+             "three objects"),
+        only(rises("S2").between(f"{NOMINAL_TRANSPORT_S * 0.9}s", f"{NOMINAL_TRANSPORT_S * 1.1}s").after(rises("S1"))
+             .named("transport S1 -> S2 takes 4.8 s +-10 %"), "three objects"),
+        only(count(rises("D1")).equals(3).named("the belt starts once per object"), "three objects"),
+        # the watchdog (criterion 2)
+        only(falls("D1").between("10s", "10s + 2 scans").after(rises("D1"))
+             .named("the belt stops 10 s after it started without reaching S2"), "jam", "knocked off"),
+        only(rises("ALARM").between("10s - 1 scan", "10s + 2 scans").after(rises("D1"))
+             .named("ALARM is raised 10 s after the belt started"), "jam", "knocked off"),
+        # latching and acknowledgement (criterion 3)
+        only(holds("ALARM").until(rises("ACK")).named("ALARM latches until ACK"), *ALARM_SCENARIOS),
+        only(falls("ALARM").within("1 scan").after(rises("ACK")).named("ACK clears ALARM within 1 scan"),
+             *ALARM_SCENARIOS),
+        # version 3 blocks the belt (criterion 4)
+        only(always(implies("ALARM", off("D1"))).named("the belt stays off while ALARM is TRUE"),
+             "new object during the alarm"),
+        only(count(event("part entered", "S2")).equals(1).named("after ACK the waiting object is carried to S2"),
+             "new object during the alarm"),
+        only(never(all_of("D1", "S2")).named("the belt never runs while S2 sees an object"), "three objects",
+             "new object during the alarm"),
+        only(never(event("part fell off")).named("no object falls off the belt"), "three objects", "jam",
+             "new object during the alarm"),
+    ],
+    solutions=[
+        solution(NUMBER, "reference", explanation="version 3: the watchdog's Q sets ALARM; S2, Q or ALARM reset D1; "
+                 "ACK resets ALARM"),
+        solution(NUMBER, "version-2", "alternative",
+                 "version 2: the alarm only indicates; a new object restarts the belt even while ALARM is TRUE",
+                 scenarios=("three objects", "jam", "knocked off")),
+        solution(NUMBER, "version-1", "wrong", "version 1: nothing resets ALARM (no acknowledgement yet)",
+                 fails=("ACK clears ALARM within 1 scan",)),
+        solution(NUMBER, "wrong-scan-order", "wrong",
+                 "the reset rung reads TON_A.Q before the TON box runs: the read refreshes the timer, D1 is reset, "
+                 "the box then sees IN = FALSE and ALARM is never set",
+                 fails=("ALARM latches until ACK", "ALARM is raised 10 s after the belt started")),
+        solution(NUMBER, "wrong-alarm-coil", "wrong",
+                 "ALARM := TON_A.Q is TRUE for one scan only: the alarm does not latch",
+                 fails=("ALARM latches until ACK",)),
+    ],
+    notes=(
+        "Reference = version 3 (the task's 'the conveyor stops and an alarm is raised' plus criterion 4's "
+        "blocking); version 2 is graded on every scenario but 'new object during the alarm', where by design it "
+        "restarts the belt. The rung order of versions 2 and 3 is a reconstruction [R]: the TON box runs before "
+        "the reset rung reads TON_A.Q; the textbook's drawing order, if the reset rung came first, is the "
+        "scan-order trap (wrong-scan-order) under the S7-1200 timer-refresh rule. ALARM is a memory bit, which "
+        "the trace stamps at the start of the scan that set it, while D1 (an output) is stamped at the end of its "
+        "scan: hence '10s - 1 scan' as the lower bound for ALARM. In the 'new object during the alarm' scenario "
+        "the new object waits at S1, so version 3's level-sensitive S1 rung restarts the belt in the scan after "
+        "ACK (criterion 4's 'new S1 edge' has then already happened while ALARM was TRUE)."
+    ),
+)

@@ -1,0 +1,146 @@
+"""4.3.13 Machine control (three on/off cycles). Plant: MACHINE."""
+
+from exercises._common import solution
+from plants import Machine
+from plcsim.check import all_of, always, any_of, becomes, count, durations, falls, holds, implies, off, rises
+from plcsim.exercise import IO, Exercise, only
+from plcsim.scenario import Scenario, write
+
+NUMBER = "4.3.13"
+ONE, TWO, CUT = "one sequence", "two sequences", "withdrawn mid-sequence"
+
+EXERCISE = Exercise(
+    number=NUMBER,
+    slug="machine-3-cycles",
+    title="Machine control (three on/off cycles)",
+    title_sk="Príklad 13 – Ovládanie stroja",
+    task=(
+        "A machine without running feedback simulates some operation (drilling, polishing, painting ...). It is "
+        "driven by one digital output, STROJ_ZAP (machine on). Later the conveyor control will start it; here the "
+        "permission STROJ_START (machine start) is set by hand from the HMI.\n"
+        "Task: after STROJ_START is set, the machine performs the sequence 'switch the machine output on and off' "
+        "three times. On lasts 1 s, off lasts 2 s. Then STROJ_KONIEC (sequence finished) is TRUE and the machine "
+        "stays off while STROJ_START remains set. Withdrawing STROJ_START stops the machine and resets the "
+        "sequence, so that the next STROJ_START runs it again."
+    ),
+    io=[
+        IO("STROJ_ZAP", "machine on", "Bool", "%Q0.0", comment="address proposed; the textbook gives none"),
+        IO(
+            "STROJ_START",
+            "machine start (permission), written from the HMI",
+            "Bool",
+            comment="symbolic memory tag; the textbook gives no address",
+        ),
+        IO("STROJ_KONIEC", "sequence finished", "Bool", comment="symbolic memory tag; the textbook gives no address"),
+    ],
+    rig=Machine,
+    scenarios=[
+        Scenario(
+            ONE,
+            write("STROJ_START", True, t="0.2s..1s"),
+            duration="12s",
+            description="STROJ_START set at a seeded time and left set",
+        ),
+        Scenario(
+            TWO,
+            write("STROJ_START", True, t="0.2s..0.8s"),
+            write("STROJ_START", False, t="10.5s..11.5s"),
+            write("STROJ_START", True, t="12s..13s"),
+            duration="23s",
+            description="a full sequence, STROJ_START withdrawn, then a second full sequence",
+        ),
+        Scenario(
+            CUT,
+            write("STROJ_START", True, t="0.2s..0.6s"),
+            write("STROJ_START", False, t="3.7s..4.1s"),  # inside the second ON phase
+            write("STROJ_START", True, t="5s..5.5s"),
+            write("STROJ_START", False, t="6.6s..7.9s"),  # inside the first OFF phase
+            write("STROJ_START", True, t="9s..9.5s"),
+            duration="20s",
+            description="STROJ_START withdrawn during an ON phase and during an OFF phase, then a full sequence",
+        ),
+    ],
+    checks=[
+        rises("STROJ_ZAP")
+        .within("2 scans")
+        .after(rises("STROJ_START"))
+        .named("the machine starts as soon as STROJ_START is set"),
+        only(
+            durations("STROJ_ZAP").between("1s - 2 scans", "1s + 2 scans").named("each ON phase lasts 1 s (+-2 scans)"),
+            ONE,
+            TWO,
+        ),
+        only(
+            becomes(any_of("STROJ_ZAP", "STROJ_KONIEC"))
+            .between("2s - 2 scans", "2s + 2 scans")
+            .after(falls("STROJ_ZAP"))
+            .named("each OFF phase lasts 2 s (+-2 scans)"),
+            ONE,
+            TWO,
+        ),
+        only(count(rises("STROJ_ZAP")).equals(3).named("exactly three ON phases"), ONE),
+        only(count(rises("STROJ_ZAP")).equals(6).named("a new STROJ_START runs a new sequence of three"), TWO),
+        only(
+            count(rises("STROJ_ZAP")).equals(6).named("after a withdrawal a new STROJ_START runs a full sequence"), CUT
+        ),
+        only(
+            rises("STROJ_KONIEC")
+            .between("9s", "9s + 3 scans")
+            .after(rises("STROJ_START"))
+            .named("the whole sequence lasts 9 s (+ at most 3 scans)"),
+            ONE,
+            TWO,
+        ),
+        always(implies("STROJ_KONIEC", off("STROJ_ZAP"))).named("after the sequence the machine stays off"),
+        holds("STROJ_KONIEC")
+        .until(falls("STROJ_START"))
+        .named("STROJ_KONIEC comes and stays TRUE while STROJ_START remains set"),
+        always(implies(off("STROJ_START"), all_of(off("STROJ_ZAP"), off("STROJ_KONIEC"))))
+        .except_for("1 scan")
+        .named("without STROJ_START the machine is off and STROJ_KONIEC is reset (within 1 scan)"),
+    ],
+    solutions=[
+        solution(NUMBER, "reference", explanation="solution 1: 3 s TON with RT, CTU (PV 3), ON while ET < 1 s"),
+        solution(NUMBER, "solution-2", "alternative", "solution 2: the counter replaced by ADD and MOVE"),
+        solution(
+            NUMBER,
+            "textbook-variant",
+            "wrong",
+            "the textbook's solution text: ET >= 1 s gives OFF 1 s then ON 2 s, contradicting the task "
+            "(ON 1 s, OFF 2 s), which is normative",
+            fails=(
+                "each ON phase lasts 1 s (+-2 scans)",
+                "each OFF phase lasts 2 s (+-2 scans)",
+                "the machine starts as soon as STROJ_START is set",
+            ),
+        ),
+        solution(
+            NUMBER,
+            "wrong-no-reset",
+            "wrong",
+            "the counter is never reset: STROJ_KONIEC stays TRUE and a new STROJ_START does nothing",
+            fails=(
+                "a new STROJ_START runs a new sequence of three",
+                "without STROJ_START the machine is off and STROJ_KONIEC is reset (within 1 scan)",
+            ),
+        ),
+        solution(
+            NUMBER,
+            "wrong-rt-first",
+            "wrong",
+            "the counter reads TON_S.Q in a network after the RT: it sees the timer already reset, never "
+            "counts, and the machine cycles for ever",
+            fails=("exactly three ON phases", "the whole sequence lasts 9 s (+ at most 3 scans)"),
+        ),
+    ],
+    notes=(
+        "Text issue (erratum 4.3.13): the task says on 1 s / off 2 s, the solution text says off 1 s / on 2 s and "
+        "names STROJ_START for STROJ_ZAP. The task statement is normative; the textbook's variant ships as the "
+        "wrong solution 'textbook-variant' (it fails exactly the phase-length checks and the start check), so an "
+        "instructor who prefers the textbook's reading can swap the checks. STROJ_START and STROJ_KONIEC are "
+        "symbolic tags (no address in the textbook). The textbook draws the counter in rung 2 on TON_S.Q; here it "
+        "hangs on the timer's Q pin in the same network as RT, because a read of TON_S.Q after RT sees the reset "
+        "timer (shipped as wrong-rt-first). OFF phases are measured while STROJ_START is set and the sequence is "
+        "not finished; the sequence ends at the third timer expiry, 9 s (+ 2 scans) after STROJ_START."
+    ),
+)

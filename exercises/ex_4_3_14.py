@@ -1,0 +1,105 @@
+"""4.3.14 Operating-hours meter 1 (seconds). Plant: CONV1 (the motor is the conveyor drive D1)."""
+
+from exercises._common import solution
+from exercises._hours import (
+    counts_running_seconds,
+    nuluj_resets_itself,
+    seconds_meter,
+    still_while_off,
+    stores_reset_time,
+    survives_power_cycle,
+    zero_after_reset,
+)
+from plants import Conv1
+from plcsim.exercise import IO, Exercise, only
+from plcsim.scenario import Scenario, held, knock_off, place, power_cycle, remove, write
+from plcsim.tags import DB
+from plcsim.types import DTL, Bool, DInt
+
+NUMBER = "4.3.14"
+METER = "MOTOR.SEKUNDY"
+
+EXERCISE = Exercise(
+    number=NUMBER,
+    slug="hours-meter-1",
+    title="Operating-hours meter 1 (seconds)",
+    title_sk="Príklad 14 – Motohodiny 1",
+    task=(
+        "The conveyor of 4.3.5 is driven by output D1 (conveyor forward) at %Q0.2. The goal is not a new conveyor "
+        "algorithm but new variables for monitoring: an operating-hours meter (motohodiny) of the motor.\n"
+        "Task: create a data block MOTOR with SEKUNDY (DInt, running time in seconds), DATUM_CAS (DTL, date and "
+        "time of the last reset) and NULUJ (Bool, 'zero it': triggers the reset). Increment SEKUNDY every second "
+        "while the motor is on. When NULUJ becomes TRUE, set SEKUNDY to zero, write the current date and time to "
+        "DATUM_CAS and reset NULUJ. SEKUNDY and DATUM_CAS are retentive, NULUJ is not. Keep the conveyor control "
+        "of 4.3.5 (S1 starts the belt, S2 stops it)."
+    ),
+    io=[
+        IO("S1", "sensor at the belt start", "Bool", "%I0.0", "NO", comment="address proposed"),
+        IO("S2", "sensor at the belt end", "Bool", "%I0.1", "NO", comment="address proposed"),
+        IO("D1", "conveyor forward (the motor)", "Bool", "%Q0.2", comment="stated in the textbook"),
+    ],
+    dbs={
+        "MOTOR": DB(SEKUNDY=DInt(0, retain=True), DATUM_CAS=DTL("DTL#1970-01-01-00:00:00", retain=True), NULUJ=Bool())
+    },
+    rig=Conv1,
+    cpu={"cycle": "100ms", "clock_memory_byte": 0, "system_memory_byte": 1, "rtc_start": "DTL#2026-01-05-08:00:00"},
+    scenarios=[
+        Scenario(
+            "belt runs",
+            place("p1", at="S1", t="1s..2s"),
+            knock_off("p1", t="4s..5s"),
+            write("MOTOR.NULUJ", True, t="30s..40s"),
+            place("p2", at="S1", t="80s..85s"),
+            remove("p2", when=held("S2", "1s")),
+            duration="125s",
+            description="the first object is knocked off, so the belt runs empty; NULUJ at 30..40 s; a second "
+            "object stops the belt at S2 at about 85..90 s and the belt stays off",
+        ),
+        Scenario(
+            "power cycle",
+            place("p1", at="S1", t="1s..2s"),
+            knock_off("p1", t="4s..5s"),
+            write("MOTOR.NULUJ", True, t="10s..15s"),
+            power_cycle(t="40s..50s"),
+            place("p2", at="S1", t="60s..65s"),
+            knock_off("p2", t="68s..70s"),
+            duration="100s",
+            description="the meter runs, the CPU is powered off and on (the belt stops: D1 is not retentive), "
+            "then the belt runs again",
+        ),
+    ],
+    checks=[
+        counts_running_seconds(seconds_meter, METER),
+        still_while_off(seconds_meter, METER),
+        zero_after_reset(seconds_meter, METER),
+        nuluj_resets_itself(),
+        stores_reset_time(),
+        only(survives_power_cycle(seconds_meter, METER), "power cycle"),
+    ],
+    solutions=[
+        solution(
+            NUMBER, "reference", explanation="Takt1s = P(Clock_1Hz); ADD while D1; NULUJ: MOVE 0, RD_LOC_T, R NULUJ"
+        ),
+        solution(
+            NUMBER,
+            "wrong-no-edge",
+            "wrong",
+            "Clock_1Hz used as a level: the ADD runs in every scan of the half second",
+            fails=("the meter counts the seconds the belt ran",),
+        ),
+        solution(
+            NUMBER,
+            "wrong-not-retentive",
+            "wrong",
+            "the count lives in a non-retentive tag: a power cycle loses it",
+            fails=("the meter survives a power cycle (retain)",),
+        ),
+    ],
+    notes=(
+        "Runs at a 100 ms cycle (the textbook allows cycles up to 100 ms) so that minutes of running grade in a "
+        "fraction of a second; while the belt runs empty the plant is quiescent and the simulator skips its idle "
+        "physics steps (provably equivalent: see plcsim.sim.Simulation._skip_quiet). The DTL uses the real layout "
+        "(MONTH..SECOND USInt; Fig. 4.125 shows UInt, an erratum). Clock memory at MB0, system memory at MB1 "
+        "(the textbook's 'byte 0 for both' is an erratum)."
+    ),
+)

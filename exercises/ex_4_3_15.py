@@ -1,0 +1,104 @@
+"""4.3.15 Operating-hours meter 2 (hours, minutes, seconds). Plant: CONV1."""
+
+from exercises._common import solution
+from exercises._hours import (
+    counts_running_seconds,
+    hms_meter,
+    nuluj_resets_itself,
+    still_while_off,
+    stores_reset_time,
+    survives_power_cycle,
+    zero_after_reset,
+)
+from plants import Conv1
+from plcsim.check import always, value
+from plcsim.exercise import IO, Exercise, only
+from plcsim.scenario import Scenario, knock_off, place, power_cycle, write
+from plcsim.tags import DB
+from plcsim.types import DTL, Bool, UInt, USInt
+
+NUMBER = "4.3.15"
+SIGNALS = ("MOTOR.HODINY", "MOTOR.MINUTY", "MOTOR.SEKUNDY")
+
+EXERCISE = Exercise(
+    number=NUMBER,
+    slug="hours-meter-2",
+    title="Operating-hours meter 2 (hours, minutes, seconds)",
+    title_sk="Príklad 15 – Motohodiny 2",
+    task=(
+        "Showing operators seconds is not sensible: show hours, minutes and seconds. Modify the data block MOTOR of "
+        "4.3.14: SEKUNDY (USInt, seconds 0..59), MINUTY (USInt, minutes 0..59), HODINY (UInt, hours), DATUM_CAS "
+        "(DTL, date and time of the last reset) and NULUJ (Bool, triggers the reset).\n"
+        "Task: increment SEKUNDY every second while the motor D1 is on. When 60 s are reached, increment MINUTY and "
+        "reset SEKUNDY; when MINUTY reaches 60, increment HODINY and reset MINUTY. NULUJ zeroes all three and stores "
+        "the date and time as in 4.3.14."
+    ),
+    io=[
+        IO("S1", "sensor at the belt start", "Bool", "%I0.0", "NO", comment="address proposed"),
+        IO("S2", "sensor at the belt end", "Bool", "%I0.1", "NO", comment="address proposed"),
+        IO("D1", "conveyor forward (the motor)", "Bool", "%Q0.2", comment="stated in the textbook"),
+    ],
+    dbs={
+        "MOTOR": DB(
+            SEKUNDY=USInt(0, retain=True),
+            MINUTY=USInt(0, retain=True),
+            HODINY=UInt(0, retain=True),
+            DATUM_CAS=DTL("DTL#1970-01-01-00:00:00", retain=True),
+            NULUJ=Bool(),
+        )
+    },
+    rig=Conv1,
+    cpu={"cycle": "100ms", "clock_memory_byte": 0, "system_memory_byte": 1, "rtc_start": "DTL#2026-01-05-08:00:00"},
+    record_changes_only=True,
+    scenarios=[
+        Scenario(
+            "two hours",
+            place("p1", at="S1", t="1s..2s"),
+            knock_off("p1", t="4s..5s"),
+            write("MOTOR.NULUJ", True, t="10s..20s"),
+            duration="7350s",
+            description="the belt runs empty for about 2 h 2 min after NULUJ (the textbook's example: 7325 s)",
+        ),
+        Scenario(
+            "power cycle",
+            place("p1", at="S1", t="1s..2s"),
+            knock_off("p1", t="4s..5s"),
+            write("MOTOR.NULUJ", True, t="10s..15s"),
+            power_cycle(t="100s..110s"),
+            place("p2", at="S1", t="120s..125s"),
+            knock_off("p2", t="128s..130s"),
+            duration="200s",
+            description="the meter passes a minute, the CPU is powered off and on, then the belt runs again",
+        ),
+    ],
+    checks=[
+        counts_running_seconds(hms_meter, *SIGNALS),
+        always(value("MOTOR.SEKUNDY") <= 59).named("SEKUNDY stays within 0..59 at the end of every scan"),
+        always(value("MOTOR.MINUTY") <= 59).named("MINUTY stays within 0..59 at the end of every scan"),
+        still_while_off(hms_meter, *SIGNALS),
+        zero_after_reset(hms_meter, *SIGNALS),
+        nuluj_resets_itself(),
+        stores_reset_time(),
+        only(survives_power_cycle(hms_meter, *SIGNALS), "power cycle"),
+    ],
+    solutions=[
+        solution(
+            NUMBER,
+            "reference",
+            explanation="count, then carry seconds into minutes and minutes into hours in "
+            "the same scan; NULUJ: MOVE 0 to three outputs, RD_LOC_T",
+        ),
+        solution(
+            NUMBER,
+            "wrong-carry-order",
+            "wrong",
+            "the carry networks run before the counting network, so the meter shows 60 s for one scan",
+            fails=("SEKUNDY stays within 0..59 at the end of every scan",),
+        ),
+    ],
+    notes=(
+        "The two-hour scenario records a trace row only when a value changes and runs at a 100 ms cycle; the idle "
+        "physics of the empty belt is skipped (provably equivalent), so two hours grade in about a second. "
+        "HODINY overflow at 65 535 h is not handled by the textbook and is not tested."
+    ),
+)

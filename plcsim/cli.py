@@ -1,0 +1,349 @@
+"""The ``plcsim`` command: list and show exercises, run a program on a rig, grade submissions.
+
+plcsim list
+plcsim show 4.3.7
+plcsim run 4.3.7 --reference --rrd out/run.rrd
+plcsim run CONV1 --program my_conveyor.py --seconds 20 --plot out/conveyor.png
+plcsim grade 4.3.7 my_alarm.py --json out/report.json --junit out/report.xml
+plcsim grade 4.3.7 submissions/ --jobs 2 --gradebook out/grades.csv
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+from plcsim.errors import PlcError
+
+EXIT_FAILED = 1
+EXIT_USAGE = 2
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="plcsim",
+        description="A teaching simulator of an S7-1200 PLC driving virtual training rigs, with graded exercises.",
+        epilog="Exercises are named by textbook number (4.3.6) or slug (conveyor-2); `plcsim list` shows them.",
+    )
+    sub = p.add_subparsers(dest="command", metavar="COMMAND")
+
+    sub.add_parser("list", help="list the exercises with their titles", description="List the exercises.")
+
+    show = sub.add_parser(
+        "show",
+        help="show an exercise: task, I/O table, scenarios, checks",
+        description="Show an exercise's task, I/O table, data blocks, scenarios and checks.",
+    )
+    show.add_argument("exercise", help="textbook number (4.3.6) or slug")
+
+    run = sub.add_parser(
+        "run",
+        help="run a program on an exercise's rig or a bare rig",
+        description="Run a program against a rig and print a summary; on an exercise, also grade the run.",
+    )
+    run.add_argument("target", help="an exercise (4.3.7) or a rig (PANEL, CONV1, CONV3, CONV2x2, MACHINE)")
+    which = run.add_mutually_exclusive_group()
+    which.add_argument("--program", metavar="FILE.py", help="the PLC program to run")
+    which.add_argument("--reference", action="store_true", help="run the exercise's shipped reference solution")
+    which.add_argument("--solution", metavar="NAME", help="run a shipped solution by name (see `plcsim show`)")
+    run.add_argument("--scenario", metavar="NAME", help="which scenario of the exercise (default: the first)")
+    run.add_argument("--seconds", type=float, metavar="N", help="simulated seconds (default: the scenario's)")
+    run.add_argument("--seed", type=int, default=1, help="seed of placement noise and timing (default 1)")
+    run.add_argument(
+        "--realtime",
+        nargs="?",
+        const=1.0,
+        type=float,
+        metavar="FACTOR",
+        help="pace the run to the wall clock × FACTOR (default 1; 0.5 = half speed)",
+    )
+    run.add_argument("--rrd", metavar="OUT.rrd", help="write a rerun recording (open it with: rerun OUT.rrd)")
+    run.add_argument("--plot", metavar="OUT.png", help="write a timing diagram of the run")
+    run.add_argument("--trace", metavar="OUT.npz", help="write the trace as numpy columns")
+    run.add_argument("--signals", metavar="A,B,C", help="signals for --plot (default: inputs and outputs)")
+    run.add_argument("--spawn-viewer", action="store_true", help="open the rerun viewer on the recording")
+    run.add_argument("--cycle", metavar="TIME", help="OB1 cycle time, e.g. 1ms or 100ms (overrides the exercise)")
+
+    grade = sub.add_parser(
+        "grade",
+        help="grade a submission (or a folder of them) on every scenario of an exercise",
+        description="Grade PLC programs: every scenario × every check, in a sandboxed child process.",
+    )
+    grade.add_argument("exercise", help="textbook number (4.3.6) or slug")
+    grade.add_argument("submission", nargs="?", help="a program file or a folder of .py files")
+    grade.add_argument("--reference", action="store_true", help="grade the shipped reference solution")
+    grade.add_argument("--solution", metavar="NAME", help="grade a shipped solution by name")
+    grade.add_argument("--seed", type=int, default=1, help="scenario seed (instructors: use a secret one)")
+    grade.add_argument("--json", metavar="OUT", help="write the report as JSON (a folder for a batch)")
+    grade.add_argument("--junit", metavar="OUT", help="write the report as JUnit XML")
+    grade.add_argument("--rrd", metavar="DIR", help="write a rerun recording per scenario into DIR")
+    grade.add_argument("--plots", metavar="DIR", help="write a timing diagram per failed check into DIR")
+    grade.add_argument("--jobs", type=int, default=1, metavar="N", help="grade N submissions at a time (batch)")
+    grade.add_argument("--gradebook", metavar="OUT.csv", help="write one CSV row per submission (batch)")
+    grade.add_argument("--cpu-seconds", type=int, default=60, help="CPU-time limit per submission (default 60)")
+    grade.add_argument("--memory-mb", type=int, default=2048, help="memory limit per submission (default 2048)")
+    grade.add_argument("--no-sandbox", action="store_true", help="grade in this process (trusted code only)")
+    grade.add_argument("-v", "--verbose", action="store_true", help="also show why passed checks passed")
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    if args.command is None:
+        _parser().print_help()
+        return EXIT_USAGE
+    try:
+        return {"list": _list, "show": _show, "run": _run, "grade": _grade}[args.command](args)
+    except PlcError as exc:
+        from rich.console import Console
+
+        Console(stderr=True).print(f"[bold red]error:[/] {exc}", highlight=False)
+        return EXIT_USAGE
+
+
+def _list(args: argparse.Namespace) -> int:
+    from exercises import all_exercises
+    from plcsim.report import print_exercise_list
+
+    print_exercise_list(all_exercises())
+    return 0
+
+
+def _show(args: argparse.Namespace) -> int:
+    from exercises import get
+    from plcsim.report import print_exercise
+
+    print_exercise(get(args.exercise))
+    return 0
+
+
+def _is_rig(name: str) -> bool:
+    from plants import RIGS
+
+    return name.upper() in {k.upper() for k in RIGS}
+
+
+def _run(args: argparse.Namespace) -> int:
+    from rich.console import Console
+    from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+
+    from plcsim.check import evaluate_all
+    from plcsim.program import Program
+    from plcsim.report import print_run_summary
+
+    console = Console()
+    exercise = None
+    if _is_rig(args.target):
+        if not args.program:
+            raise PlcError(f"running the bare rig {args.target} needs --program FILE.py")
+        sim = _rig_simulation(args)
+        scenario_name = None
+    else:
+        from exercises import get
+
+        exercise = get(args.target)
+        if args.program:
+            program = Program.from_file(args.program)
+        else:
+            chosen = exercise.solution(args.solution) if args.solution else exercise.reference
+            program = chosen.program()
+        scenario = exercise.scenario(args.scenario) if args.scenario else exercise.scenarios[0]
+        scenario_name = scenario.name
+        options = {"cycle": args.cycle} if args.cycle else {}
+        sim = exercise.simulation(program, scenario, seed=args.seed, **options)
+        if args.realtime:
+            sim = _as_realtime(sim, args.realtime)
+    duration = int(args.seconds * 1e9) if args.seconds else (sim.scenario.duration_ns if sim.scenario else int(10e9))
+    console.print(
+        f"running {args.target}"
+        + (f", scenario {scenario_name!r}" if scenario_name else "")
+        + f" for {duration / 1e9:g} s simulated"
+        + (f" at {args.realtime:g}× real time" if args.realtime else "")
+    )
+    wall0 = time.perf_counter()
+    with Progress(
+        TextColumn("[progress.description]{task.description}"),
+        BarColumn(),
+        TextColumn("{task.percentage:>3.0f}%"),
+        TimeRemainingColumn(),
+        console=console,
+        transient=True,
+        disable=duration < 20e9 and not args.realtime,
+    ) as progress:
+        task = progress.add_task("simulating", total=duration)
+        error = None
+        try:
+            sim.run(duration, progress=lambda done, total: progress.update(task, completed=done))
+        except PlcError as exc:
+            error = exc
+    wall = time.perf_counter() - wall0
+    print_run_summary(sim, wall, console)
+    if error is not None:
+        console.print(f"[bold red]the run stopped:[/] {error}")
+    if args.rrd:
+        path = Path(args.rrd)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        sim.trace.to_rrd(path)
+        console.print(f"recording: {path}  (open it with: rerun {path})")
+        if args.spawn_viewer:
+            _spawn_viewer(path, console)
+    if args.plot:
+        from plcsim.trace_plot import save_timing_diagram
+
+        path = Path(args.plot)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        signals = args.signals.split(",") if args.signals else None
+        save_timing_diagram(
+            sim.trace, path, signals, title=f"{args.target}" + (f" — {scenario_name}" if scenario_name else "")
+        )
+        console.print(f"timing diagram: {path}")
+    if args.trace:
+        path = Path(args.trace)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        sim.trace.save(path)
+        console.print(f"trace: {path}")
+    if exercise is None:
+        return 0
+    graded = [gc for gc in exercise.checks_for(scenario_name)]
+    analysis = sim.cpu.compiled.analysis if sim.cpu.compiled else None
+    results = evaluate_all([g.check for g in graded], sim.trace, analysis)
+    passed = sum(v.passed for _, v in results)
+    points = sum(c.weight for c, v in results if v.passed)
+    total = sum(c.weight for c, _ in results)
+    console.print(f"[bold]grade of this run[/] (scenario {scenario_name!r}, seed {args.seed}):")
+    for check, verdict in results:
+        mark = "[green]✓[/]" if verdict.passed else "[red]✗[/]"
+        console.print(
+            f"  {mark} {check.title}" + ("" if verdict.passed else f"\n      {verdict.message}"), highlight=False
+        )
+    console.print(
+        f"[bold]{points:g} / {total:g}[/] points, {passed}/{len(results)} checks passed  "
+        f"(grade every scenario with: plcsim grade {exercise.number} FILE.py)"
+    )
+    return 0 if passed == len(results) else EXIT_FAILED
+
+
+def _rig_simulation(args: argparse.Namespace) -> Any:
+    from plants import RIGS
+    from plcsim.cpu import CPU
+    from plcsim.program import Program
+    from plcsim.sim import Simulation
+    from plcsim.tags import Tag
+    from plcsim.wiring import Wire
+
+    factory = next(v for k, v in RIGS.items() if k.upper() == args.target.upper())
+    plant = factory()
+    tags: dict[str, Tag] = {}
+    wires = []
+    n_in = n_out = 0
+    for name, spec in plant.signals.items():
+        if spec.kind != "bool":
+            continue
+        if spec.direction == "sensor":
+            tags[name] = Tag(f"%I{n_in // 8}.{n_in % 8}")
+            n_in += 1
+        else:
+            tags[name] = Tag(f"%Q{n_out // 8}.{n_out % 8}")
+            n_out += 1
+        wires.append(Wire(name, name))
+    options = {"cycle": args.cycle} if args.cycle else {}
+    cpu = CPU(
+        tags, Program.from_file(args.program), clock_memory_byte=100, system_memory_byte=101, seed=args.seed, **options
+    )
+    cls = Simulation
+    sim = cls(cpu, plant, wires, seed=args.seed)
+    if args.realtime:
+        sim = _as_realtime(sim, args.realtime)
+    return sim
+
+
+def _as_realtime(sim: Any, factor: float) -> Any:
+    from plcsim.sim import RealtimeSimulation
+
+    sim.__class__ = RealtimeSimulation
+    sim.factor = factor
+    return sim
+
+
+def _spawn_viewer(path: Path, console: Any) -> None:
+    import shutil
+    import subprocess
+
+    exe = shutil.which("rerun")
+    if exe is None:
+        console.print("[yellow]the rerun viewer is not on PATH; open the file with `rerun` yourself[/]")
+        return
+    subprocess.Popen([exe, str(path)])
+
+
+def _grade(args: argparse.Namespace) -> int:
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
+
+    from exercises import get
+    from plcsim.grading import Limits, grade, grade_batch, grade_sandboxed, write_gradebook
+    from plcsim.report import print_report
+
+    console = Console()
+    exercise = get(args.exercise)
+    options = {"rrd_dir": args.rrd, "plots_dir": args.plots}
+    limits = Limits(cpu_seconds=args.cpu_seconds, memory_mb=args.memory_mb)
+    if args.reference or args.solution:
+        chosen = exercise.solution(args.solution) if args.solution else exercise.reference
+        target = chosen.path
+    elif args.submission:
+        target = Path(args.submission)
+    else:
+        raise PlcError("give a submission file or folder, or --reference / --solution NAME")
+    if Path(target).is_dir():
+        files = sorted(p for p in Path(target).glob("*.py") if p.is_file())
+        if not files:
+            raise PlcError(f"no .py files in {target}")
+        with Progress(
+            TextColumn("grading"), BarColumn(), MofNCompleteColumn(), TextColumn("{task.description}"), console=console
+        ) as progress:
+            task = progress.add_task("", total=len(files))
+            reports = grade_batch(
+                exercise,
+                files,
+                jobs=args.jobs,
+                seed=args.seed,
+                limits=limits,
+                progress=lambda done, total, r: progress.update(
+                    task, completed=done, description=Path(r.submission).name
+                ),
+                **options,
+            )
+        for r in reports:
+            mark = "[green]✓[/]" if r.passed else "[red]✗[/]"
+            why = f"  {r.error_kind}: {r.error.splitlines()[0]}" if r.error else ""
+            console.print(f"{mark} {Path(r.submission).name}: {r.score:g}/{r.max_score:g}{why}", highlight=False)
+        if args.gradebook:
+            console.print(f"gradebook: {write_gradebook(reports, args.gradebook)}")
+        if args.json:
+            out = Path(args.json)
+            out.mkdir(parents=True, exist_ok=True)
+            for r in reports:
+                r.to_json(out / f"{Path(r.submission).stem}.json")
+        return 0 if all(r.passed for r in reports) else EXIT_FAILED
+    if args.no_sandbox:
+        report = grade(exercise, target, seed=args.seed, **options)
+    else:
+        report = grade_sandboxed(exercise, target, seed=args.seed, limits=limits, **options)
+    print_report(report, console, verbose=args.verbose)
+    if args.json:
+        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+        report.to_json(args.json)
+        console.print(f"JSON report: {args.json}")
+    if args.junit:
+        Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
+        report.to_junit(args.junit)
+        console.print(f"JUnit report: {args.junit}")
+    return 0 if report.passed else EXIT_FAILED
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
