@@ -18,6 +18,8 @@ GROUPS: dict[str, str] = {  # group name -> module with run(settings)
     "plc": "benchmarks.plc",
     "pyrung": "benchmarks.pyrung_peer",
     "equivalence": "benchmarks.equivalence",
+    "cosim": "benchmarks.cosim",
+    "grading": "benchmarks.grading",
 }
 
 

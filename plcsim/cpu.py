@@ -529,7 +529,10 @@ class CPU:
         ``until_ns`` itself (an operator's press, a plant's new sensor values) is seen by the tasks
         that start at ``until_ns``.
         """
-        self._run(until_ns, None)
+        if self._interrupts:
+            self._run(until_ns, None)
+        else:
+            self._run_cyclic(until_ns, None)
         if self.mode != RUN:
             self._refresh_inputs_stopped()
         if self.clock.now < until_ns:
@@ -616,6 +619,8 @@ class CPU:
                         ex.index = n
                     except BaseException as exc:  # noqa: BLE001 - sorted out in _after_exception
                         self._after_exception(ex, exc, _NEVER)
+                        if self.mode != RUN:  # the fault stopped the CPU: do not run the network again
+                            return
             if ex.index < n:
                 self._run_networks(ex, _NEVER)
                 if ex.index < n or self.mode != RUN:
@@ -970,6 +975,10 @@ class CPU:
                 raise UnknownTagError(f"{path}: an array needs an index, e.g. {text}[0]")
             container._index(last)
             return container, last
+        if isinstance(container, (IecTimer, IecCounter, EdgeTrigger)):
+            if not isinstance(last, str) or last.startswith("_") or not hasattr(container, last):
+                raise UnknownTagError(f"{path}: an instance of {type(container).__name__} has no member {last!r}")
+            return container, last
         if not isinstance(container, PlcStruct):
             raise UnknownTagError(f"{path}: {parts[-2]} has no members")
         if last not in container._type.members:
@@ -979,6 +988,8 @@ class CPU:
 
     def _resolve_value(self, path: str) -> Any:
         container, key = self.resolve_path(path)
+        if isinstance(container, (IecTimer, IecCounter, EdgeTrigger)):
+            return getattr(container, key)
         return container[key]
 
     def read(self, name: str) -> Any:
@@ -1014,6 +1025,8 @@ class CPU:
         container, key = self.resolve_path(name)
         if isinstance(container, PlcArray):
             container[key] = value
+        elif isinstance(container, (IecTimer, IecCounter)):
+            _fb_store(container, key, value)
         else:
             store(container, key, value)
         if key in self.inputs and container is self.t:

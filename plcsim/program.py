@@ -276,6 +276,8 @@ class Program:
                 f"{self.filename}, line {_error_line(exc, self.filename)}: {type(exc).__name__}: {exc}"
             ) from None
         labels = {name: f.plc_label for name, f in namespace.items() if hasattr(f, "plc_label")}
+        self._declaration_lines = {t.id: stmt.lineno for stmt in self.tree.body if isinstance(stmt, ast.Assign)
+                                   for t in stmt.targets if isinstance(t, ast.Name)}
         for name in _assigned_in_order(self.tree):
             value = namespace.get(name)
             if _OB_RE.match(name):
@@ -355,7 +357,11 @@ class Program:
                     f"{self.filename}: {name!r} is already declared by {prev.source or 'the exercise'}; "
                     f"use the existing tag or choose another name"
                 )
-            merged.add(name, decl, source=self.filename)
+            try:
+                merged.add(name, decl, source=self.filename)
+            except PlcError as exc:
+                line = self._declaration_lines.get(name, "?")
+                raise type(exc)(f"{self.filename}, line {line}: {name}: {exc}") from None
         return merged
 
     def compile(

@@ -16,7 +16,7 @@ from plcsim.instructions.counters import IecCounter
 from plcsim.instructions.edges import EdgeTrigger
 from plcsim.instructions.timers import IecTimer
 from plcsim.tags import PlcStruct
-from plcsim.trace import Trace
+from plcsim.trace import BLOCK, Trace
 from plcsim.types import ElementaryType
 
 _SYSTEM_NAMES = {name for _, name, _ in CLOCK_BITS} | {name for _, name in SYSTEM_BITS}
@@ -84,6 +84,7 @@ class Recorder:
             sources.append(source)
         self.trace = Trace(names, kinds, types)
         self.row = _compile_getter(sources)
+        self._full_row = _compile_getter(sources, head=True)
         self.changes_only = changes_only
         self._last: tuple[Any, ...] | None = None
 
@@ -124,7 +125,7 @@ class Recorder:
 
     def attach(self) -> None:
         """Start recording: every OB1 scan and every interrupt execution writes a row."""
-        self.cpu.on_scan_end = self.on_scan
+        self.cpu.on_scan_end = self.on_scan if self.changes_only else self._fast_on_scan()
         self.cpu.on_task_end = self.on_task
 
     def on_scan(self, cpu: CPU) -> None:
@@ -134,6 +135,18 @@ class Recorder:
                 return
             self._last = values
         self.trace.add_row(cpu.scan_start_ns, cpu.scan_end_ns, 1, values)
+
+    def _fast_on_scan(self) -> Callable[[CPU], None]:
+        """:meth:`on_scan` for every-row recording, fused into one call: the hot path of a run."""
+        pending, pack = self.trace.row_sink()
+        full_row, d = self._full_row, self.cpu.t.__dict__
+
+        def on_scan(cpu: CPU) -> None:
+            pending.append(full_row(d, cpu.scan_start_ns, cpu.scan_end_ns))
+            if len(pending) >= BLOCK:
+                pack()
+
+        return on_scan
 
     def on_task(self, cpu: CPU, task: str, start_ns: int, end_ns: int) -> None:
         values = self.row(cpu.t.__dict__)
@@ -152,9 +165,10 @@ class Recorder:
         self.trace.add_row(t_ns, end_ns, 0, values)
 
 
-def _compile_getter(sources: list[str]) -> Callable[[dict[str, Any]], tuple[Any, ...]]:
-    """A function returning the row as a tuple, generated once from the access paths (our code, not a program's)."""
-    if not sources:
-        return lambda d: ()
-    body = ", ".join(sources)
-    return eval(f"lambda d: ({body},)", {"__builtins__": {}})  # paths built above from tag names, not program text
+def _compile_getter(sources: list[str], head: bool = False) -> Callable[..., tuple[Any, ...]]:
+    """A function returning the row as a tuple, generated once from the access paths (our code, not a
+    program's); with ``head`` it takes the scan's start and end and returns the whole trace row."""
+    body = "".join(f"{source}, " for source in sources)
+    if head:
+        return eval(f"lambda d, a, b: (a, b, 1, {body})", {"__builtins__": {}})  # built from tag names
+    return eval(f"lambda d: ({body})", {"__builtins__": {}})  # built from tag names, not program text

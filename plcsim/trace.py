@@ -100,8 +100,13 @@ class Trace:
     def _pack(self) -> None:
         if self._pending:
             self._blocks.append(np.array(self._pending, dtype=np.float64))
-            self._pending = []
+            self._pending.clear()
             self._packed = None
+
+    def row_sink(self) -> tuple[list[tuple[Any, ...]], Callable[[], None]]:
+        """The list rows are appended to and the function to call when it holds :data:`BLOCK` rows
+        (for a recorder that builds whole rows itself; see :mod:`plcsim.recorder`)."""
+        return self._pending, self._pack
 
     def add_event(self, event: TraceEvent) -> None:
         """Record an event."""

@@ -248,6 +248,7 @@ class SideViewPlant:
         self.parts: dict[str, Part] = {}
         self._next_id = 1
         self._live = 0  # parts in the space
+        self._drawable_cache: dict[tuple, Drawable] = {}
         self._transient: list[Belt] = []
         self._falling: list[Part] = []
         self._rebuild: list[LightBarrier] = []
@@ -655,12 +656,18 @@ class SideViewPlant:
         return out
 
     def dynamic_drawables(self) -> list[Drawable]:
+        cache = self._drawable_cache
         out: list[Drawable] = []
         for b in self.belts:
             if b.v != 0.0:
-                xm = 0.5 * (b.x0 + b.x1)
-                d = 15.0 if b.v > 0 else -15.0
-                out.append(draw.arrow(f"belt/{b.name}/direction", xm - d, xm + d, b.top - 5.0, draw.BELT_RUNNING))
+                key = ("arrow", b.name, b.v > 0)
+                arrow = cache.get(key)
+                if arrow is None:
+                    xm = 0.5 * (b.x0 + b.x1)
+                    d = 15.0 if b.v > 0 else -15.0
+                    arrow = cache[key] = draw.arrow(f"belt/{b.name}/direction", xm - d, xm + d, b.top - 5.0,
+                                                    draw.BELT_RUNNING)
+                out.append(arrow)
         for pid, p in self.parts.items():
             color = p.props.get("color", draw.PART)
             if p.state == "held":
@@ -670,11 +677,12 @@ class SideViewPlant:
             out.append(Drawable(f"parts/{pid}", "polygon", p.outline(), tuple(color), text=pid))
         for lb in self.barriers:  # over the parts: an interrupted beam shows red on the part
             on = self.sensors[lb.name]
-            out.append(
-                draw.circle(
-                    f"beams/{lb.name}", lb.x_actual, lb.y, 2.5, draw.BEAM_CUT if on else draw.BEAM_FREE, lb.name
-                )
-            )
+            key = ("beam", lb.name, on, lb.x_actual)
+            beam = cache.get(key)
+            if beam is None:  # drawables are frozen, so one per state is shared by every frame
+                beam = cache[key] = draw.circle(f"beams/{lb.name}", lb.x_actual, lb.y, 2.5,
+                                                draw.BEAM_CUT if on else draw.BEAM_FREE, lb.name)
+            out.append(beam)
         if self.panel is not None:
             out += self.panel.dynamic_drawables(self.sensors, "panel")
         return out

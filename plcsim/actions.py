@@ -1,0 +1,184 @@
+"""Carrying out a scenario during a run: the operator's actions at their times or when the plant asks.
+
+Timed actions wait in a queue ordered by time. An action waiting for the plant (``when=held("S2",
+"1s")`` or ``when=after_event(...)``) joins the queue once its trigger fires; an action on a part
+waits until that part has been placed. Only the sensor triggers that can fire now are polled in each
+physics step, so a long scenario costs nothing while it waits.
+"""
+
+from __future__ import annotations
+
+import random
+from bisect import insort
+from collections.abc import Callable
+from typing import Any
+
+from plcsim.scenario import Action, Planned, Scenario, ScenarioError, plan
+from plcsim.trace import Trace, TraceEvent
+
+POSE_NOISE_MM = 5.0
+POSE_NOISE_DEG = 5.0
+NEVER = 1 << 62
+PART_VERBS = {"remove", "jam", "unjam", "knock_off"}
+
+
+class ActionRunner:
+    """The scenario's timeline during one run."""
+
+    def __init__(self, scenario: Scenario | None, rng: random.Random, plant: Any, cpu: Any, wiring: Any,
+                 trace: Trace):
+        self.plant, self.cpu, self.wiring, self.trace, self.rng = plant, cpu, wiring, trace, rng
+        self.parts: dict[str, str] = {}
+        self._timed: list[tuple[int, int, Action]] = []
+        self._held: list[Planned] = []  # sensor triggers, not fired yet
+        self._on_event: list[Planned] = []  # event triggers, not fired yet
+        self.polled: list[Planned] = []  # the sensor triggers that can fire now
+        self._scenario_parts: set[str] = set()
+        if scenario is not None:
+            self._scenario_parts = {a.target for a in scenario.actions if a.verb == "place"}
+            for item in plan(scenario, rng):
+                if item.at_ns is not None:
+                    self._timed.append((item.at_ns, item.order, item.action))
+                elif item.action.when.signal is not None:  # type: ignore[union-attr]
+                    self._held.append(item)
+                else:
+                    self._on_event.append(item)
+            self._timed.sort(key=lambda e: (e[0], e[1]))
+            self._refresh_polled()
+        self.next_due = self._timed[0][0] if self._timed else NEVER
+
+    # -- what can happen when -------------------------------------------------------------------
+
+    def _ready(self, item: Planned) -> bool:
+        action = item.action
+        return not (action.verb in PART_VERBS and action.target in self._scenario_parts
+                    and action.target not in self.parts)
+
+    def _refresh_polled(self) -> None:
+        self.polled = [item for item in self._held if self._ready(item)]
+
+    def _schedule(self, item: Planned, at_ns: int) -> None:
+        insort(self._timed, (at_ns, item.order, item.action), key=lambda e: (e[0], e[1]))
+        self.next_due = self._timed[0][0]
+
+    def next_time(self) -> int:
+        """The earliest time something scheduled or armed will happen."""
+        due = self.next_due
+        for item in self.polled:
+            if item.armed_since is not None:
+                due = min(due, item.armed_since + item.action.when.for_ns)  # type: ignore[union-attr]
+        return due
+
+    # -- during the run ---------------------------------------------------------------------------
+
+    def apply_due(self, t: int) -> None:
+        """Carry out every action due at or before ``t``, in time order."""
+        timed = self._timed
+        while timed and timed[0][0] <= t:
+            self.apply(timed.pop(0)[2], t)
+        self.next_due = timed[0][0] if timed else NEVER
+
+    def poll(self, t: int, sensors: dict[str, Any]) -> None:
+        """Arm or fire the sensor triggers that can fire now (called after every physics step)."""
+        fired = False
+        for item in self.polled:
+            trig = item.action.when
+            if sensors.get(trig.signal) == trig.value:  # type: ignore[union-attr]
+                if item.armed_since is None:
+                    item.armed_since = t
+                if t - item.armed_since >= trig.for_ns:  # type: ignore[union-attr]
+                    self._held.remove(item)
+                    self._schedule(item, t + item.action.delay.draw(self.rng))
+                    fired = True
+            else:
+                item.armed_since = None
+        if fired:
+            self._refresh_polled()
+        if self.next_due <= t:
+            self.apply_due(t)
+
+    def on_events(self, events: list[Any]) -> None:
+        """Fire the event triggers that these plant events satisfy."""
+        if not self._on_event:
+            return
+        for item in list(self._on_event):
+            if not self._ready(item):
+                continue
+            trig = item.action.when
+            for e in events:
+                if e.kind == trig.event and (trig.subject is None or trig.subject in (e.subject, e.part)):  # type: ignore[union-attr]
+                    self._on_event.remove(item)
+                    self._schedule(item, e.t_ns + item.action.delay.draw(self.rng))
+                    break
+
+    def apply(self, action: Action, t: int) -> None:
+        """Carry out one action; an impossible one (a part that fell off) is recorded, never raised."""
+        plant, cpu, wiring = self.plant, self.cpu, self.wiring
+        verb, target, args = action.verb, action.target, action.args
+        detail = ""
+        try:
+            if verb == "place":
+                offset, angle = args["offset_mm"], args["angle_deg"]
+                if args["noise"]:
+                    offset = self.rng.uniform(-POSE_NOISE_MM, POSE_NOISE_MM) if offset is None else offset
+                    angle = self.rng.uniform(-POSE_NOISE_DEG, POSE_NOISE_DEG) if angle is None else angle
+                self.parts[target] = plant.place(args["station"], part=target, offset_mm=offset or 0.0,
+                                                 angle_deg=angle or 0.0, **args["properties"])
+                detail = f"offset {offset or 0.0:+.2f} mm, angle {angle or 0.0:+.2f} deg"
+                self._refresh_polled()
+            elif verb == "remove":
+                plant.remove(self.parts.get(target, target))
+            elif verb in ("jam", "unjam", "knock_off"):
+                method = {"jam": plant.hold, "unjam": plant.release, "knock_off": plant.knock_off}[verb]
+                method(self.parts.get(target, target))
+            elif verb in ("press", "release", "switch"):
+                value = args["on"] if verb == "switch" else verb == "press"
+                if plant is None:
+                    cpu.set_input(target, value)
+                else:
+                    plant.operate(target, value)
+            elif verb == "write":
+                cpu.write(target, args["value"])
+            elif verb in ("stick", "break_wire", "chatter", "clear"):
+                self._wiring_fault(verb, target, args)
+            elif verb == "shift":
+                _plant_method(plant, "shift_sensor")(target, args["mm"])
+            elif verb in ("jam_motor", "free_motor"):
+                _plant_method(plant, "jam_motor")(target, verb == "jam_motor")
+            elif verb == "stop_cpu":
+                cpu.stop(reason="mode switch")
+            elif verb == "start_cpu":
+                cpu.start()
+            elif verb == "power_cycle":
+                cpu.power_cycle()
+            else:  # pragma: no cover - the constructors make only the verbs above
+                raise ScenarioError(f"unknown action {verb!r}")
+        except Exception as exc:  # noqa: BLE001 - an impossible action is recorded, the run goes on
+            self.trace.add_event(TraceEvent(t, "scenario", "action failed", target, None,
+                                            f"{action.describe()} ({action.defined_at}): {exc}"))
+            return
+        if plant is not None and plant.events:
+            self.trace.add_plant_events(plant.events)
+            self.on_events(plant.events)
+            plant.events.clear()
+        self.trace.add_event(TraceEvent(t, "scenario", verb, target, self.parts.get(target), detail))
+
+    def _wiring_fault(self, verb: str, target: str, args: dict[str, Any]) -> None:
+        wiring = self.wiring
+        if wiring is None:
+            raise ScenarioError(f"{verb} {target}: this run has no wiring to put a fault in")
+        if verb == "stick":
+            wiring.stick(target, args["value"])
+        elif verb == "break_wire":
+            wiring.break_wire(target)
+        elif verb == "chatter":
+            wiring.chatter(target, args["transitions"], args["width"])
+        else:
+            wiring.clear(target)
+
+
+def _plant_method(plant: Any, method: str) -> Callable[..., Any]:
+    fn = getattr(plant, method, None)
+    if fn is None:
+        raise ScenarioError(f"the plant {getattr(plant, 'name', None)} does not support {method}")
+    return fn
