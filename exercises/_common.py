@@ -9,8 +9,14 @@ from plcsim.exercise import Solution
 SOLUTIONS = Path(__file__).parent / "solutions"
 
 
-def solution(number: str, name: str, kind: str = "reference", explanation: str = "",
-             fails: tuple[str, ...] = (), scenarios: tuple[str, ...] | None = None) -> Solution:
+def solution(
+    number: str,
+    name: str,
+    kind: str = "reference",
+    explanation: str = "",
+    fails: tuple[str, ...] = (),
+    scenarios: tuple[str, ...] | None = None,
+) -> Solution:
     """A shipped program: ``exercises/solutions/4_3_NN/<name>.py``."""
     major, minor, item = number.split(".")
     path = SOLUTIONS / f"{major}_{minor}_{int(item):02d}" / f"{name}.py"

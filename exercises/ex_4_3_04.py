@@ -26,7 +26,8 @@ def on_off(cycles: int) -> list:
 
 def both_pressed() -> list:
     """The overlaps: ON held, OFF pressed and released while ON is still held; then OFF held first,
-    ON pressed during it and still held when OFF is released; then a plain OFF."""
+    ON pressed during it and still held when OFF is released; then a plain OFF; at the end both are
+    pressed in the same instant."""
     return [
         *press(ZAP, t="200ms..300ms", hold="1.2s..1.4s"),  # ON ... (held until 1.4..1.7 s)
         *press(VYP, t="600ms..700ms", hold="300ms..500ms"),  # ... OFF pressed and released inside it
@@ -36,6 +37,8 @@ def both_pressed() -> list:
         *press(ZAP, t="4.2s..4.3s", hold="50ms..100ms"),  # ON pressed and released, then OFF pressed
         *press(VYP, t="4.33s..4.36s", hold="200ms..300ms"),  # and ON pressed again while OFF is held
         *press(ZAP, t="4.45s..4.5s", hold="20ms..50ms"),
+        *press(ZAP, t="5.2s", hold="300ms..400ms"),  # both pressed in the same instant,
+        *press(VYP, t="5.2s", hold="100ms..200ms"),  # OFF released first: the LED comes on
     ]
 
 
@@ -67,8 +70,9 @@ EXERCISE = Exercise(
         Scenario(
             "both pressed",
             *both_pressed(),
-            duration="5s",
-            description="the two buttons pressed together, in either order; OFF released while ON is held",
+            duration="6s",
+            description="the two buttons pressed together, in either order and in the same instant; "
+            "OFF released while ON is held",
         ),
     ],
     checks=[

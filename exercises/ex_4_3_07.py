@@ -62,64 +62,135 @@ EXERCISE = Exercise(
     ],
     rig=Conv1,
     scenarios=[
-        Scenario("three objects", *shuttle(3), duration="25s",
-                 description="normal operation: load at S1, remove at S2 after 1 s, three times (14 s of belt "
-                 "time in all, so a watchdog that does not restart for each transport gives a false alarm)"),
-        Scenario("jam", *JAMMED, *acknowledge(13, 14), duration="16s",
-                 description="the object jams 0.2..2 s after leaving S1; the belt slips under it; the operator "
-                 "acknowledges the alarm 2..3.7 s after it was raised"),
-        Scenario("knocked off", place("p1", at="S1", t="0.3s..0.8s"),
-                 knock_off("p1", when=after_event("part left", "p1"), delay="1s..3s"),
-                 *acknowledge(12.5, 13.5), duration="15s",
-                 description="the object is pushed off the side of the belt on its way to S2"),
-        Scenario("new object during the alarm", *JAMMED,
-                 remove("p1", t="12s..12.5s"), place("p2", at="S1", t="13s..14s"),
-                 *acknowledge(16, 17), remove("p2", when=held("S2", "1s")), duration="25s",
-                 description="after the alarm the operator frees the belt and loads a new object before "
-                 "acknowledging; the belt must wait for ACK (version 3), then carry it to S2"),
+        Scenario(
+            "three objects",
+            *shuttle(3),
+            duration="25s",
+            description="normal operation: load at S1, remove at S2 after 1 s, three times (14 s of belt "
+            "time in all, so a watchdog that does not restart for each transport gives a false alarm)",
+        ),
+        Scenario(
+            "jam",
+            *JAMMED,
+            *acknowledge(13, 14),
+            duration="16s",
+            description="the object jams 0.2..2 s after leaving S1; the belt slips under it; the operator "
+            "acknowledges the alarm 2..3.7 s after it was raised",
+        ),
+        Scenario(
+            "knocked off",
+            place("p1", at="S1", t="0.3s..0.8s"),
+            knock_off("p1", when=after_event("part left", "p1"), delay="1s..3s"),
+            *acknowledge(12.5, 13.5),
+            duration="15s",
+            description="the object is pushed off the side of the belt on its way to S2",
+        ),
+        Scenario(
+            "new object during the alarm",
+            *JAMMED,
+            remove("p1", t="12s..12.5s"),
+            place("p2", at="S1", t="13s..14s"),
+            *acknowledge(16, 17),
+            remove("p2", when=held("S2", "1s")),
+            duration="25s",
+            description="after the alarm the operator frees the belt and loads a new object before "
+            "acknowledging; the belt must wait for ACK (version 3), then carry it to S2",
+        ),
     ],
     checks=[
         # normal operation (criteria 1 and 5)
         only(never("ALARM").named("no false alarm in normal operation"), "three objects"),
-        only(falls("D1").within("1 scan").after(rises("S2")).named("D1 stops when the object reaches S2"),
-             "three objects"),
-        only(rises("S2").between(f"{NOMINAL_TRANSPORT_S * 0.9}s", f"{NOMINAL_TRANSPORT_S * 1.1}s").after(rises("S1"))
-             .named("transport S1 -> S2 takes 4.8 s +-10 %"), "three objects"),
+        only(
+            falls("D1").within("1 scan").after(rises("S2")).named("D1 stops when the object reaches S2"),
+            "three objects",
+        ),
+        only(
+            rises("S2")
+            .between(f"{NOMINAL_TRANSPORT_S * 0.9}s", f"{NOMINAL_TRANSPORT_S * 1.1}s")
+            .after(rises("S1"))
+            .named("transport S1 -> S2 takes 4.8 s +-10 %"),
+            "three objects",
+        ),
         only(count(rises("D1")).equals(3).named("the belt starts once per object"), "three objects"),
         # the watchdog (criterion 2)
-        only(falls("D1").between("10s", "10s + 2 scans").after(rises("D1"))
-             .named("the belt stops 10 s after it started without reaching S2"), "jam", "knocked off"),
-        only(rises("ALARM").between("10s - 1 scan", "10s + 2 scans").after(rises("D1"))
-             .named("ALARM is raised 10 s after the belt started"), "jam", "knocked off"),
+        only(
+            falls("D1")
+            .between("10s", "10s + 2 scans")
+            .after(rises("D1"))
+            .named("the belt stops 10 s after it started without reaching S2"),
+            "jam",
+            "knocked off",
+        ),
+        only(
+            rises("ALARM")
+            .between("10s - 1 scan", "10s + 2 scans")
+            .after(rises("D1"))
+            .named("ALARM is raised 10 s after the belt started"),
+            "jam",
+            "knocked off",
+        ),
         # latching and acknowledgement (criterion 3)
         only(holds("ALARM").until(rises("ACK")).named("ALARM latches until ACK"), *ALARM_SCENARIOS),
-        only(falls("ALARM").within("1 scan").after(rises("ACK")).named("ACK clears ALARM within 1 scan"),
-             *ALARM_SCENARIOS),
+        only(
+            falls("ALARM").within("1 scan").after(rises("ACK")).named("ACK clears ALARM within 1 scan"),
+            *ALARM_SCENARIOS,
+        ),
         # version 3 blocks the belt (criterion 4)
-        only(always(implies("ALARM", off("D1"))).named("the belt stays off while ALARM is TRUE"),
-             "new object during the alarm"),
-        only(count(event("part entered", "S2")).equals(1).named("after ACK the waiting object is carried to S2"),
-             "new object during the alarm"),
-        only(never(all_of("D1", "S2")).named("the belt never runs while S2 sees an object"), "three objects",
-             "new object during the alarm"),
-        only(never(event("part fell off")).named("no object falls off the belt"), "three objects", "jam",
-             "new object during the alarm"),
+        only(
+            always(implies("ALARM", off("D1"))).named("the belt stays off while ALARM is TRUE"),
+            "new object during the alarm",
+        ),
+        only(
+            count(event("part entered", "S2")).equals(1).named("after ACK the waiting object is carried to S2"),
+            "new object during the alarm",
+        ),
+        only(
+            never(all_of("D1", "S2")).named("the belt never runs while S2 sees an object"),
+            "three objects",
+            "new object during the alarm",
+        ),
+        only(
+            never(event("part fell off")).named("no object falls off the belt"),
+            "three objects",
+            "jam",
+            "new object during the alarm",
+        ),
     ],
     solutions=[
-        solution(NUMBER, "reference", explanation="version 3: the watchdog's Q sets ALARM; S2, Q or ALARM reset D1; "
-                 "ACK resets ALARM"),
-        solution(NUMBER, "version-2", "alternative",
-                 "version 2: the alarm only indicates; a new object restarts the belt even while ALARM is TRUE",
-                 scenarios=("three objects", "jam", "knocked off")),
-        solution(NUMBER, "version-1", "wrong", "version 1: nothing resets ALARM (no acknowledgement yet)",
-                 fails=("ACK clears ALARM within 1 scan",)),
-        solution(NUMBER, "wrong-scan-order", "wrong",
-                 "the reset rung reads TON_A.Q before the TON box runs: the read refreshes the timer, D1 is reset, "
-                 "the box then sees IN = FALSE and ALARM is never set",
-                 fails=("ALARM latches until ACK", "ALARM is raised 10 s after the belt started")),
-        solution(NUMBER, "wrong-alarm-coil", "wrong",
-                 "ALARM := TON_A.Q is TRUE for one scan only: the alarm does not latch",
-                 fails=("ALARM latches until ACK",)),
+        solution(
+            NUMBER,
+            "reference",
+            explanation="version 3: the watchdog's Q sets ALARM; S2, Q or ALARM reset D1; ACK resets ALARM",
+        ),
+        solution(
+            NUMBER,
+            "version-2",
+            "alternative",
+            "version 2: the alarm only indicates; a new object restarts the belt even while ALARM is TRUE",
+            scenarios=("three objects", "jam", "knocked off"),
+        ),
+        solution(
+            NUMBER,
+            "version-1",
+            "wrong",
+            "version 1: nothing resets ALARM (no acknowledgement yet)",
+            fails=("ACK clears ALARM within 1 scan",),
+        ),
+        solution(
+            NUMBER,
+            "wrong-scan-order",
+            "wrong",
+            "(catalogue analysis of the missing figure) the reset rung reads TON_A.Q before the TON box runs: "
+            "the read refreshes the timer, D1 is reset, the box then sees IN = FALSE and ALARM is never set",
+            fails=("ALARM latches until ACK", "ALARM is raised 10 s after the belt started"),
+        ),
+        solution(
+            NUMBER,
+            "wrong-alarm-coil",
+            "wrong",
+            "ALARM := TON_A.Q is TRUE for one scan only: the alarm does not latch",
+            fails=("ALARM latches until ACK",),
+        ),
     ],
     notes=(
         "Reference = version 3 (the task's 'the conveyor stops and an alarm is raised' plus criterion 4's "

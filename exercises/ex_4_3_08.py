@@ -45,36 +45,64 @@ EXERCISE = Exercise(
     rig=lambda: Conv1(lamps=("LED",)),
     cpu={"clock_memory_byte": 0, "system_memory_byte": 1},
     scenarios=[
-        Scenario("alarm blinking", *JAMMED, duration="22s",
-                 description="the object jams on its way to S2; ALARM is raised at 10.5 s and the LED blinks for "
-                 "11.5 s"),
-        Scenario("alarm acknowledged", *JAMMED, write("ACK", True, t="21.1s..21.4s"),
-                 write("ACK", False, t="21.6s..21.9s"), duration="23s",
-                 description="as 'alarm blinking'; the operator acknowledges about 10.6..10.9 s after the alarm, "
-                 "while the timer solutions' LED is lit"),
+        Scenario(
+            "alarm blinking",
+            *JAMMED,
+            duration="22s",
+            description="the object jams on its way to S2; ALARM is raised at 10.5 s and the LED blinks for 11.5 s",
+        ),
+        Scenario(
+            "alarm acknowledged",
+            *JAMMED,
+            write("ACK", True, t="21.1s..21.4s"),
+            write("ACK", False, t="21.6s..21.9s"),
+            duration="23s",
+            description="as 'alarm blinking'; the operator acknowledges about 10.6..10.9 s after the alarm, "
+            "while the timer solutions' LED is lit",
+        ),
     ],
     checks=[
-        only(durations("LED").between(SHORTEST, LONGEST)
-             .named("each flash lasts 0.5 s"), "alarm blinking"),
-        only(durations(all_of("ALARM", off("LED"))).between(SHORTEST, LONGEST)
-             .named("the LED is dark 0.5 s between flashes"), "alarm blinking"),
-        only(duty("LED", start="10.5s", end="20.5s").between(0.48, 0.52)
-             .named("duty cycle 50 % +- 2 % over 10 periods"), "alarm blinking"),
+        only(durations("LED").between(SHORTEST, LONGEST).named("each flash lasts 0.5 s"), "alarm blinking"),
+        only(
+            durations(all_of("ALARM", off("LED")))
+            .between(SHORTEST, LONGEST)
+            .named("the LED is dark 0.5 s between flashes"),
+            "alarm blinking",
+        ),
+        only(
+            duty("LED", start="10.5s", end="20.5s").between(0.48, 0.52).named("duty cycle 50 % +- 2 % over 10 periods"),
+            "alarm blinking",
+        ),
         never(all_of("LED", off("ALARM"))).for_more_than("1 scan").named("the LED is dark whenever ALARM is FALSE"),
-        only(falls("ALARM").within("1 scan").after(rises("ACK")).named("ACK clears ALARM within 1 scan"),
-             "alarm acknowledged"),
+        only(
+            falls("ALARM").within("1 scan").after(rises("ACK")).named("ACK clears ALARM within 1 scan"),
+            "alarm acknowledged",
+        ),
     ],
     solutions=[
         solution(NUMBER, "reference", explanation="LED := ALARM AND Clock_1Hz (clock memory at MB0)"),
-        solution(NUMBER, "solution-2", "alternative",
-                 "TON_B (1 s) restarted by RT; ET <= 500 ms resets the LED, ALARM AND ET > 500 ms sets it"),
+        solution(
+            NUMBER,
+            "solution-2",
+            "alternative",
+            "TON_B (1 s) restarted by RT; ET <= 500 ms resets the LED, ALARM AND ET > 500 ms sets it",
+        ),
         solution(NUMBER, "alternative", "alternative", "TON_B (1 s) restarted by RT; LED := ET > 500 ms"),
-        solution(NUMBER, "wrong-set-reset", "wrong",
-                 "SET/RESET of the LED both conditioned on ALARM: after ACK neither runs and the LED stays lit",
-                 fails=("the LED is dark whenever ALARM is FALSE",)),
-        solution(NUMBER, "wrong-period", "wrong",
-                 "'period 0.5 s' read literally (Clock_2Hz): 0.25 s on, 0.25 s off; the duty cycle is still 50 %",
-                 fails=("each flash lasts 0.5 s", "the LED is dark 0.5 s between flashes")),
+        solution(
+            NUMBER,
+            "wrong-set-reset",
+            "wrong",
+            "SET/RESET of the LED both conditioned on ALARM: after ACK neither runs and the LED stays lit",
+            fails=("the LED is dark whenever ALARM is FALSE",),
+        ),
+        solution(
+            NUMBER,
+            "wrong-period",
+            "wrong",
+            "(from the task's wording, not a textbook solution) 'period 0.5 s' read literally (Clock_2Hz): "
+            "0.25 s on, 0.25 s off; the duty cycle is still 50 %",
+            fails=("each flash lasts 0.5 s", "the LED is dark 0.5 s between flashes"),
+        ),
     ],
     notes=(
         "Text issue: 'period 0.5 s' contradicts '0.5 s TRUE, 0.5 s FALSE'; the exercise uses the half-period 0.5 s "

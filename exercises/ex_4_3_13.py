@@ -140,7 +140,9 @@ EXERCISE = Exercise(
         "instructor who prefers the textbook's reading can swap the checks. STROJ_START and STROJ_KONIEC are "
         "symbolic tags (no address in the textbook). The textbook draws the counter in rung 2 on TON_S.Q; here it "
         "hangs on the timer's Q pin in the same network as RT, because a read of TON_S.Q after RT sees the reset "
-        "timer (shipped as wrong-rt-first). OFF phases are measured while STROJ_START is set and the sequence is "
-        "not finished; the sequence ends at the third timer expiry, 9 s (+ 2 scans) after STROJ_START."
+        "timer (shipped as wrong-rt-first). An OFF phase runs from a fall of STROJ_ZAP to the next ON phase or, "
+        "after the third, to STROJ_KONIEC (the third timer expiry, 9 s + 2 scans after STROJ_START). The reset "
+        "check allows 1 scan because the trace row of the scan that ends at the HMI write already shows the new "
+        "STROJ_START (the write lands at that scan's end instant)."
     ),
 )

@@ -25,8 +25,7 @@ PART_VERBS = {"remove", "jam", "unjam", "knock_off"}
 class ActionRunner:
     """The scenario's timeline during one run."""
 
-    def __init__(self, scenario: Scenario | None, rng: random.Random, plant: Any, cpu: Any, wiring: Any,
-                 trace: Trace):
+    def __init__(self, scenario: Scenario | None, rng: random.Random, plant: Any, cpu: Any, wiring: Any, trace: Trace):
         self.plant, self.cpu, self.wiring, self.trace, self.rng = plant, cpu, wiring, trace, rng
         self.parts: dict[str, str] = {}
         self._timed: list[tuple[int, int, Action]] = []
@@ -51,8 +50,9 @@ class ActionRunner:
 
     def _ready(self, item: Planned) -> bool:
         action = item.action
-        return not (action.verb in PART_VERBS and action.target in self._scenario_parts
-                    and action.target not in self.parts)
+        return not (
+            action.verb in PART_VERBS and action.target in self._scenario_parts and action.target not in self.parts
+        )
 
     def _refresh_polled(self) -> None:
         self.polled = [item for item in self._held if self._ready(item)]
@@ -113,7 +113,7 @@ class ActionRunner:
 
     def apply(self, action: Action, t: int) -> None:
         """Carry out one action; an impossible one (a part that fell off) is recorded, never raised."""
-        plant, cpu, wiring = self.plant, self.cpu, self.wiring
+        plant, cpu = self.plant, self.cpu
         verb, target, args = action.verb, action.target, action.args
         detail = ""
         try:
@@ -122,8 +122,9 @@ class ActionRunner:
                 if args["noise"]:
                     offset = self.rng.uniform(-POSE_NOISE_MM, POSE_NOISE_MM) if offset is None else offset
                     angle = self.rng.uniform(-POSE_NOISE_DEG, POSE_NOISE_DEG) if angle is None else angle
-                self.parts[target] = plant.place(args["station"], part=target, offset_mm=offset or 0.0,
-                                                 angle_deg=angle or 0.0, **args["properties"])
+                self.parts[target] = plant.place(
+                    args["station"], part=target, offset_mm=offset or 0.0, angle_deg=angle or 0.0, **args["properties"]
+                )
                 detail = f"offset {offset or 0.0:+.2f} mm, angle {angle or 0.0:+.2f} deg"
                 self._refresh_polled()
             elif verb == "remove":
@@ -154,8 +155,11 @@ class ActionRunner:
             else:  # pragma: no cover - the constructors make only the verbs above
                 raise ScenarioError(f"unknown action {verb!r}")
         except Exception as exc:  # noqa: BLE001 - an impossible action is recorded, the run goes on
-            self.trace.add_event(TraceEvent(t, "scenario", "action failed", target, None,
-                                            f"{action.describe()} ({action.defined_at}): {exc}"))
+            self.trace.add_event(
+                TraceEvent(
+                    t, "scenario", "action failed", target, None, f"{action.describe()} ({action.defined_at}): {exc}"
+                )
+            )
             return
         if plant is not None and plant.events:
             self.trace.add_plant_events(plant.events)

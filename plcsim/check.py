@@ -12,7 +12,9 @@
 Building blocks:
 
 * **occurrences** (points in time): ``rises("D1")``, ``falls("D1")``, ``event("part entered", "S2")``,
-  ``action("press", "ACK")`` (a scenario action), ``becomes(condition)``.
+  ``action("press", "ACK")`` (a scenario action), ``becomes(condition)``, ``calls("OB30")`` (the
+  starts of an interrupt task), ``either(a, b)``. An edge needs a scan before it: a signal already
+  TRUE in the first scan has not risen (check it with ``eventually(...).before(...)``).
 * **conditions** (true or false in each scan): a tag name (``"D1"`` means D1 is TRUE), ``off("D1")``,
   ``value("CISLO") > 0``, ``all_of(...)``, ``any_of(...)``, ``not_(...)``, ``implies(a, b)``,
   ``same("LED", "TLACIDLO")``.
@@ -411,6 +413,47 @@ class EventOccurrences(Occurrences):
         return f"'{self.kind}'{who}"
 
 
+@dataclass(frozen=True)
+class Calls(Occurrences):
+    """The starts of a task's executions (``calls("OB30")``), from the trace's task column."""
+
+    task: str
+
+    def times(self, ctx: Context) -> np.ndarray:
+        number = int(self.task.upper().lstrip("OB"))
+        tr = ctx.trace
+        return tr.times[tr.tasks == number]
+
+    def describe(self) -> str:
+        return f"{self.task} is called"
+
+
+@dataclass(frozen=True)
+class Either(Occurrences):
+    """Whichever of several occurrences happens (``either(rises("A"), falls("B"))``)."""
+
+    parts: tuple[Occurrences, ...]
+
+    def times(self, ctx: Context) -> np.ndarray:
+        return np.unique(np.concatenate([p.times(ctx) for p in self.parts])) if self.parts else np.zeros(0, np.int64)
+
+    def describe(self) -> str:
+        return " or ".join(p.describe() for p in self.parts)
+
+    def signals(self) -> list[str]:
+        return _signals_of(*self.parts)
+
+
+def calls(task: str) -> Calls:
+    """The instants an interrupt task runs (its trace rows): ``rises("LED").within("2ms").after(calls("OB30"))``."""
+    return Calls(task)
+
+
+def either(*occurrences: Occurrences) -> Either:
+    """The union of several occurrences."""
+    return Either(tuple(occurrences))
+
+
 def rises(name: str) -> Edge:
     """The instants a Bool tag goes FALSE -> TRUE (an output at the end of the scan that wrote it)."""
     return Edge(name, True)
@@ -446,6 +489,7 @@ class Check:
 
     name: str | None = None
     weight: float = 1.0
+    extra_signals: tuple[str, ...] = ()
 
     def evaluate(self, ctx: Context) -> Verdict:  # pragma: no cover - overridden
         raise NotImplementedError
@@ -456,6 +500,11 @@ class Check:
     def named(self, name: str) -> Check:
         """Give the check the name reports show."""
         self.name = name
+        return self
+
+    def plotting(self, *signals: str) -> Check:
+        """Add signals to the timing diagram of a failure (for context: the button beside the LED)."""
+        self.extra_signals = tuple(signals)
         return self
 
     def points(self, weight: float) -> Check:
@@ -1041,6 +1090,7 @@ def evaluate_all(checks: Iterable[Check], trace: Trace, analysis: Any = None) ->
     for check in checks:
         try:
             verdict = check.evaluate(ctx)
+            verdict.signals += [s for s in check.extra_signals if s not in verdict.signals]
         except Exception as exc:  # noqa: BLE001 - a check's own bug is reported, not raised
             verdict = Verdict(False, f"the check could not be evaluated: {type(exc).__name__}: {exc}")
         out.append((check, verdict))

@@ -522,12 +522,13 @@ class CPU:
         return max(self.clock.now, min(t, self._next_irq))
 
     def run_until(self, until_ns: int) -> None:
-        """Execute every PLC event before ``until_ns`` (task starts, networks, output writes).
+        """Execute every PLC event up to ``until_ns``: task starts (and their networks) strictly before
+        it, and the ends (output writes) of executions finishing at or before it.
 
         Events at one instant run in this order: the end of an execution that has run its networks
-        (its outputs), then due interrupts by priority, then the start of the next OB1 scan. Whatever happens at
-        ``until_ns`` itself (an operator's press, a plant's new sensor values) is seen by the tasks
-        that start at ``until_ns``.
+        (its outputs and trace row), then due interrupts by priority, then the start of the next OB1
+        scan. So whatever happens at ``until_ns`` itself (an operator's press, an HMI write, a plant's
+        new sensor values) is seen by the tasks that start at ``until_ns`` and by no scan before.
         """
         if self._interrupts:
             self._run(until_ns, None)
@@ -564,7 +565,7 @@ class CPU:
                 self._begin(irq, start)  # type: ignore[arg-type]
                 self._run_networks(stack[-1], self._preemption_time(irq.priority))  # type: ignore[union-attr]
                 continue
-            if t_next >= until_ns:
+            if t_next > until_ns or (t_next == until_ns and (ex is None or ex.index < ex.task.n)):
                 return
             if ex is None:
                 self._begin(ob1, t_next)  # type: ignore[arg-type]
@@ -626,7 +627,7 @@ class CPU:
                 if ex.index < n or self.mode != RUN:
                     return
             end = ex.t0 + ex.shift + ex.duration
-            if end >= until_ns:
+            if end > until_ns:
                 return
             stack.pop()
             if end > clock.now:

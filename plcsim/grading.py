@@ -82,7 +82,10 @@ class Report:
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Report:
         data = dict(data)
-        data["checks"] = [CheckResult(**c) for c in data.get("checks", [])]
+        data["checks"] = [
+            CheckResult(**{**c, "window": tuple(c["window"]) if c.get("window") is not None else None})
+            for c in data.get("checks", [])
+        ]  # JSON has no tuples: a window comes back as a list
         data["runs"] = [ScenarioRun(**r) for r in data.get("runs", [])]
         return cls(**data)
 
@@ -308,11 +311,15 @@ def grade_sandboxed(
     proc.start()
     child.close()
     data = None
+    out_of_time = False
     if parent.poll(limits.wall_seconds):
         try:
             data = parent.recv()
         except EOFError:
             data = None
+    elif proc.is_alive():  # the wall-time limit: stop the child now, not after another wait
+        out_of_time = True
+        proc.kill()
     proc.join(timeout=5)
     if proc.is_alive():
         proc.kill()
@@ -322,6 +329,9 @@ def grade_sandboxed(
         report = Report.from_dict(data)
     elif isinstance(data, dict):
         report.error, report.error_kind = data["message"], data["__error__"]
+    elif out_of_time:
+        report.error_kind = "time limit"
+        report.error = f"no result within {limits.wall_seconds:.0f} s of wall time"
     elif proc.exitcode is not None and proc.exitcode < 0:
         sig = -proc.exitcode
         if sig == signal.SIGXCPU:

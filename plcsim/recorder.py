@@ -85,6 +85,11 @@ class Recorder:
         self.trace = Trace(names, kinds, types)
         self.row = _compile_getter(sources)
         self._full_row = _compile_getter(sources, head=True)
+        physical = [f"o[{n!r}]" if kinds[n] == "output" else src for n, src in zip(names, sources)]
+        self._stopped_row = eval(
+            f"lambda d, o: ({''.join(f'{p}, ' for p in physical)})",  # built from tag names
+            {"__builtins__": {}},
+        )
         self.changes_only = changes_only
         self._last: tuple[Any, ...] | None = None
 
@@ -157,8 +162,8 @@ class Recorder:
         self.trace.add_row(start_ns, end_ns, int(task[2:]) if task[2:].isdigit() else 0, values)
 
     def on_stopped(self, t_ns: int, end_ns: int) -> None:
-        """A row while the CPU is in STOP (no scans run; outputs are off)."""
-        values = self.row(self.cpu.t.__dict__)
+        """A row while the CPU is in STOP: no scan runs; the outputs are what the modules drive (off)."""
+        values = self._stopped_row(self.cpu.t.__dict__, self.cpu.outputs)
         if self.changes_only and values == self._last:
             return
         self._last = values

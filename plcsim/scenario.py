@@ -133,6 +133,8 @@ class Action:
         }.get(self.verb, self.verb)
         if self.when is not None:
             when = self.when.describe() + (f" + {self.delay}" if self.delay.hi_ns else "")
+        elif "hold" in self.args:  # the release of press(..., hold=...)
+            when = f"{self.args['hold']} after the press"
         else:
             when = f"at {self.t}"
         return f"{what} {when}"

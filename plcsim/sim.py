@@ -4,13 +4,14 @@ Order of work in each physics step ``[t, t + dt)`` (fixed and documented, so run
 
 1. scenario actions due at ``t`` (operator presses, parts placed, HMI writes, faults injected);
 2. the wiring copies the sensors' electrical levels (the plant state at ``t``) to the input terminals;
-3. the CPU runs every PLC event in ``[t, t + dt)``: output writes, task starts (reading the inputs
-   of step 2), networks, interrupts;
-4. outputs that changed go to the actuators;
-5. the plant advances by ``dt``; its events are recorded; geometry is sampled at 25 Hz;
+3. the CPU runs every PLC event of the step: task starts in ``[t, t + dt)`` (reading the inputs of
+   step 2) with their networks and interrupts, and the ends of executions up to ``t + dt``;
+4. the plant advances by ``dt``; its events are recorded; geometry is sampled at 25 Hz;
+5. outputs that changed (written up to ``t + dt``) go to the actuators, for the next step;
 6. actions waiting for a plant condition (``when=held("S2", "1s")``) are armed or fired.
 
-A scan that ends at ``t + dt`` therefore drives the plant from ``t + dt`` on, never earlier.
+A scan that ends at ``t + dt`` therefore drives the plant from ``t + dt`` on, never earlier, and an
+action at ``t`` is seen by the scans that start at ``t`` and by no earlier one.
 Same seed, program and scenario give the same trace bit for bit, in any process: nothing here
 reads the wall clock (real-time pacing is a subclass that only sleeps).
 
@@ -19,9 +20,7 @@ reads the wall clock (real-time pacing is a subclass that only sleeps).
 >>> sim = Simulation(cpu)
 >>> sim.run("10ms")
 >>> sim.now, sim.cpu.scan_count, len(sim.trace)
-(10000000, 9, 9)
-
-(The scan that ends exactly at 10 ms writes its outputs at 10 ms, the first event of the next run.)
+(10000000, 10, 10)
 """
 
 from __future__ import annotations
@@ -62,10 +61,20 @@ class Simulation:
         fast_forward: skip physics steps while the plant is quiescent (see :meth:`_skip_quiet`).
     """
 
-    def __init__(self, cpu: CPU, plant: Plant | None = None, wiring: Wiring | Sequence[Wire] | None = None,
-                 scenario: Scenario | None = None, *, dt: str | int = "1ms", seed: int = 0,
-                 signals: Sequence[str] | None = None, geometry_hz: float = 25.0, changes_only: bool = False,
-                 fast_forward: bool = True):
+    def __init__(
+        self,
+        cpu: CPU,
+        plant: Plant | None = None,
+        wiring: Wiring | Sequence[Wire] | None = None,
+        scenario: Scenario | None = None,
+        *,
+        dt: str | int = "1ms",
+        seed: int = 0,
+        signals: Sequence[str] | None = None,
+        geometry_hz: float = 25.0,
+        changes_only: bool = False,
+        fast_forward: bool = True,
+    ):
         self.cpu = cpu
         self.plant = plant
         self.seed = seed
@@ -86,12 +95,18 @@ class Simulation:
         self.recorder = Recorder(cpu, signals, changes_only=changes_only)
         self.recorder.attach()
         self.trace: Trace = self.recorder.trace
-        self.trace.meta.update({
-            "seed": seed, "dt_ns": self.dt_ns, "cycle_ns": cpu.config.cycle_ns,
-            "plant": plant.name if plant else None, "scenario": scenario.name if scenario else None,
-            "program": cpu.program.filename if cpu.program else None,
-            "timer_dialect": str(cpu.config.timer_dialect), "rtc_start": cpu.config.rtc_start,
-        })
+        self.trace.meta.update(
+            {
+                "seed": seed,
+                "dt_ns": self.dt_ns,
+                "cycle_ns": cpu.config.cycle_ns,
+                "plant": plant.name if plant else None,
+                "scenario": scenario.name if scenario else None,
+                "program": cpu.program.filename if cpu.program else None,
+                "timer_dialect": str(cpu.config.timer_dialect),
+                "rtc_start": cpu.config.rtc_start,
+            }
+        )
         if plant is not None:
             self.trace.static_drawables = plant.static_drawables()
             self.trace.bounds = plant.bounds()
@@ -117,14 +132,25 @@ class Simulation:
         signals = sensors + actuators
         if self.wiring is not None:
             signals += [t for t in self.wiring.by_tag if t not in signals]
-        check_names(scenario, stations=stations, buttons=buttons, signals=signals,
-                    tags=[e.name for e in self.cpu.table], actuators=actuators)
+        check_names(
+            scenario,
+            stations=stations,
+            buttons=buttons,
+            signals=signals,
+            tags=[e.name for e in self.cpu.table],
+            actuators=actuators,
+        )
 
     # -- running --------------------------------------------------------------------------------
 
-    def run(self, duration: str | int | None = None, *, until: str | int | None = None,
-            condition: Callable[[Simulation], bool] | None = None,
-            progress: Callable[[int, int], None] | None = None) -> None:
+    def run(
+        self,
+        duration: str | int | None = None,
+        *,
+        until: str | int | None = None,
+        condition: Callable[[Simulation], bool] | None = None,
+        progress: Callable[[int, int], None] | None = None,
+    ) -> None:
         """Run for ``duration`` (default: the scenario's), or ``until`` an absolute time, or until
         ``condition(sim)`` is true (checked after every step)."""
         if until is not None:
@@ -163,8 +189,9 @@ class Simulation:
         """Allow running again after :meth:`pause`."""
         self.paused = False
 
-    def _advance(self, end_ns: int, condition: Callable[[Simulation], bool] | None,
-                 progress: Callable[[int, int], None] | None) -> None:
+    def _advance(
+        self, end_ns: int, condition: Callable[[Simulation], bool] | None, progress: Callable[[int, int], None] | None
+    ) -> None:
         cpu, plant, wiring, actions, trace = self.cpu, self.plant, self.wiring, self.actions, self.trace
         inputs = cpu.inputs
         run_cpu = cpu.run_until
@@ -178,6 +205,9 @@ class Simulation:
         report_every = max(dt, (end_ns - t) // 200) if progress is not None and end_ns < NEVER else NEVER
         next_report = t if progress is not None else NEVER
         frame_ns = self._frame_ns
+        if wiring is not None and cpu.output_version != self._out_version:  # the outputs as the run starts
+            self._out_version = cpu.output_version
+            wiring.write_outputs(cpu.outputs)
         try:
             while t < end_ns and not self.paused:
                 if t >= actions.next_due:
@@ -185,10 +215,6 @@ class Simulation:
                 if read_inputs is not None:
                     read_inputs(inputs, t)
                 run_cpu(t + dt)
-                if cpu.output_version != self._out_version:
-                    self._out_version = cpu.output_version
-                    if wiring is not None:
-                        wiring.write_outputs(cpu.outputs)
                 if cpu.mode != RUN:
                     self.recorder.on_stopped(t, t + dt)
                 if len(cpu.diagnostics) != self._diag_seen:
@@ -196,7 +222,7 @@ class Simulation:
                 if plant_step is not None:
                     try:
                         plant_step(dt)
-                    except Exception as exc:  # noqa: BLE001 - a plant failure is reported, the trace kept
+                    except Exception as exc:  # a plant failure is reported, the trace kept
                         trace.add_event(TraceEvent(t, "plant", "plant fault", plant.name, None, str(exc)))
                         raise SimulationError(
                             f"the plant {plant.name} failed at {format_ns(t)}: {type(exc).__name__}: {exc}; "
@@ -206,6 +232,10 @@ class Simulation:
                         trace.add_plant_events(events)
                         actions.on_events(events)
                         events.clear()
+                if cpu.output_version != self._out_version:
+                    self._out_version = cpu.output_version
+                    if wiring is not None:
+                        wiring.write_outputs(cpu.outputs)
                 t += dt
                 self.now = t
                 if frame_ns and t >= self._next_frame:
@@ -238,7 +268,9 @@ class Simulation:
         if self.wiring is not None and self.wiring.faults:
             return t
         nxt = min(self.cpu.next_event_ns(), self.actions.next_time(), end_ns)
-        steps = (nxt - t) // self.dt_ns
+        # land on the step whose window still holds ``nxt``: a step at ``s`` runs the ends of executions
+        # up to ``s + dt``, so an execution ending at ``nxt`` belongs to the step before it
+        steps = (nxt - t - 1) // self.dt_ns
         if steps > 1:
             self.plant.step(steps * self.dt_ns)  # type: ignore[union-attr]
             t += steps * self.dt_ns
@@ -252,7 +284,7 @@ class Simulation:
 
     def _cpu_events(self) -> None:
         cpu = self.cpu
-        for entry in list(cpu.diagnostics)[self._diag_seen:]:
+        for entry in list(cpu.diagnostics)[self._diag_seen :]:
             where = entry.task or ""
             if entry.network:
                 where += f" network {entry.network}"
@@ -272,8 +304,9 @@ class RealtimeSimulation(Simulation):
             raise ConfigurationError(f"realtime factor {factor} must be positive")
         self.factor = factor
 
-    def _advance(self, end_ns: int, condition: Callable[[Simulation], bool] | None,
-                 progress: Callable[[int, int], None] | None) -> None:
+    def _advance(
+        self, end_ns: int, condition: Callable[[Simulation], bool] | None, progress: Callable[[int, int], None] | None
+    ) -> None:
         chunk = max(self.dt_ns, 20_000_000)
         wall0, sim0 = time.perf_counter(), self.now
         while self.now < end_ns and not self.paused:

@@ -106,6 +106,7 @@ class Wiring:
         self._last_physical: dict[str, Any] = {}
         self._sent: dict[str, Any] = {}
         self._output_version = -1
+        self._outputs_seen: Mapping[str, Any] | None = None
 
     # -- validation ---------------------------------------------------------------------------
 
@@ -185,6 +186,7 @@ class Wiring:
         """Send changed PLC outputs to the plant's actuators."""
         plant = self.plant
         sent = self._sent
+        self._outputs_seen = outputs
         for wire, spec in self._outputs:
             value = outputs[wire.tag]
             fault = self.faults.get(wire.signal)
@@ -250,12 +252,14 @@ class Wiring:
         signal = self.signal_for(name)
         self.faults[signal] = _Fault("stuck", value)
         self._sent.pop(signal, None)
+        self._resend()
 
     def break_wire(self, name: str) -> None:
         """Wire break: the input reads FALSE (an NC sensor then reads 'actuated'); an actuator gets nothing."""
         signal = self.signal_for(name)
         self.faults[signal] = _Fault("wire break")
         self._sent.pop(signal, None)
+        self._resend()
 
     def chatter(
         self, name: str, transitions: tuple[int, int] = (3, 5), width: tuple[str | int, str | int] = ("2ms", "10ms")
@@ -272,6 +276,12 @@ class Wiring:
             self.faults.pop(signal, None)
             self._chatter.pop(signal, None)
             self._sent.pop(signal, None)
+        self._resend()
+
+    def _resend(self) -> None:
+        """A fault on an actuator acts at once, not only at the PLC's next output change."""
+        if self._outputs_seen is not None:
+            self.write_outputs(self._outputs_seen)
 
     def describe(self) -> list[dict[str, str]]:
         """The wiring as rows: signal, tag, contact, meaning."""

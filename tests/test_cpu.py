@@ -216,7 +216,7 @@ def test_clock_1hz_toggles_every_half_second_latched_at_scan_start():
     probe = Probe(cpu, "SEEN_EARLY", "SEEN_LATE")
     cpu.run("4s")
     # scans at 0, 0.4, 0.8, ...; n2 runs 200 ms into each scan but sees the latched value
-    expected = [(k * 0.4, (k * 400 // 500) % 2 == 1) for k in range(9)]  # the scan at 3.6 s ends at 4 s
+    expected = [(k * 0.4, (k * 400 // 500) % 2 == 1) for k in range(10)]  # run() includes the 3.6 s scan, ending at 4 s
     assert [(when / 1e9, v) for when, v in probe.samples["SEEN_EARLY"]] == [(pytest.approx(a), b) for a, b in expected]
     assert probe.samples["SEEN_LATE"] == probe.samples["SEEN_EARLY"]
 
