@@ -18,6 +18,30 @@ from plcsim.wiring import NC, NO, Wire
 
 __version__ = "0.1.0"
 
-__all__ = ["CPU", "CPUConfig", "RUN", "STOP", "Program", "CyclicInterrupt", "Tag", "DB", "TagTable", "PlcError",
-           "Simulation", "RealtimeSimulation", "Scenario", "Trace", "Wire", "NO", "NC", "Exercise", "grade",
-           "Bool", "Int", "DInt", "Real", "Time", "__version__"]
+__all__ = [
+    "CPU",
+    "CPUConfig",
+    "RUN",
+    "STOP",
+    "Program",
+    "CyclicInterrupt",
+    "Tag",
+    "DB",
+    "TagTable",
+    "PlcError",
+    "Simulation",
+    "RealtimeSimulation",
+    "Scenario",
+    "Trace",
+    "Wire",
+    "NO",
+    "NC",
+    "Exercise",
+    "grade",
+    "Bool",
+    "Int",
+    "DInt",
+    "Real",
+    "Time",
+    "__version__",
+]

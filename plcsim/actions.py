@@ -13,12 +13,12 @@ from bisect import insort
 from collections.abc import Callable
 from typing import Any
 
+from plcsim.clock import NEVER
 from plcsim.scenario import Action, Planned, Scenario, ScenarioError, plan
 from plcsim.trace import Trace, TraceEvent
 
 POSE_NOISE_MM = 5.0
 POSE_NOISE_DEG = 5.0
-NEVER = 1 << 62
 PART_VERBS = {"remove", "jam", "unjam", "knock_off"}
 
 

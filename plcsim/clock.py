@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+NEVER = 1 << 62
+"""A time later than any simulation reaches (about 146 years of ns): "no event pending"."""
+
 
 class Clock:
     """Simulated time in integer nanoseconds (never an accumulated float).

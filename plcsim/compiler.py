@@ -378,8 +378,7 @@ class StoreRewriter(ast.NodeTransformer):
         candidates = {name for name, vals in values.items() if name not in params and None not in vals}
         while True:
             env = {**self.env, **{name: Bool for name in candidates}}
-            keep = {name for name in candidates
-                    if all(_safe_type(self.typing, v, env) is Bool for v in values[name])}  # type: ignore[arg-type]
+            keep = {name for name in candidates if all(_safe_type(self.typing, v, env) is Bool for v in values[name])}  # type: ignore[arg-type]
             if keep == candidates:
                 return {name: Bool for name in keep}
             candidates = keep

@@ -276,8 +276,13 @@ class Program:
                 f"{self.filename}, line {_error_line(exc, self.filename)}: {type(exc).__name__}: {exc}"
             ) from None
         labels = {name: f.plc_label for name, f in namespace.items() if hasattr(f, "plc_label")}
-        self._declaration_lines = {t.id: stmt.lineno for stmt in self.tree.body if isinstance(stmt, ast.Assign)
-                                   for t in stmt.targets if isinstance(t, ast.Name)}
+        self._declaration_lines = {
+            t.id: stmt.lineno
+            for stmt in self.tree.body
+            if isinstance(stmt, ast.Assign)
+            for t in stmt.targets
+            if isinstance(t, ast.Name)
+        }
         for name in _assigned_in_order(self.tree):
             value = namespace.get(name)
             if _OB_RE.match(name):

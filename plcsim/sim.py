@@ -30,7 +30,8 @@ import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from plcsim.actions import NEVER, ActionRunner
+from plcsim.actions import ActionRunner
+from plcsim.clock import NEVER
 from plcsim.cpu import CPU, RUN
 from plcsim.errors import ConfigurationError, PlcError
 from plcsim.literals import format_ns, to_ns

@@ -510,9 +510,11 @@ def link_aliases(
         memory = memories.get(key)
         if memory is None:
             if addr.area == "DB":
-                raise AddressError(f"{addr}: no non-optimized DB number {addr.db}; an optimized DB (the default) "
-                                   f"has no absolute addresses: use its members by name (t.DATA.X), or declare "
-                                   f"it with DB(..., optimized=False)")
+                raise AddressError(
+                    f"{addr}: no non-optimized DB number {addr.db}; an optimized DB (the default) "
+                    f"has no absolute addresses: use its members by name (t.DATA.X), or declare "
+                    f"it with DB(..., optimized=False)"
+                )
             raise AddressError(f"{addr}: no memory area for this address")
         memory.check(addr)
         by_area.setdefault(key, []).append(cell)

@@ -1,0 +1,188 @@
+"""The pieces every check is made of: durations with scans, the evaluation context, verdicts."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from plcsim.errors import ConfigurationError
+from plcsim.literals import duration_ns, format_ns
+from plcsim.trace import Trace
+
+# --------------------------------------------------------------------------------------------
+# Durations with scans
+# --------------------------------------------------------------------------------------------
+
+_TERM = re.compile(r"\s*([+-]?)\s*(\d+(?:\.\d+)?)\s*(scans?|[a-z]+)\s*", re.IGNORECASE)
+
+
+@dataclass(frozen=True)
+class Span:
+    """A duration written with time units and scans: ``"10s + 2 scans"``."""
+
+    ns: int = 0
+    scans: float = 0.0
+    text: str = ""
+
+    @classmethod
+    def parse(cls, value: str | int | Span) -> Span:
+        if isinstance(value, Span):
+            return value
+        if isinstance(value, int):
+            return cls(value, 0, format_ns(value))
+        if not isinstance(value, str):
+            raise ConfigurationError(f"a duration is written like '10s', '1 scan' or '10s + 2 scans', not {value!r}")
+        ns, scans, pos = 0, 0.0, 0
+        text = value.strip()
+        for m in _TERM.finditer(text):
+            if m.start() != pos:
+                break
+            sign = -1 if m.group(1) == "-" else 1
+            number, unit = m.group(2), m.group(3).lower()
+            if unit.startswith("scan"):
+                scans += sign * float(number)
+            else:
+                try:
+                    ns += sign * duration_ns(number + unit)
+                except Exception:  # noqa: BLE001 - any parse failure means a bad unit
+                    raise ConfigurationError(
+                        f"duration {value!r}: unknown unit {unit!r}; use s, ms, us, min, h or scans"
+                    ) from None
+            pos = m.end()
+        if pos != len(text) or not text:
+            raise ConfigurationError(f"cannot read duration {value!r}; write e.g. '1 scan', '500ms', '10s + 2 scans'")
+        return cls(ns, scans, text)
+
+    def resolve(self, scan_ns: int) -> int:
+        """The duration in ns for a given scan time."""
+        return self.ns + round(self.scans * scan_ns)
+
+    def __str__(self) -> str:
+        return self.text or format_ns(self.ns)
+
+
+# --------------------------------------------------------------------------------------------
+# Evaluation context and verdicts
+# --------------------------------------------------------------------------------------------
+
+
+@dataclass
+class Context:
+    """What a check reads: the trace, the scan time, the program's static facts."""
+
+    trace: Trace
+    scan_ns: int
+    analysis: Any = None
+    start_ns: int = 0
+    end_ns: int = 0
+
+    @classmethod
+    def of(cls, trace: Trace, analysis: Any = None) -> Context:
+        scan = int(trace.meta.get("cycle_ns") or 1_000_000)
+        end = int(trace.meta.get("end_ns") or (trace.end_times[-1] if len(trace) else 0))
+        return cls(trace, scan, analysis, 0, end)
+
+    def t(self, ns: int) -> str:
+        return format_ns(int(ns))
+
+
+@dataclass
+class Verdict:
+    """The result of one check."""
+
+    passed: bool
+    message: str
+    at_ns: int | None = None
+    signals: list[str] = field(default_factory=list)
+    window: tuple[int, int] | None = None
+
+
+def signals_of(*items: Any) -> list[str]:
+    names: list[str] = []
+    for item in items:
+        for name in getattr(item, "signals", lambda: [])():
+            if name not in names:
+                names.append(name)
+    return names
+
+
+class Check:
+    """A statement about a run that passes or fails with a reason."""
+
+    name: str | None = None
+    weight: float = 1.0
+    extra_signals: tuple[str, ...] = ()
+
+    def evaluate(self, ctx: Context) -> Verdict:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def describe(self) -> str:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def named(self, name: str) -> Check:
+        """Give the check the name reports show."""
+        self.name = name
+        return self
+
+    def plotting(self, *signals: str) -> Check:
+        """Add signals to the timing diagram of a failure (for context: the button beside the LED)."""
+        self.extra_signals = tuple(signals)
+        return self
+
+    def points(self, weight: float) -> Check:
+        """How much the check is worth (default 1)."""
+        self.weight = weight
+        return self
+
+    @property
+    def title(self) -> str:
+        return self.name or self.describe()
+
+
+def first_bad_row(ctx: Context, bad: np.ndarray, window: tuple[int, int] | None, tolerance: Span | None) -> int | None:
+    times = ctx.trace.times
+    if window is not None:
+        bad = bad & (times >= window[0]) & (times < window[1])
+    if not bad.any():
+        return None
+    if tolerance is None:
+        return int(np.argmax(bad))
+    limit = tolerance.resolve(ctx.scan_ns)
+    ends = ctx.trace.end_times
+    k, n = 0, len(bad)
+    while k < n:
+        if bad[k]:
+            j = k
+            while j + 1 < n and bad[j + 1]:
+                j += 1
+            if ends[j] - times[k] > limit:
+                return k
+            k = j + 1
+        else:
+            k += 1
+    return None
+
+
+def window_ns(ctx: Context, window: tuple[Span, Span] | None) -> tuple[int, int] | None:
+    if window is None:
+        return None
+    return window[0].resolve(ctx.scan_ns), window[1].resolve(ctx.scan_ns)
+
+
+def row_values(ctx: Context, k: int, names: Sequence[str]) -> str:
+    tr = ctx.trace
+    parts = []
+    for name in names:
+        v = tr.column(name)[k]
+        shown = ("TRUE" if v else "FALSE") if tr.types.get(name) == "bool" else show_number(v)
+        parts.append(f"{name}={shown}")
+    return ", ".join(parts)
+
+
+def show_number(v: Any) -> str:
+    f = float(v)
+    return str(int(f)) if f.is_integer() else f"{f:.6g}"

@@ -1,0 +1,228 @@
+"""Occurrences: points in time (edges, plant events, scenario actions, task calls), and responses
+to them (``X.within("1 scan").after(Y)``)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from plcsim.check.base import Check, Context, Span, Verdict, signals_of
+from plcsim.check.conditions import Condition, as_condition
+
+# --------------------------------------------------------------------------------------------
+# Occurrences: points in time
+# --------------------------------------------------------------------------------------------
+
+
+class Occurrences:
+    """A set of instants: edges of a signal, plant events, scenario actions."""
+
+    def times(self, ctx: Context) -> np.ndarray:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def describe(self) -> str:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def signals(self) -> list[str]:
+        return []
+
+    def within(self, span: str | int) -> ResponseBuilder:
+        """The response must come no later than ``span`` after each trigger."""
+        return ResponseBuilder(self, Span(0, 0, "0"), Span.parse(span), f"within {Span.parse(span)}")
+
+    def between(self, lo: str | int, hi: str | int) -> ResponseBuilder:
+        """The response must come between ``lo`` and ``hi`` after each trigger."""
+        a, b = Span.parse(lo), Span.parse(hi)
+        return ResponseBuilder(self, a, b, f"between {a} and {b}")
+
+
+@dataclass(frozen=True)
+class Edge(Occurrences):
+    name: str
+    rising: bool
+
+    def times(self, ctx: Context) -> np.ndarray:
+        tr = ctx.trace
+        return tr.rises(self.name) if self.rising else tr.falls(self.name)
+
+    def describe(self) -> str:
+        return f"{self.name} {'rises' if self.rising else 'falls'}"
+
+    def signals(self) -> list[str]:
+        return [self.name]
+
+
+@dataclass(frozen=True)
+class Becomes(Occurrences):
+    condition: Condition
+
+    def times(self, ctx: Context) -> np.ndarray:
+        rows = self.condition.rows(ctx)
+        if len(rows) < 2:
+            return np.zeros(0, dtype=np.int64)
+        idx = np.nonzero(rows[1:] & ~rows[:-1])[0] + 1
+        return ctx.trace.times[idx]
+
+    def describe(self) -> str:
+        return f"{self.condition.describe()} becomes true"
+
+    def signals(self) -> list[str]:
+        return self.condition.signals()
+
+
+@dataclass(frozen=True)
+class EventOccurrences(Occurrences):
+    kind: str
+    subject: str | None = None
+    source: str | None = None
+
+    def times(self, ctx: Context) -> np.ndarray:
+        events = ctx.trace.events_of(self.kind, None, self.source)
+        if self.subject is not None:
+            events = [e for e in events if self.subject in (e.subject, e.part)]
+        return np.array([e.t_ns for e in events], dtype=np.int64)
+
+    def describe(self) -> str:
+        who = f" {self.subject}" if self.subject else ""
+        if self.source == "scenario":
+            return f"the operator's {self.kind}{who}"
+        return f"'{self.kind}'{who}"
+
+
+@dataclass(frozen=True)
+class Calls(Occurrences):
+    """The starts of a task's executions (``calls("OB30")``), from the trace's task column."""
+
+    task: str
+
+    def times(self, ctx: Context) -> np.ndarray:
+        number = int(self.task.upper().lstrip("OB"))
+        tr = ctx.trace
+        return tr.times[tr.tasks == number]
+
+    def describe(self) -> str:
+        return f"{self.task} is called"
+
+
+@dataclass(frozen=True)
+class Either(Occurrences):
+    """Whichever of several occurrences happens (``either(rises("A"), falls("B"))``)."""
+
+    parts: tuple[Occurrences, ...]
+
+    def times(self, ctx: Context) -> np.ndarray:
+        return np.unique(np.concatenate([p.times(ctx) for p in self.parts])) if self.parts else np.zeros(0, np.int64)
+
+    def describe(self) -> str:
+        return " or ".join(p.describe() for p in self.parts)
+
+    def signals(self) -> list[str]:
+        return signals_of(*self.parts)
+
+
+def calls(task: str) -> Calls:
+    """The instants an interrupt task runs (its trace rows): ``rises("LED").within("2ms").after(calls("OB30"))``."""
+    return Calls(task)
+
+
+def either(*occurrences: Occurrences) -> Either:
+    """The union of several occurrences."""
+    return Either(tuple(occurrences))
+
+
+def rises(name: str) -> Edge:
+    """The instants a Bool tag goes FALSE -> TRUE (an output at the end of the scan that wrote it)."""
+    return Edge(name, True)
+
+
+def falls(name: str) -> Edge:
+    """The instants a Bool tag goes TRUE -> FALSE."""
+    return Edge(name, False)
+
+
+def becomes(condition: str | Condition) -> Becomes:
+    """The scans in which a condition turns true."""
+    return Becomes(as_condition(condition))
+
+
+def event(kind: str, subject: str | None = None) -> EventOccurrences:
+    """Plant events: ``event("part fell off")``, ``event("part entered", "S2")``."""
+    return EventOccurrences(kind, subject, "plant")
+
+
+def action(verb: str, target: str | None = None) -> EventOccurrences:
+    """Scenario actions: ``action("press", "ACK")``, ``action("jam")``."""
+    return EventOccurrences(verb, target, "scenario")
+
+
+@dataclass
+class ResponseBuilder:
+    response: Occurrences
+    lo: Span
+    hi: Span
+    wording: str
+
+    def after(self, trigger: Occurrences, *, provided: str | Condition | None = None, at_least: int = 1) -> Response:
+        """Each ``trigger`` (where ``provided`` holds in its scan) must be followed by the response."""
+        return Response(
+            self.response,
+            self.lo,
+            self.hi,
+            self.wording,
+            trigger,
+            as_condition(provided) if provided is not None else None,
+            at_least,
+        )
+
+
+@dataclass
+class Response(Check):
+    response: Occurrences
+    lo: Span
+    hi: Span
+    wording: str
+    trigger: Occurrences
+    provided: Condition | None = None
+    at_least: int = 1
+    name: str | None = None
+    weight: float = 1.0
+
+    def describe(self) -> str:
+        extra = f" while {self.provided.describe()}" if self.provided is not None else ""
+        return f"{self.response.describe()} {self.wording} after {self.trigger.describe()}{extra}"
+
+    def evaluate(self, ctx: Context) -> Verdict:
+        triggers = self.trigger.times(ctx)
+        if self.provided is not None and len(triggers):
+            rows = self.provided.rows(ctx)
+            idx = np.clip(np.searchsorted(ctx.trace.times, triggers, side="right") - 1, 0, len(rows) - 1)
+            triggers = triggers[rows[idx]]
+        signals = signals_of(self.trigger, self.response, self.provided)
+        if len(triggers) < self.at_least:
+            return Verdict(
+                False,
+                f"expected {self.trigger.describe()} at least {self.at_least} time(s) to check "
+                f"that {self.describe()}; it happened {len(triggers)} time(s)",
+                None,
+                signals,
+            )
+        answers = self.response.times(ctx)
+        lo, hi = self.lo.resolve(ctx.scan_ns), self.hi.resolve(ctx.scan_ns)
+        for when in triggers:
+            ok = answers[(answers >= when + lo) & (answers <= when + hi)]
+            if len(ok) == 0:
+                later = answers[answers >= when]
+                if len(later):
+                    happened = f"it happened {ctx.t(later[0] - when)} after it, at {ctx.t(later[0])}"
+                else:
+                    happened = "it did not happen afterwards"
+                return Verdict(
+                    False,
+                    f"after {self.trigger.describe()} at {ctx.t(when)}, expected {self.response.describe()} "
+                    f"{self.wording} (between {ctx.t(when + lo)} and {ctx.t(when + hi)}); {happened}",
+                    int(when),
+                    signals,
+                    (int(when + lo), int(when + hi)),
+                )
+        return Verdict(True, f"{len(triggers)} time(s), each answered {self.wording}", None, signals)
