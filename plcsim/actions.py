@@ -155,11 +155,11 @@ class ActionRunner:
             else:  # pragma: no cover - the constructors make only the verbs above
                 raise ScenarioError(f"unknown action {verb!r}")
         except Exception as exc:  # noqa: BLE001 - an impossible action is recorded, the run goes on
-            self.trace.add_event(
-                TraceEvent(
-                    t, "scenario", "action failed", target, None, f"{action.describe()} ({action.defined_at}): {exc}"
-                )
-            )
+            reason = exc.args[0] if isinstance(exc, KeyError) and exc.args else str(exc)
+            if verb in PART_VERBS and target in self.parts:
+                reason = f"{target} is no longer in the plant ({reason})"
+            where = f"{action.describe()} ({action.defined_at})"
+            self.trace.add_event(TraceEvent(t, "scenario", "action failed", target, None, f"{where}: {reason}"))
             return
         if plant is not None and plant.events:
             self.trace.add_plant_events(plant.events)

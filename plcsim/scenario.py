@@ -354,9 +354,11 @@ def check_names(
     signals: Iterable[str],
     tags: Iterable[str],
     actuators: Iterable[str],
+    sensors: Iterable[str] | None = None,
 ) -> None:
     """Check every name in the scenario before the run, naming the line and the valid choices."""
     stations, buttons, signals = list(stations), list(buttons), list(signals)
+    sensor_names = list(sensors) if sensors is not None else signals
     tags, actuators = list(tags), list(actuators)
     parts: set[str] = {a.target for a in scenario.actions if a.verb == "place"}
     for a in scenario.actions:
@@ -380,8 +382,8 @@ def check_names(
             fail("part", a.target, sorted(parts))
         if a.verb in ("stick", "break_wire", "chatter", "clear") and a.target not in signals:
             fail("wired signal", a.target, signals)
-        if a.verb == "shift" and a.target not in signals:
-            fail("sensor", a.target, signals)
+        if a.verb == "shift" and a.target not in sensor_names:
+            fail("sensor", a.target, sensor_names)
         if a.verb in ("jam_motor", "free_motor") and a.target not in actuators:
             fail("motor", a.target, actuators)
         if a.when is not None and a.when.signal is not None and a.when.signal not in signals:

@@ -140,6 +140,7 @@ class Simulation:
             signals=signals,
             tags=[e.name for e in self.cpu.table],
             actuators=actuators,
+            sensors=sensors,
         )
 
     # -- running --------------------------------------------------------------------------------

@@ -223,11 +223,13 @@ class Wiring:
         return level
 
     def _bounces(self, fault: _Fault, now_ns: int) -> list[tuple[int, int]]:
+        """Contact bounce after a change at ``now_ns``: the input takes the new level at once, then
+        falls back to the old one for a few short intervals (the inverted stretches returned here)."""
         count = self.rng.randint(*fault.transitions)
         out, t = [], now_ns
         for k in range(count):
             width = self.rng.randint(*fault.width_ns)
-            if k % 2 == 0:
+            if k % 2 == 1:
                 out.append((t, t + width))
             t += width
         return out
