@@ -24,7 +24,7 @@ def run(settings: Settings) -> Iterator[dict[str, Any]]:
 
     def one(job: tuple[Any, Any]) -> tuple[Any, Any, Any]:
         ex, sol = job
-        return ex, sol, grade_sandboxed(ex, sol.path, seed=1)
+        return ex, sol, grade_sandboxed(ex, sol.path, seed=1, scenarios=sol.scenarios)
 
     t0 = time.perf_counter()
     with ThreadPoolExecutor(max_workers=2) as pool:
