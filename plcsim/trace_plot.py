@@ -291,20 +291,32 @@ def _events_in_view(events: Sequence[TraceEvent], which: bool | Sequence[str], t
 
 def _draw_events(ax: Any, shown: Sequence[TraceEvent], top: float) -> None:
     label = len(shown) <= MAX_EVENT_LABELS
-    for k, e in enumerate(shown):
+    lo, hi = ax.get_xlim()
+    near = 0.06 * (hi - lo)  # labels closer than this would overlap: one label for the group
+    groups: list[list[TraceEvent]] = []
+    for e in shown:
+        if groups and e.t_ns * 1e-9 - groups[-1][0].t_ns * 1e-9 < near:
+            groups[-1].append(e)
+        else:
+            groups.append([e])
+    for e in shown:
         color = EVENT_COLORS.get(e.source, "#495057")
         ax.axvline(e.t_ns * 1e-9, color=color, ls=":", lw=0.9, zorder=2, gid="event")
-        if label:
-            text = f"{e.kind} {e.subject}".strip()
-            ax.text(
-                e.t_ns * 1e-9,
-                top - 0.24 * (k % 2),
-                f" {text[:28]}",
-                fontsize=6.5,
-                color=color,
-                ha="left",
-                va="top",
-                zorder=5,
-                clip_on=True,
-                gid="event-label",
-            )
+    if not label:
+        return
+    for k, group in enumerate(groups):
+        e = group[0]
+        color = EVENT_COLORS.get(e.source, "#495057")
+        text = f"{e.kind} {e.subject}".strip()[:28] + (f" (+{len(group) - 1})" if len(group) > 1 else "")
+        ax.text(
+            e.t_ns * 1e-9,
+            top - 0.24 * (k % 2),
+            f" {text}",
+            fontsize=6.5,
+            color=color,
+            ha="left",
+            va="top",
+            zorder=5,
+            clip_on=True,
+            gid="event-label",
+        )
