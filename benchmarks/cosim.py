@@ -26,14 +26,10 @@ PLANT_CALLS = ("actuate", "place", "remove", "hold", "release", "knock_off", "op
 
 
 def _scenario(seconds: int) -> Any:
-    from plcsim.scenario import Scenario, after_event, held, place, remove
+    from exercises._conveyor import shuttle
+    from plcsim.scenario import Scenario
 
-    parts = seconds // 7 + 1
-    actions = [place("p1", at="S1", t="0.3s..0.8s")]
-    for k in range(1, parts + 1):
-        actions.append(remove(f"p{k}", when=held("S2", "1s")))
-        actions.append(place(f"p{k + 1}", at="S1", when=after_event("part removed", f"p{k}"), delay="1s..2s"))
-    return Scenario("shuttle", *actions, duration=f"{seconds}s")
+    return Scenario("shuttle", *shuttle(seconds // 7 + 1), duration=f"{seconds}s")
 
 
 def _cosim(workload: str, seconds: int) -> tuple[float, Any, list[tuple[int, str, tuple, dict]]]:
@@ -95,8 +91,18 @@ def _workload(settings: Settings, workload: str, program: str) -> Iterator[dict[
         scans, rows = sim.cpu.scan_count, len(sim.trace)
         progress(f"{workload}: cosim {wall:.2f} s, physics alone {phys:.2f} s")
     steps = seconds * 1000
-    context = {"workload": workload, "plant": "CONV1", "program": program, "simulated_s": seconds, "scan_ms": 1,
-               "physics_ms": 1, "trace_rows": rows, "scans": scans, "repeats": settings.repeats, "stat": "best"}
+    context = {
+        "workload": workload,
+        "plant": "CONV1",
+        "program": program,
+        "simulated_s": seconds,
+        "scan_ms": 1,
+        "physics_ms": 1,
+        "trace_rows": rows,
+        "scans": scans,
+        "repeats": settings.repeats,
+        "stat": "best",
+    }
     yield figure(f"cosim_realtime_factor_{workload}", round(seconds / best_co, 1), "x", budget=">= 100", **context)
     yield figure(f"cosim_us_per_step_{workload}", round(best_co / steps * 1e6, 2), "us/step", **context)
     yield figure(f"physics_alone_us_per_step_{workload}", round(best_ph / steps * 1e6, 2), "us/step", **context)

@@ -36,6 +36,14 @@ def run(settings: Settings) -> Iterator[dict[str, Any]]:
     wall = time.perf_counter() - t0
     progress(f"graded {len(jobs)} solutions in {wall:.1f} s")
     slowest = sorted(per_exercise.items(), key=lambda kv: -kv[1])[:5]
-    yield figure("grade_all_solutions_s", round(wall, 2), "s", budget="< 60", jobs=2, solutions=len(jobs),
-                 exercises=len(per_exercise), slowest={k: round(v, 2) for k, v in slowest},
-                 unexpected=unexpected)
+    yield figure(
+        "grade_all_solutions_s",
+        round(wall, 2),
+        "s",
+        budget="< 60",
+        jobs=2,
+        solutions=len(jobs),
+        exercises=len(per_exercise),
+        slowest={k: round(v, 2) for k, v in slowest},
+        unexpected=unexpected,
+    )

@@ -1,21 +1,13 @@
 """4.3.2 LED control 2 (NC push-button). Plant: PANEL."""
 
 from exercises._common import solution
+from exercises._panel import press_pattern
 from plants import Panel
 from plcsim.check import action, always, count, falls, rises, value
 from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, press, wire_break
 
 NUMBER = "4.3.2"
-
-
-def press_pattern(button: str, n: int = 12, period_ms: int = 300) -> list:
-    """``n`` presses of random length (2..150 ms), one per ``period_ms`` window, at seeded times."""
-    actions = []
-    for k in range(n):
-        start = k * period_ms + 50
-        actions += press(button, t=f"{start}ms..{start + 60}ms", hold="2ms..150ms")
-    return actions
 
 
 EXERCISE = Exercise(

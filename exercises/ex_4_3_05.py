@@ -1,24 +1,13 @@
 """4.3.5 Conveyor control 1 (one object). Plant: CONV1."""
 
 from exercises._common import solution
+from exercises._conveyor import CONV1_IO, carries_objects, shuttle
 from plants import Conv1
-from plcsim.check import always, count, event, falls, implies, never, off, rises
-from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, after_event, held, place, remove
+from plcsim.check import always, event, implies, never, off, rises
+from plcsim.exercise import Exercise, only
+from plcsim.scenario import Scenario, place, remove
 
 NUMBER = "4.3.5"
-
-NOMINAL_TRANSPORT_S = 4.8  # spec §5.2: S1 -> S2 at 50 mm/s, object placed centred on S1
-
-
-def shuttle(parts: int) -> list:
-    """Load a part at S1; the operator takes it from S2 after 1 s and loads the next one 1..2 s later."""
-    actions = [place("p1", at="S1", t="0.3s..0.8s")]
-    for k in range(1, parts + 1):
-        actions.append(remove(f"p{k}", when=held("S2", "1s")))
-        if k < parts:
-            actions.append(place(f"p{k + 1}", at="S1", when=after_event("part removed", f"p{k}"), delay="1s..2s"))
-    return actions
 
 
 EXERCISE = Exercise(
@@ -34,11 +23,7 @@ EXERCISE = Exercise(
         "detects it. After it has been removed, a new object can be loaded and carried. Only one object is on the "
         "conveyor at a time."
     ),
-    io=[
-        IO("S1", "sensor at the belt start", "Bool", "%I0.0", "NO", comment="address proposed"),
-        IO("S2", "sensor at the belt end", "Bool", "%I0.1", "NO", comment="address proposed"),
-        IO("D1", "conveyor forward", "Bool", "%Q0.2", comment="address stated in 4.3.14"),
-    ],
+    io=CONV1_IO,
     rig=Conv1,
     scenarios=[
         Scenario(
@@ -69,18 +54,7 @@ EXERCISE = Exercise(
             .named("D1 starts when S1 sees an object"),
             "three objects",
         ),
-        only(
-            falls("D1").within("1 scan").after(rises("S2")).named("D1 stops when the object reaches S2"),
-            "three objects",
-        ),
-        only(
-            rises("S2")
-            .between(f"{NOMINAL_TRANSPORT_S * 0.9}s", f"{NOMINAL_TRANSPORT_S * 1.1}s")
-            .after(rises("S1"))
-            .named("transport S1 -> S2 takes 4.8 s +-10 %"),
-            "three objects",
-        ),
-        only(count(rises("D1")).equals(3).named("the belt starts once per object"), "three objects"),
+        *(only(check, "three objects") for check in carries_objects(3)),
         only(
             always(implies("S2", off("D1"))).named("the belt never runs while S2 sees an object"),
             "three objects",

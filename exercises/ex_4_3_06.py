@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from exercises._common import SOLUTIONS, solution
+from exercises._conveyor import CONV1_IO
 from exercises._truth import EdgeBalance, Parts, parts_equal
 from plants import Conv1
 from plcsim.check import all_of, always, count, event, falls, final, implies, never, off, rises
@@ -58,9 +59,7 @@ EXERCISE = Exercise(
         "the edges of S1 and S2."
     ),
     io=[
-        IO("S1", "sensor at the belt start", "Bool", "%I0.0", "NO", comment="address proposed"),
-        IO("S2", "sensor at the belt end", "Bool", "%I0.1", "NO", comment="address proposed"),
-        IO("D1", "conveyor forward", "Bool", "%Q0.2", comment="address stated in 4.3.14"),
+        *CONV1_IO,
         IO(
             "POCET",
             "number of objects between S1 and S2",

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from exercises._common import solution
+from exercises._conveyor import CONV1_IO
 from plants import Conv1
 from plcsim.check import all_of, durations, duty, falls, never, off, rises
 from plcsim.exercise import IO, Exercise, only
@@ -35,9 +36,7 @@ EXERCISE = Exercise(
         "hardware configuration) or a timer."
     ),
     io=[
-        IO("S1", "sensor at the belt start", "Bool", "%I0.0", "NO", comment="address proposed"),
-        IO("S2", "sensor at the belt end", "Bool", "%I0.1", "NO", comment="address proposed"),
-        IO("D1", "conveyor forward", "Bool", "%Q0.2", comment="address stated in 4.3.14"),
+        *CONV1_IO,
         IO("LED", "alarm lamp", "Bool", "%Q0.0", comment="address proposed"),
         IO("ALARM", "transport alarm (4.3.7)", "Bool", "%M10.0", comment="address proposed"),
         IO("ACK", "acknowledge (HMI button)", "Bool", "%M10.1", comment="written by the HMI; address proposed"),

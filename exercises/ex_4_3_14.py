@@ -1,6 +1,7 @@
 """4.3.14 Operating-hours meter 1 (seconds). Plant: CONV1 (the motor is the conveyor drive D1)."""
 
 from exercises._common import solution
+from exercises._conveyor import CONV1_IO
 from exercises._hours import (
     counts_running_seconds,
     nuluj_resets_itself,
@@ -11,7 +12,7 @@ from exercises._hours import (
     zero_after_reset,
 )
 from plants import Conv1
-from plcsim.exercise import IO, Exercise, only
+from plcsim.exercise import Exercise, only
 from plcsim.scenario import Scenario, held, knock_off, place, power_cycle, remove, write
 from plcsim.tags import DB
 from plcsim.types import DTL, Bool, DInt
@@ -33,11 +34,7 @@ EXERCISE = Exercise(
         "DATUM_CAS and reset NULUJ. SEKUNDY and DATUM_CAS are retentive, NULUJ is not. Keep the conveyor control "
         "of 4.3.5 (S1 starts the belt, S2 stops it)."
     ),
-    io=[
-        IO("S1", "sensor at the belt start", "Bool", "%I0.0", "NO", comment="address proposed"),
-        IO("S2", "sensor at the belt end", "Bool", "%I0.1", "NO", comment="address proposed"),
-        IO("D1", "conveyor forward (the motor)", "Bool", "%Q0.2", comment="stated in the textbook"),
-    ],
+    io=CONV1_IO,
     dbs={
         "MOTOR": DB(SEKUNDY=DInt(0, retain=True), DATUM_CAS=DTL("DTL#1970-01-01-00:00:00", retain=True), NULUJ=Bool())
     },

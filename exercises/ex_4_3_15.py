@@ -1,6 +1,7 @@
 """4.3.15 Operating-hours meter 2 (hours, minutes, seconds). Plant: CONV1."""
 
 from exercises._common import solution
+from exercises._conveyor import CONV1_IO
 from exercises._hours import (
     counts_running_seconds,
     hms_meter,
@@ -12,7 +13,7 @@ from exercises._hours import (
 )
 from plants import Conv1
 from plcsim.check import always, value
-from plcsim.exercise import IO, Exercise, only
+from plcsim.exercise import Exercise, only
 from plcsim.scenario import Scenario, knock_off, place, power_cycle, write
 from plcsim.tags import DB
 from plcsim.types import DTL, Bool, UInt, USInt
@@ -33,11 +34,7 @@ EXERCISE = Exercise(
         "reset SEKUNDY; when MINUTY reaches 60, increment HODINY and reset MINUTY. NULUJ zeroes all three and stores "
         "the date and time as in 4.3.14."
     ),
-    io=[
-        IO("S1", "sensor at the belt start", "Bool", "%I0.0", "NO", comment="address proposed"),
-        IO("S2", "sensor at the belt end", "Bool", "%I0.1", "NO", comment="address proposed"),
-        IO("D1", "conveyor forward (the motor)", "Bool", "%Q0.2", comment="stated in the textbook"),
-    ],
+    io=CONV1_IO,
     dbs={
         "MOTOR": DB(
             SEKUNDY=USInt(0, retain=True),

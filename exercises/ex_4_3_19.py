@@ -1,9 +1,9 @@
 """4.3.19 First program in OB30. Plant: PANEL. (Analysis exercise.)"""
 
 from exercises._common import solution
-from plants import Panel
+from exercises._panel import OB30_CPU, OB30_IO, ob30_panel
 from plcsim.check import eventually, falls, never, rises
-from plcsim.exercise import IO, Exercise, only
+from plcsim.exercise import Exercise, only
 from plcsim.scenario import Scenario, press
 
 NUMBER = "4.3.19"
@@ -23,12 +23,9 @@ EXERCISE = Exercise(
         "when does it light for a press from 0 s, for a press from 0.1 s, and for a short press between two "
         "calls?"
     ),
-    io=[
-        IO("TL", "push-button", "Bool", "%I0.0", "NO", comment="address proposed; the textbook gives none"),
-        IO("LED", "lamp", "Bool", "%Q0.0", comment="address proposed"),
-    ],
-    rig=lambda: Panel(buttons=("TL",), switches=(), lamps=("LED",)),
-    cpu={"periods": {"OB30": "1s"}, "interrupt_duration": "1ms"},
+    io=OB30_IO,
+    rig=ob30_panel,
+    cpu=OB30_CPU,
     scenarios=[
         Scenario(
             FROM_0,

@@ -1,7 +1,7 @@
 """4.3.20 Second program in OB30. Plant: PANEL. (Analysis exercise.)"""
 
 from exercises._common import solution
-from plants import Panel
+from exercises._panel import OB30_CPU, OB30_IO, ob30_panel
 from plcsim.check import eventually, never, rises
 from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, press
@@ -22,13 +22,9 @@ EXERCISE = Exercise(
         "Task: enter the program in OB30 (networks in this order) and analyse how the LED depends on TL for a "
         "press from 0 s and for a press from 0.1 s."
     ),
-    io=[
-        IO("TL", "push-button", "Bool", "%I0.0", "NO", comment="address proposed; the textbook gives none"),
-        IO("LED", "lamp", "Bool", "%Q0.0", comment="address proposed"),
-        IO("START", "start flag, set by TL", "Bool", "%M10.0", comment="memory bit; address proposed"),
-    ],
-    rig=lambda: Panel(buttons=("TL",), switches=(), lamps=("LED",)),
-    cpu={"periods": {"OB30": "1s"}, "interrupt_duration": "1ms"},
+    io=[*OB30_IO, IO("START", "start flag, set by TL", "Bool", "%M10.0", comment="memory bit; address proposed")],
+    rig=ob30_panel,
+    cpu=OB30_CPU,
     scenarios=[
         Scenario(
             FROM_0,

@@ -1,9 +1,9 @@
 """4.3.21 Third program in OB30 (timer). Plant: PANEL. (Analysis exercise.)"""
 
 from exercises._common import solution
-from plants import Panel
+from exercises._panel import OB30_CPU, OB30_IO, ob30_panel
 from plcsim.check import eventually, falls, never, rises
-from plcsim.exercise import IO, Exercise, only
+from plcsim.exercise import Exercise, only
 from plcsim.scenario import Scenario, press
 
 NUMBER = "4.3.21"
@@ -23,12 +23,9 @@ EXERCISE = Exercise(
         "LED would be set 100 ms after the button is pressed and held; when is it set in OB30 for a press from "
         "0 s, for a press from 0.1 s, and what happens to a press that is released before the second call?"
     ),
-    io=[
-        IO("TL", "push-button", "Bool", "%I0.0", "NO", comment="address proposed; the textbook gives none"),
-        IO("LED", "lamp", "Bool", "%Q0.0", comment="address proposed"),
-    ],
-    rig=lambda: Panel(buttons=("TL",), switches=(), lamps=("LED",)),
-    cpu={"periods": {"OB30": "1s"}, "interrupt_duration": "1ms"},
+    io=OB30_IO,
+    rig=ob30_panel,
+    cpu=OB30_CPU,
     scenarios=[
         Scenario(
             FROM_0,

@@ -1,6 +1,7 @@
 """4.3.22 Fourth program in OB30 (edge detection). Plant: PANEL. (Analysis exercise.)"""
 
 from exercises._common import solution
+from exercises._panel import OB30_CPU
 from plants import Panel
 from plcsim.check import eventually, final, never, value
 from plcsim.exercise import IO, Exercise, only
@@ -32,7 +33,7 @@ EXERCISE = Exercise(
     ],
     dbs={"D": DB(CISLO=Int())},
     rig=lambda: Panel(buttons=("TL",), switches=(), lamps=()),
-    cpu={"periods": {"OB30": "1s"}, "interrupt_duration": "1ms"},
+    cpu=OB30_CPU,
     scenario_cpu={RETAIN: {"retentive_markers": 1}},
     scenarios=[
         Scenario(

@@ -140,6 +140,7 @@ class ActionRunner:
                     plant.operate(target, value)
             elif verb == "write":
                 cpu.write(target, args["value"])
+                detail = f"= {args['value']!r}"
             elif verb in ("stick", "break_wire", "chatter", "clear"):
                 self._wiring_fault(verb, target, args)
             elif verb == "shift":

@@ -1,0 +1,40 @@
+"""What the CONV1 exercises (4.3.5, 4.3.7, 4.3.14 ...) share: the I/O table, the operator's shuttle
+and the checks of plain conveyor control."""
+
+from __future__ import annotations
+
+from plcsim.check import Check, count, falls, rises
+from plcsim.exercise import IO
+from plcsim.scenario import after_event, held, place, remove
+
+NOMINAL_TRANSPORT_S = 4.8
+"""S1 -> S2 at 50 mm/s with the object placed centred on S1 (spec §5.2); the 10 s watchdog of 4.3.7
+has a 2.1x margin."""
+
+CONV1_IO = [
+    IO("S1", "sensor at the belt start", "Bool", "%I0.0", "NO", comment="address proposed"),
+    IO("S2", "sensor at the belt end", "Bool", "%I0.1", "NO", comment="address proposed"),
+    IO("D1", "conveyor forward", "Bool", "%Q0.2", comment="address stated in 4.3.14"),
+]
+
+
+def shuttle(parts: int) -> list:
+    """Load a part at S1; the operator takes it from S2 after 1 s and loads the next one 1..2 s later."""
+    actions = [place("p1", at="S1", t="0.3s..0.8s")]
+    for k in range(1, parts + 1):
+        actions.append(remove(f"p{k}", when=held("S2", "1s")))
+        if k < parts:
+            actions.append(place(f"p{k + 1}", at="S1", when=after_event("part removed", f"p{k}"), delay="1s..2s"))
+    return actions
+
+
+def carries_objects(objects: int) -> list[Check]:
+    """The belt stops at S2, carries each object in the nominal time and starts once per object."""
+    return [
+        falls("D1").within("1 scan").after(rises("S2")).named("D1 stops when the object reaches S2"),
+        rises("S2")
+        .between(f"{NOMINAL_TRANSPORT_S * 0.9}s", f"{NOMINAL_TRANSPORT_S * 1.1}s")
+        .after(rises("S1"))
+        .named("transport S1 -> S2 takes 4.8 s +-10 %"),
+        count(rises("D1")).equals(objects).named("the belt starts once per object"),
+    ]
