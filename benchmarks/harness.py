@@ -13,12 +13,11 @@ import json
 import statistics
 import sys
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
 Figure = dict[str, Any]
-Group = Callable[["Settings"], Iterator[Figure]]
 
 
 @dataclass

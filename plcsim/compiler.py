@@ -210,9 +210,6 @@ def _unknown_name(node: ast.Name, filename: str, visible: set[str]) -> ProgramEr
 # Static types of expressions
 # --------------------------------------------------------------------------------------------
 
-BOOL_EXPR = Bool
-
-
 @dataclass
 class Typing:
     """What the compiler knows statically: the root tag schema and which tags alias memory.

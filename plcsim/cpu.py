@@ -42,7 +42,7 @@ from plcsim.config import CLOCK_BITS, RUN, STOP, SYSTEM_BITS, CPUConfig, Diagnos
 from plcsim.errors import ConfigurationError, PlcError
 from plcsim.execution import NEVER, CycleWatchdog, Execution, RunningTask, TaskRunner, switched_off, tuple_getter
 from plcsim.instructions.edges import bit_resolver, make_edge_instructions
-from plcsim.instructions.system import dtl_of, make_move, make_rd_loc_t
+from plcsim.instructions.system import make_move, make_rd_loc_t
 from plcsim.instructions.timers import IecTimer
 from plcsim.literals import datetime_literal, format_ns, to_ns
 from plcsim.memory import Address, ByteMemory, parse_address
@@ -104,7 +104,6 @@ class CPU(TaskRunner, HostAccess):
         self.warnings: list[str] = []
         self._rng = random.Random(self.config.seed)
         self._stack: list[Execution] = []
-        self._tasks: list[RunningTask] = []
         self._ob1: RunningTask | None = None
         self._interrupts: list[RunningTask] = []
         self._next_irq = NEVER
@@ -225,7 +224,6 @@ class CPU(TaskRunner, HostAccess):
             if task.duration_ns is None:
                 task.duration_ns = self.config.interrupt_duration_ns if spec.kind == "interrupt" else 0
             tasks.append(task)
-        self._tasks = tasks
         self._ob1 = next((t for t in tasks if t.kind == "cyclic"), None) or RunningTask(
             TaskSpec("OB1", "cyclic", []), []
         )
@@ -356,10 +354,6 @@ class CPU(TaskRunner, HostAccess):
         total = nanos + self.clock.now
         moment = start + _dt.timedelta(microseconds=total // 1000)
         return moment.replace(microsecond=0), (total % 1_000_000_000)
-
-    def local_time_dtl(self) -> dict[str, int]:
-        """:meth:`local_time` as DTL members."""
-        return dtl_of(*self.local_time())
 
     # -- diagnostics ----------------------------------------------------------------------------
 

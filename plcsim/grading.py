@@ -11,7 +11,6 @@ from __future__ import annotations
 import csv
 import json
 import multiprocessing
-import os
 import resource
 import signal
 import time
@@ -25,7 +24,6 @@ from xml.etree import ElementTree as ET
 from plcsim.check import StaticCheck, evaluate_all
 from plcsim.errors import PlcError, SubsetError
 from plcsim.exercise import Exercise, GradedCheck
-from plcsim.literals import format_ns
 from plcsim.program import Program
 
 
@@ -405,11 +403,3 @@ def write_gradebook(reports: Sequence[Report], path: str | Path) -> Path:
                 ]
             )
     return path
-
-
-def describe_time(ns: int | None) -> str:
-    return "-" if ns is None else format_ns(ns)
-
-
-def default_jobs() -> int:
-    return max(1, min(os.cpu_count() or 1, 4))

@@ -23,7 +23,6 @@ from typing import Any
 from plcsim.errors import AddressError
 from plcsim.types import Bool, Byte, DataType, DWord, ElementaryType, LWord, Word
 
-AREA_NAMES = {"I": "input", "Q": "output", "M": "bit memory", "DB": "data block"}
 _WIDTH_LETTER = {"": 1, "X": 1, "B": 8, "W": 16, "D": 32, "L": 64}
 _AREA_RE = re.compile(r"^%?(?P<area>[IQME])(?P<width>[XBWDL]?)\s*(?P<byte>\d+)(?:\.(?P<bit>\d+))?$", re.IGNORECASE)
 _DB_RE = re.compile(r"^%?DB(?P<db>\d+)\.DB(?P<width>[XBWDL])\s*(?P<byte>\d+)(?:\.(?P<bit>\d+))?$", re.IGNORECASE)

@@ -284,8 +284,6 @@ class Trace:
         return timing_diagram(self, signals, **options)
 
 
-RowGetter = Callable[[], tuple[Any, ...]]
-
 
 def _short(value: Any) -> str:
     return f"{value:.2f}" if isinstance(value, float) else str(value)

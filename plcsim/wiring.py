@@ -105,7 +105,6 @@ class Wiring:
         self._chatter: dict[str, list[tuple[int, int]]] = {}
         self._last_physical: dict[str, Any] = {}
         self._sent: dict[str, Any] = {}
-        self._output_version = -1
         self._outputs_seen: Mapping[str, Any] | None = None
 
     # -- validation ---------------------------------------------------------------------------
