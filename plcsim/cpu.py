@@ -105,6 +105,7 @@ class CPU(TaskRunner, HostAccess):
         self._rng = random.Random(self.config.seed)
         self._stack: list[Execution] = []
         self._ob1: RunningTask | None = None
+        self._cyclic_plan: tuple[int, Any, bool] = (0, None, False)
         self._interrupts: list[RunningTask] = []
         self._next_irq = NEVER
         self._ob1_next = 0
@@ -230,6 +231,7 @@ class CPU(TaskRunner, HostAccess):
         self._ob1.inputs, self._ob1.outputs = list(self.input_names), list(self.output_names)
         self._interrupts = sorted((t for t in tasks if t.kind == "interrupt"), key=lambda t: -t.priority)
         self._startup = [t for t in tasks if t.kind == "startup"]
+        self._plan_cyclic()
         self._diag("download", f"program {program.filename} loaded: {', '.join(program.tasks) or 'no OBs'}")
         if was_running:
             self.start()
@@ -337,10 +339,11 @@ class CPU(TaskRunner, HostAccess):
         scan. So whatever happens at ``until_ns`` itself (an operator's press, an HMI write, a plant's
         new sensor values) is seen by the tasks that start at ``until_ns`` and by no scan before.
         """
-        if self._interrupts:
-            self._run(until_ns, None)
-        else:
-            self._run_cyclic(until_ns, None)
+        if self.mode == RUN:
+            if self._interrupts:
+                self._run(until_ns, None)
+            else:
+                self._run_cyclic(until_ns, None)
         if self.mode != RUN:
             self._refresh_inputs_stopped()
         if self.clock.now < until_ns:

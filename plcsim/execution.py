@@ -148,9 +148,7 @@ class TaskRunner:
         d = t.__dict__
         inputs = self.inputs
         cfg = self.config
-        fixed = 0 if cfg.jitter_ns or cfg.network_cost_ns else max(cfg.cycle_ns, cfg.min_cycle_ns)
-        whole = task.merged if task.merged is not None else (task.networks[0] if n == 1 else None)
-        aliased_inputs = bool(self._aliased_inputs)
+        fixed, whole, aliased_inputs = self._cyclic_plan
         while self.mode == RUN:
             if not stack:
                 t0 = self._ob1_next
@@ -208,6 +206,14 @@ class TaskRunner:
                 self._set_system_bits()
             if scan_target is not None and self.scan_count >= scan_target:
                 return
+
+    def _plan_cyclic(self) -> None:
+        """What :meth:`_run_cyclic` needs that changes only with a download: the fixed cycle (0 if it
+        varies), the one function running all of OB1's networks, whether inputs alias other tags."""
+        cfg, task = self.config, self._ob1
+        fixed = 0 if cfg.jitter_ns or cfg.network_cost_ns else max(cfg.cycle_ns, cfg.min_cycle_ns)
+        whole = task.merged if task.merged is not None else (task.networks[0] if task.n == 1 else None)
+        self._cyclic_plan = (fixed, whole, bool(self._aliased_inputs))
 
     def _preemption_time(self, priority: int) -> int:
         return min((t.next_due for t in self._interrupts if t.priority > priority), default=NEVER)

@@ -608,3 +608,10 @@ OB1 = [main]
     cpu.start()
     cpu.scan()
     assert (cpu.read("STARTS"), cpu.read("SEEN")) == (2, 2)
+
+
+def test_a_cpu_without_a_program_stays_in_stop_and_keeps_reading_inputs():
+    cpu = CPU(tags={"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")})
+    cpu.set_input("TL", True)
+    cpu.run("5ms")
+    assert (cpu.mode, cpu.now, cpu.t.TL, cpu.outputs["LED"]) == ("STOP", 5_000_000, True, False)
