@@ -210,6 +210,7 @@ def _unknown_name(node: ast.Name, filename: str, visible: set[str]) -> ProgramEr
 # Static types of expressions
 # --------------------------------------------------------------------------------------------
 
+
 @dataclass
 class Typing:
     """What the compiler knows statically: the root tag schema and which tags alias memory.

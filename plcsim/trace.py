@@ -284,6 +284,5 @@ class Trace:
         return timing_diagram(self, signals, **options)
 
 
-
 def _short(value: Any) -> str:
     return f"{value:.2f}" if isinstance(value, float) else str(value)

@@ -28,8 +28,10 @@ def test_solution_grades_as_the_textbook_says(exercise, solution):
     else:
         assert solution.fails, f"{solution.name} is wrong but names no check that exposes it"
         missing = set(solution.fails) - failed
-        assert not missing, (f"{solution.name} should fail {sorted(missing)}; it failed {sorted(failed)}; "
-                             f"the textbook's point: {solution.explanation}")
+        assert not missing, (
+            f"{solution.name} should fail {sorted(missing)}; it failed {sorted(failed)}; "
+            f"the textbook's point: {solution.explanation}"
+        )
         assert not report.passed
 
 

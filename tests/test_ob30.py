@@ -80,8 +80,9 @@ OB30 = CyclicInterrupt([n1, n2], period="1s")
         # START is set by the call at 0 s / 1 s (the networks of an execution run at its start);
         # LED follows at the next call, physically at that call's end (+1 ms).
         pytest.param((0, 5), [(0.0, (True, False)), (1.001, (True, True))], id="pressed-from-0s"),
-        pytest.param((0.1, 5), [(0.0, (False, False)), (1.0, (True, False)), (2.001, (True, True))],
-                     id="pressed-at-0.1s"),
+        pytest.param(
+            (0.1, 5), [(0.0, (False, False)), (1.0, (True, False)), (2.001, (True, True))], id="pressed-at-0.1s"
+        ),
     ],
 )
 def test_4_3_20_led_comes_one_call_after_start(press, expected):

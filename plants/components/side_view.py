@@ -665,8 +665,9 @@ class SideViewPlant:
                 if arrow is None:
                     xm = 0.5 * (b.x0 + b.x1)
                     d = 15.0 if b.v > 0 else -15.0
-                    arrow = cache[key] = draw.arrow(f"belt/{b.name}/direction", xm - d, xm + d, b.top - 5.0,
-                                                    draw.BELT_RUNNING)
+                    arrow = cache[key] = draw.arrow(
+                        f"belt/{b.name}/direction", xm - d, xm + d, b.top - 5.0, draw.BELT_RUNNING
+                    )
                 out.append(arrow)
         for pid, p in self.parts.items():
             color = p.props.get("color", draw.PART)
@@ -680,8 +681,9 @@ class SideViewPlant:
             key = ("beam", lb.name, on, lb.x_actual)
             beam = cache.get(key)
             if beam is None:  # drawables are frozen, so one per state is shared by every frame
-                beam = cache[key] = draw.circle(f"beams/{lb.name}", lb.x_actual, lb.y, 2.5,
-                                                draw.BEAM_CUT if on else draw.BEAM_FREE, lb.name)
+                beam = cache[key] = draw.circle(
+                    f"beams/{lb.name}", lb.x_actual, lb.y, 2.5, draw.BEAM_CUT if on else draw.BEAM_FREE, lb.name
+                )
             out.append(beam)
         if self.panel is not None:
             out += self.panel.dynamic_drawables(self.sensors, "panel")
