@@ -228,13 +228,18 @@ def grade(
     return report
 
 
-def _load_failure(report: Report, exc: PlcError, exercise: Exercise, started: float) -> Report:
-    report.error = str(exc)
-    report.error_kind = "subset violation" if isinstance(exc, SubsetError) else "program error"
-    report.max_score = sum(
+def max_score(exercise: Exercise) -> float:
+    """The points of an exercise: each check's weight once per scenario it applies to (static checks once)."""
+    return sum(
         c.check.weight * (1 if isinstance(c.check, StaticCheck) else len(c.scenarios or exercise.scenarios))
         for c in exercise.checks
     )
+
+
+def _load_failure(report: Report, exc: PlcError, exercise: Exercise, started: float) -> Report:
+    report.error = str(exc)
+    report.error_kind = "subset violation" if isinstance(exc, SubsetError) else "program error"
+    report.max_score = max_score(exercise)
     report.elapsed_s = time.perf_counter() - started
     return report
 
@@ -342,7 +347,7 @@ def grade_sandboxed(
         report.error_kind = "time limit"
         report.error = f"no result within {limits.wall_seconds:.0f} s of wall time"
     if report.error and not report.max_score:
-        report.max_score = _load_failure(Report("", "", ""), PlcError(""), exercise, started).max_score
+        report.max_score = max_score(exercise)
     report.elapsed_s = time.perf_counter() - started
     return report
 
