@@ -28,6 +28,7 @@ True
 
 from __future__ import annotations
 
+import ast
 import datetime as _dt
 import random
 from collections import deque
@@ -384,8 +385,6 @@ class CPU(TaskRunner, HostAccess):
 
 
 def _address_strings(program: Program) -> list[str]:
-    import ast
-
     found = []
     for node in ast.walk(program.tree):
         if isinstance(node, ast.Constant) and isinstance(node.value, str) and node.value.strip().startswith("%"):
@@ -398,8 +397,6 @@ def _address_strings(program: Program) -> list[str]:
 
 
 def _period_given(program: Program, name: str) -> bool:
-    import ast
-
     for stmt in program.tree.body:
         if isinstance(stmt, ast.Assign) and any(isinstance(t, ast.Name) and t.id == name for t in stmt.targets):
             call = stmt.value
