@@ -27,6 +27,7 @@ class Machine:
     """One actuator ``STROJ_ZAP`` (spindle / lamp), no feedback; records the accumulated ON time."""
 
     view = "side"
+    EVENTS: frozenset[str] = frozenset()  # no sensors, no parts: nothing happens that a check could see
 
     def __init__(self, *, name: str = "MACHINE", actuator: str = "STROJ_ZAP", seed: int = 0) -> None:
         self.name = name

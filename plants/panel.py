@@ -30,6 +30,7 @@ class Panel:
     """
 
     view = "panel"
+    EVENTS = OperatorPanel.EVENTS
 
     def __init__(
         self,

@@ -1,5 +1,11 @@
 """Carrying out a scenario during a run: the operator's actions at their times or when the plant asks.
 
+An action the plant's state makes impossible (removing a part that has fallen off, placing one where
+another lies) is the run's business: it is recorded as an ``action failed`` event and the run goes on.
+An action that could never work (a button, tag or fault the exercise lacks, a value its tag refuses)
+is the instructor's mistake: it raises :class:`~plcsim.errors.ExerciseError`, never touching the
+student's trace; anything else is a bug of ours and propagates as it is.
+
 Timed actions wait in a queue ordered by time. An action waiting for the plant (``when=held("S2",
 "1s")`` or ``when=after_event(...)``) joins the queue once its trigger fires; an action on a part
 waits until that part has been placed. Only the sensor triggers that can fire now are polled in each
@@ -14,12 +20,15 @@ from collections.abc import Callable
 from typing import Any
 
 from plcsim.clock import NEVER
+from plcsim.errors import ConfigurationError, ExerciseError, PlcError
 from plcsim.scenario import Action, Planned, Scenario, ScenarioError, plan
 from plcsim.trace import Trace, TraceEvent
 
 POSE_NOISE_MM = 5.0
 POSE_NOISE_DEG = 5.0
 PART_VERBS = {"remove", "jam", "unjam", "knock_off"}
+STATE_VERBS = PART_VERBS | {"place", "stop_cpu", "start_cpu", "power_cycle"}
+"""Verbs whose failure can depend on the run (a part gone, a station taken): recorded, not raised."""
 
 
 class ActionRunner:
@@ -112,66 +121,84 @@ class ActionRunner:
                     break
 
     def apply(self, action: Action, t: int) -> None:
-        """Carry out one action; an impossible one (a part that fell off) is recorded, never raised."""
-        plant, cpu = self.plant, self.cpu
-        verb, target, args = action.verb, action.target, action.args
-        detail = ""
+        """Carry out one action; one the run made impossible (a part that fell off) is recorded, never raised.
+
+        Raises:
+            ExerciseError: the action could never work in this exercise (the instructor's mistake).
+        """
+        verb = action.verb
         try:
-            if verb == "place":
-                offset, angle = args["offset_mm"], args["angle_deg"]
-                if args["noise"]:
-                    offset = self.rng.uniform(-POSE_NOISE_MM, POSE_NOISE_MM) if offset is None else offset
-                    angle = self.rng.uniform(-POSE_NOISE_DEG, POSE_NOISE_DEG) if angle is None else angle
-                self.parts[target] = plant.place(
-                    args["station"], part=target, offset_mm=offset or 0.0, angle_deg=angle or 0.0, **args["properties"]
-                )
-                detail = f"offset {offset or 0.0:+.2f} mm, angle {angle or 0.0:+.2f} deg"
-                self._refresh_polled()
-            elif verb == "remove":
-                plant.remove(self.parts.get(target, target))
-            elif verb in ("jam", "unjam", "knock_off"):
-                method = {"jam": plant.hold, "unjam": plant.release, "knock_off": plant.knock_off}[verb]
-                method(self.parts.get(target, target))
-            elif verb in ("press", "release", "switch"):
-                value = args["on"] if verb == "switch" else verb == "press"
-                if plant is None:
-                    cpu.set_input(target, value)
-                else:
-                    plant.operate(target, value)
-            elif verb == "write":
-                cpu.write(target, args["value"])
-                detail = f"= {args['value']!r}"
-            elif verb in ("stick", "break_wire", "chatter", "clear"):
-                self._wiring_fault(verb, target, args)
-            elif verb == "shift":
-                _plant_method(plant, "shift_sensor")(target, args["mm"])
-            elif verb in ("jam_motor", "free_motor"):
-                _plant_method(plant, "jam_motor")(target, verb == "jam_motor")
-            elif verb == "stop_cpu":
-                cpu.stop(reason="mode switch")
-            elif verb == "start_cpu":
-                cpu.start()
-            elif verb == "power_cycle":
-                cpu.power_cycle()
-            else:  # pragma: no cover - the constructors make only the verbs above
-                raise ScenarioError(f"unknown action {verb!r}")
-        except Exception as exc:  # noqa: BLE001 - an impossible action is recorded, the run goes on
+            detail = self._carry_out(action)
+        except ExerciseError:
+            raise
+        except (PlcError, KeyError, ValueError) as exc:
             reason = exc.args[0] if isinstance(exc, KeyError) and exc.args else str(exc)
-            if verb in PART_VERBS and target in self.parts:
-                reason = f"{target} is no longer in the plant ({reason})"
             where = f"{action.describe()} ({action.defined_at})"
-            self.trace.add_event(TraceEvent(t, "scenario", "action failed", target, None, f"{where}: {reason}"))
+            if verb not in STATE_VERBS:
+                raise ExerciseError(f"{action.defined_at}: {action.describe()}: {reason}") from exc
+            if verb in PART_VERBS and action.target in self.parts:
+                reason = f"{action.target} is no longer in the plant ({reason})"
+            self.trace.add_event(TraceEvent(t, "scenario", "action failed", action.target, None, f"{where}: {reason}"))
             return
+        plant = self.plant
         if plant is not None and plant.events:
             self.trace.add_plant_events(plant.events)
             self.on_events(plant.events)
             plant.events.clear()
-        self.trace.add_event(TraceEvent(t, "scenario", verb, target, self.parts.get(target), detail))
+        self.trace.add_event(TraceEvent(t, "scenario", verb, action.target, self.parts.get(action.target), detail))
+
+    def _carry_out(self, action: Action) -> str:
+        """Do what the action says; returns the detail for the trace event."""
+        plant, cpu = self.plant, self.cpu
+        verb, target, args = action.verb, action.target, action.args
+        detail = ""
+        if verb == "place":
+            if plant is None or args["station"] not in plant.stations:  # not the run's doing: never possible
+                station = args["station"]
+                raise ScenarioError(f"{action.defined_at}: {action.describe()}: there is no station {station!r}")
+            offset, angle = args["offset_mm"], args["angle_deg"]
+            if args["noise"]:
+                offset = self.rng.uniform(-POSE_NOISE_MM, POSE_NOISE_MM) if offset is None else offset
+                angle = self.rng.uniform(-POSE_NOISE_DEG, POSE_NOISE_DEG) if angle is None else angle
+            self.parts[target] = plant.place(
+                args["station"], part=target, offset_mm=offset or 0.0, angle_deg=angle or 0.0, **args["properties"]
+            )
+            detail = f"offset {offset or 0.0:+.2f} mm, angle {angle or 0.0:+.2f} deg"
+            self._refresh_polled()
+        elif verb == "remove":
+            plant.remove(self.parts.get(target, target))
+        elif verb in ("jam", "unjam", "knock_off"):
+            method = {"jam": plant.hold, "unjam": plant.release, "knock_off": plant.knock_off}[verb]
+            method(self.parts.get(target, target))
+        elif verb in ("press", "release", "switch"):
+            value = args["on"] if verb == "switch" else verb == "press"
+            if plant is None:
+                cpu.set_input(target, value)
+            else:
+                plant.operate(target, value)
+        elif verb == "write":
+            cpu.write(target, args["value"])
+            detail = f"= {args['value']!r}"
+        elif verb in ("stick", "break_wire", "chatter", "clear"):
+            self._wiring_fault(verb, target, args)
+        elif verb == "shift":
+            _plant_method(plant, "shift_sensor")(target, args["mm"])
+        elif verb in ("jam_motor", "free_motor"):
+            _plant_method(plant, "jam_motor")(target, verb == "jam_motor")
+        elif verb == "stop_cpu":
+            cpu.stop(reason="mode switch")
+        elif verb == "start_cpu":
+            cpu.start()
+        elif verb == "power_cycle":
+            cpu.power_cycle()
+        else:  # pragma: no cover - the constructors make only the verbs above
+            raise ScenarioError(f"unknown action {verb!r}")
+        return detail
 
     def _wiring_fault(self, verb: str, target: str, args: dict[str, Any]) -> None:
         wiring = self.wiring
         if wiring is None:
-            raise ScenarioError(f"{verb} {target}: this run has no wiring to put a fault in")
+            raise ConfigurationError("this run has no wiring to put a fault in")
         if verb == "stick":
             wiring.stick(target, args["value"])
         elif verb == "break_wire":
@@ -185,5 +212,5 @@ class ActionRunner:
 def _plant_method(plant: Any, method: str) -> Callable[..., Any]:
     fn = getattr(plant, method, None)
     if fn is None:
-        raise ScenarioError(f"the plant {getattr(plant, 'name', None)} does not support {method}")
+        raise ConfigurationError(f"the plant {getattr(plant, 'name', None)} does not support {method}")
     return fn

@@ -105,11 +105,16 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _list(args: argparse.Namespace) -> int:
-    from exercises import all_exercises
+    from rich.console import Console
+    from rich.markup import escape
+
+    from exercises import all_exercises, broken_exercises
     from plcsim.report import print_exercise_list
 
     print_exercise_list(all_exercises())
-    return 0
+    for bad in broken_exercises():  # the message is text, not markup: "DATA.arr[2]" must print as it is
+        Console(stderr=True).print(f"[bold red]not loaded:[/] {escape(str(bad))}", highlight=False)
+    return EXIT_USAGE if broken_exercises() else 0
 
 
 def _show(args: argparse.Namespace) -> int:

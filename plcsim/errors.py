@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import difflib
-from collections.abc import Iterable
+import sys
+from collections.abc import Iterable, Sequence
 
 
 class PlcError(Exception):
@@ -43,6 +44,26 @@ class SubsetError(ProgramError):
 
 class ConfigurationError(PlcError, ValueError):
     """A CPU, wiring, scenario or exercise option with an invalid value."""
+
+
+class ExerciseError(ConfigurationError):
+    """An instructor's mistake in an exercise: a name its tags, wiring or plant lack, a negative time.
+
+    Raised when the exercise is loaded (or, for what only a run reveals, by the run): never a student's
+    failure. ``problems`` holds every mistake found, each starting with the ``file:line`` that made it.
+    """
+
+    def __init__(self, message: str, problems: Sequence[str] = ()):
+        super().__init__(message)
+        self.problems = list(problems) or [message]
+
+
+def defined_at() -> str:
+    """``file:line`` of the innermost caller outside plcsim: where an instructor wrote a scenario or check."""
+    frame = sys._getframe(1)
+    while frame is not None and str(frame.f_globals.get("__name__", "")).startswith("plcsim."):
+        frame = frame.f_back  # type: ignore[assignment]
+    return "?" if frame is None else f"{frame.f_code.co_filename}:{frame.f_lineno}"
 
 
 def did_you_mean(name: str, choices: Iterable[str], n: int = 3) -> str:

@@ -14,13 +14,14 @@ from typing import Any
 
 from plcsim.check import Check
 from plcsim.cpu import CPU, CPUConfig
-from plcsim.errors import ConfigurationError
+from plcsim.errors import ConfigurationError, defined_at
 from plcsim.plant import Plant
 from plcsim.program import Program
 from plcsim.scenario import Scenario
 from plcsim.sim import Simulation
 from plcsim.tags import DataBlock, Tag, TagTable
 from plcsim.types import type_by_name
+from plcsim.validation import validate
 from plcsim.wiring import Wire
 
 
@@ -84,6 +85,7 @@ class GradedCheck:
 
     check: Check
     scenarios: tuple[str, ...] | None = None
+    defined_at: str = "?"
 
     @property
     def name(self) -> str:
@@ -92,12 +94,17 @@ class GradedCheck:
 
 def only(check: Check, *scenarios: str) -> GradedCheck:
     """Apply a check only in some scenarios: ``only(never(...), "normal", "two parts")``."""
-    return GradedCheck(check, tuple(scenarios))
+    return GradedCheck(check, tuple(scenarios), defined_at())
 
 
 @dataclass
 class Exercise:
-    """Everything needed to run and grade one exercise."""
+    """Everything needed to run and grade one exercise.
+
+    It is validated when built (see :mod:`plcsim.validation`): a name that its tags, wiring or plant
+    lack, a check on a scenario that does not exist, raise :class:`~plcsim.errors.ExerciseError`
+    naming the file and line, so the instructor's mistake never reaches a student's grade.
+    """
 
     number: str
     slug: str
@@ -118,28 +125,9 @@ class Exercise:
     plant_name: str = ""
 
     def __post_init__(self) -> None:
+        self.defined_at = defined_at()
         self.checks = [c if isinstance(c, GradedCheck) else GradedCheck(c) for c in self.checks]
-        names = [c.name for c in self.checks]
-        dupes = {n for n in names if names.count(n) > 1}
-        if dupes:
-            raise ConfigurationError(
-                f"exercise {self.number}: two checks share the name(s) {sorted(dupes)}; name them with .named(...)"
-            )
-        scenario_names = {s.name for s in self.scenarios}
-        for c in self.checks:
-            for s in c.scenarios or ():
-                if s not in scenario_names:
-                    raise ConfigurationError(
-                        f"exercise {self.number}: check {c.name!r} refers to scenario {s!r}; "
-                        f"scenarios: {sorted(scenario_names)}"
-                    )
-        for sol in self.solutions:
-            for f in sol.fails:
-                if f not in names:
-                    raise ConfigurationError(
-                        f"exercise {self.number}: solution {sol.name} should fail {f!r}, "
-                        f"which is not a check; checks: {names}"
-                    )
+        validate(self)
 
     # -- building a run -----------------------------------------------------------------------
 

@@ -61,7 +61,9 @@ class PlantEvent:
     ``kind`` is one of a small vocabulary checks can rely on: ``part placed``, ``part removed``,
     ``part entered``, ``part left`` (a sensor zone, ``subject`` = the sensor), ``part fell off``,
     ``end stop hit``, ``part jammed``, ``part released``, ``part knocked off``, ``motor jammed``,
-    ``interlock violated``, ``button pressed``, ``button released``.
+    ``interlock violated``, ``button pressed``, ``button released``. A plant declares the kinds it can
+    emit as a class attribute ``EVENTS`` (a set of strings); an exercise then refuses, when it is loaded,
+    a check or trigger waiting for an event the plant never emits.
     """
 
     t_ns: int
@@ -164,7 +166,8 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
     * events are :class:`PlantEvent` with integer times in ``[0, now_ns]``, in time order;
     * drawables have ``(N, 2)`` finite float points (N ≥ 3 for polygons, ≥ 2 for lines, 1 for circles and labels),
       RGB colours and a path; ``bounds`` is a proper rectangle;
-    * both runs give identical sensors, events and geometry (determinism).
+    * both runs give identical sensors, events and geometry (determinism);
+    * if the plant declares ``EVENTS``, every event it emitted is of a declared kind.
 
     Returns a summary: ``{"signals", "events", "drawables", "digest"}`` (digest = sha256 of the second run).
     """
@@ -248,6 +251,8 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
             need(0 <= e.t_ns <= plant.now_ns, f"event {e.kind!r}: t_ns {e.t_ns} outside [0, {plant.now_ns}]")
             need(e.t_ns >= last, f"event {e.kind!r} at {e.t_ns} ns comes after one at {last} ns")
             need(bool(e.kind) and isinstance(e.kind, str), f"event at {e.t_ns} ns has no kind")
+            declared = getattr(plant, "EVENTS", None)
+            need(declared is None or e.kind in declared, f"event {e.kind!r} is not among the declared EVENTS")
             last = max(last, e.t_ns)
         static, dynamic = plant.static_drawables(), plant.dynamic_drawables()
         check_drawables("static", static)

@@ -19,26 +19,17 @@ file and line that created it, so a bad name is reported where the instructor wr
 from __future__ import annotations
 
 import random
-import sys
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
-from plcsim.errors import ConfigurationError, PlcError, did_you_mean
+from plcsim.errors import ExerciseError, PlcError, defined_at, did_you_mean
 from plcsim.literals import format_ns, to_ns
 
 
-class ScenarioError(ConfigurationError):
-    """An action naming a station, signal, button or tag that does not exist, or a bad time."""
-
-
-def _caller() -> str:
-    frame = sys._getframe(2)
-    while frame is not None and frame.f_globals.get("__name__") == __name__:
-        frame = frame.f_back  # type: ignore[assignment]
-    if frame is None:
-        return "?"
-    return f"{frame.f_code.co_filename}:{frame.f_lineno}"
+class ScenarioError(ExerciseError):
+    """An action naming a station, signal, button or tag that does not exist, or a bad time: the instructor's
+    mistake, never the student's."""
 
 
 @dataclass(frozen=True)
@@ -57,9 +48,12 @@ class TimeSpec:
             spec = cls(to_ns(lo.strip()), to_ns(hi.strip()))
             if spec.hi_ns < spec.lo_ns:
                 raise ScenarioError(f"time range {value!r} runs backwards")
-            return spec
-        ns = to_ns(value, "time")
-        return cls(ns, ns)
+        else:
+            ns = to_ns(value, "time")
+            spec = cls(ns, ns)
+        if spec.lo_ns < 0:
+            raise ScenarioError(f"time {value!r} is negative; times count from the start of the run (0 s)")
+        return spec
 
     def draw(self, rng: random.Random) -> int:
         return self.lo_ns if self.lo_ns == self.hi_ns else rng.randint(self.lo_ns, self.hi_ns)
@@ -89,7 +83,7 @@ class Trigger:
 
 def held(signal: str, duration: str | int = 0, value: Any = True) -> Trigger:
     """Trigger when a plant sensor has had ``value`` (default: actuated) for ``duration``."""
-    return Trigger(signal=signal, value=value, for_ns=to_ns(duration))
+    return Trigger(signal=signal, value=value, for_ns=_parse(TimeSpec.parse, duration, f"held {signal}").lo_ns)
 
 
 def after_event(kind: str, subject: str | None = None) -> Trigger:
@@ -139,16 +133,55 @@ class Action:
             when = f"at {self.t}"
         return f"{what} {when}"
 
+    def names(self) -> list[tuple[str, str]]:
+        """The names this action relies on, by role: ``[("station", "S1"), ("signal to wait for", "S2")]``."""
+        out = [("station", self.args["station"])] if self.verb == "place" else []
+        role = TARGET_ROLES.get(self.verb)
+        if role is not None:
+            out.append((role, self.target))
+        if self.when is not None and self.when.signal is not None:
+            out.append(("signal to wait for", self.when.signal))
+        if self.when is not None and self.when.event is not None:
+            out.append(("plant event to wait for", self.when.event))
+        return out
+
+
+TARGET_ROLES = {
+    "press": "button or switch",
+    "release": "button or switch",
+    "switch": "button or switch",
+    "write": "tag",
+    "remove": "part or station",
+    "jam": "part",
+    "unjam": "part",
+    "knock_off": "part",
+    "stick": "wired signal",
+    "break_wire": "wired signal",
+    "chatter": "wired signal",
+    "clear": "wired signal",
+    "shift": "sensor",
+    "jam_motor": "motor",
+    "free_motor": "motor",
+}
+"""What the target of each verb names (the verbs on the CPU have none)."""
+VERBS = (*TARGET_ROLES, "place", "stop_cpu", "start_cpu", "power_cycle")
+"""Every verb of a scenario action (the kinds of the scenario's trace events, with ``action failed``)."""
+
+
+def _parse(parse: Any, value: Any, what: str) -> Any:
+    """``parse(value)``, an error in it reported at the instructor's line."""
+    try:
+        return parse(value)
+    except PlcError as exc:
+        raise ScenarioError(f"{defined_at()}: {what}: {exc}") from None
+
 
 def _action(verb: str, target: str, t: Any, when: Trigger | None, delay: Any = 0, **args: Any) -> Action:
     if (t is None) == (when is None):
-        raise ScenarioError(f"{_caller()}: {verb} {target}: give exactly one of t='2s' or when=held(...)")
-    try:
-        spec = None if t is None else TimeSpec.parse(t)
-        delay_spec = TimeSpec.parse(delay)
-    except PlcError as exc:
-        raise ScenarioError(f"{_caller()}: {verb} {target}: {exc}") from None
-    return Action(verb, target, spec, when, delay_spec, args, _caller())
+        raise ScenarioError(f"{defined_at()}: {verb} {target}: give exactly one of t='2s' or when=held(...)")
+    spec = None if t is None else _parse(TimeSpec.parse, t, f"{verb} {target}")
+    delay_spec = _parse(TimeSpec.parse, delay, f"{verb} {target}")
+    return Action(verb, target, spec, when, delay_spec, args, defined_at())
 
 
 def press(button: str, t: Any = None, *, hold: Any = None, when: Trigger | None = None, delay: Any = 0) -> list[Action]:
@@ -156,7 +189,7 @@ def press(button: str, t: Any = None, *, hold: Any = None, when: Trigger | None 
     actions = [_action("press", button, t, when, delay)]
     if hold is not None:
         if t is None:
-            raise ScenarioError(f"{_caller()}: press {button}: hold= needs a fixed t=")
+            raise ScenarioError(f"{defined_at()}: press {button}: hold= needs a fixed t=")
         actions.append(
             Action(
                 "release",
@@ -164,8 +197,8 @@ def press(button: str, t: Any = None, *, hold: Any = None, when: Trigger | None 
                 None,
                 None,
                 TimeSpec(0, 0),
-                {"after": actions[0], "hold": TimeSpec.parse(hold)},
-                _caller(),
+                {"after": actions[0], "hold": _parse(TimeSpec.parse, hold, f"press {button}")},
+                defined_at(),
             )
         )
     return actions
@@ -309,9 +342,21 @@ class Scenario:
     def __init__(self, name: str, *actions: Action | list[Action], duration: str | int = "10s", description: str = ""):
         self.name = name
         self.actions = _flatten(actions)
-        self.duration_ns = to_ns(duration, "duration")
+        self.defined_at = defined_at()
+        self.duration_ns = _parse(lambda d: to_ns(d, "duration"), duration, f"scenario {name!r}")
         self.description = description
-        self.defined_at = _caller()
+        if self.duration_ns <= 0:
+            raise ScenarioError(
+                f"{self.defined_at}: scenario {name!r}: duration {duration!r} is not positive; "
+                f"a run needs a duration such as duration='10s'"
+            )
+        for a in self.actions:
+            if a.t is not None and a.t.hi_ns >= self.duration_ns:
+                raise ScenarioError(
+                    f"{a.defined_at}: scenario {name!r}: {a.describe()}: the run ends at "
+                    f"{format_ns(self.duration_ns)}, so this action may never happen; "
+                    f"make it earlier or the duration longer"
+                )
 
     def __repr__(self) -> str:
         return f"<Scenario {self.name}: {len(self.actions)} actions, {format_ns(self.duration_ns)}>"
@@ -355,36 +400,69 @@ def check_names(
     tags: Iterable[str],
     actuators: Iterable[str],
     sensors: Iterable[str] | None = None,
+    events: Iterable[str] | None = None,
 ) -> None:
     """Check every name in the scenario before the run, naming the line and the valid choices."""
-    stations, buttons, signals = list(stations), list(buttons), list(signals)
-    sensor_names = list(sensors) if sensors is not None else signals
-    tags, actuators = list(tags), list(actuators)
-    parts: set[str] = {a.target for a in scenario.actions if a.verb == "place"}
+    for problem in name_problems(
+        scenario,
+        stations=stations,
+        buttons=buttons,
+        signals=signals,
+        tags=tags,
+        actuators=actuators,
+        sensors=sensors,
+        events=events,
+    ):
+        raise ScenarioError(": ".join(problem))
+
+
+def name_problems(
+    scenario: Scenario,
+    *,
+    stations: Iterable[str],
+    buttons: Iterable[str],
+    signals: Iterable[str],
+    tags: Iterable[str],
+    actuators: Iterable[str],
+    sensors: Iterable[str] | None = None,
+    events: Iterable[str] | None = None,
+) -> list[tuple[str, str]]:
+    """Every name of the scenario that does not exist: ``(file:line, "scenario ...: no ...; valid: ...")``.
+
+    ``signals`` are what a fault can be put on (plant signals and wired tags), ``sensors`` what a trigger
+    waits for (the plant's sensors: nothing else is polled); ``events`` the plant's event vocabulary
+    (None: not declared, not checked).
+    """
+    signal_list = list(signals)
+    sensor_list = list(sensors) if sensors is not None else signal_list
+    station_list = list(stations)
+    parts = sorted({a.target for a in scenario.actions if a.verb == "place"})
+    choices: dict[str, list[str]] = {
+        "station": station_list,
+        "button or switch": list(buttons),
+        "tag": list(tags),
+        "part or station": parts + station_list,
+        "part": parts,
+        "wired signal": signal_list,
+        "sensor": sensor_list,
+        "motor": list(actuators),
+        "signal to wait for": sensor_list,
+    }
+    if events is not None:
+        choices["plant event to wait for"] = sorted(events)
+    problems = []
     for a in scenario.actions:
-
-        def fail(what: str, name: str, choices: list[str], a: Action = a) -> None:
-            listed = ", ".join(choices) if choices else "none"
-            raise ScenarioError(
-                f"{a.defined_at}: scenario {scenario.name!r}: {a.describe()}: no {what} {name!r}"
-                f"{did_you_mean(name, choices)}; valid: {listed}"
+        for role, name in a.names():
+            valid = choices.get(role)
+            key = name.split(".")[0].split("[")[0] if role == "tag" else name
+            if valid is None or key in valid:
+                continue
+            listed = ", ".join(valid) if valid else "none"
+            problems.append(
+                (
+                    a.defined_at,
+                    f"scenario {scenario.name!r}: {a.describe()}: no {role} {name!r}"
+                    f"{did_you_mean(name, valid)}; valid: {listed}",
+                )
             )
-
-        if a.verb == "place" and a.args["station"] not in stations:
-            fail("station", a.args["station"], stations)
-        if a.verb in ("press", "release", "switch") and a.target not in buttons:
-            fail("button or switch", a.target, buttons)
-        if a.verb == "write" and a.target.split(".")[0].split("[")[0] not in tags:
-            fail("tag", a.target, tags)
-        if a.verb in ("remove",) and a.target not in parts and a.target not in stations:
-            fail("part or station", a.target, sorted(parts) + stations)
-        if a.verb in ("jam", "unjam", "knock_off") and a.target not in parts:
-            fail("part", a.target, sorted(parts))
-        if a.verb in ("stick", "break_wire", "chatter", "clear") and a.target not in signals:
-            fail("wired signal", a.target, signals)
-        if a.verb == "shift" and a.target not in sensor_names:
-            fail("sensor", a.target, sensor_names)
-        if a.verb in ("jam_motor", "free_motor") and a.target not in actuators:
-            fail("motor", a.target, actuators)
-        if a.when is not None and a.when.signal is not None and a.when.signal not in signals:
-            fail("signal to wait for", a.when.signal, signals)
+    return problems

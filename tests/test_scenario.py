@@ -234,7 +234,7 @@ def test_unknown_station_names_the_line_and_the_choices():
         (
             lambda: write("ACK", True, when=held("S7", "1s")),
             r"write ACK = True when S7 has been interrupted/actuated for 1 s: no signal to wait for 'S7'; "
-            r"valid: S1, S2, D1",
+            r"valid: S1, S2",  # a trigger waits for a plant sensor: the actuator D1 is never polled
         ),
     ],
     ids=["station-suggestion", "button", "tag", "remove", "jam", "wired-signal", "motor", "trigger-signal"],

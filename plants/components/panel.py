@@ -18,6 +18,8 @@ from plcsim.plant import Drawable, PlantEvent, SignalSpec
 class OperatorPanel:
     """Buttons, switches and lamps laid out in a row from ``origin`` (mm), 50 mm apart."""
 
+    EVENTS = frozenset({"button pressed", "button released"})
+
     def __init__(
         self,
         buttons: Iterable[str] = (),

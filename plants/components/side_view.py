@@ -149,6 +149,20 @@ class SideViewPlant:
     """
 
     view = "side"
+    EVENTS = OperatorPanel.EVENTS | {
+        "part placed",
+        "part removed",
+        "part entered",
+        "part left",
+        "part fell off",
+        "end stop hit",
+        "part jammed",
+        "part released",
+        "part knocked off",
+        "motor jammed",
+        "interlock violated",
+    }
+    """Every kind of event the rig can emit (the panel's only with a panel)."""
 
     def __init__(
         self,

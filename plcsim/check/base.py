@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from plcsim.errors import ConfigurationError
+from plcsim.errors import ConfigurationError, defined_at
 from plcsim.literals import duration_ns, format_ns
 from plcsim.trace import Trace
 
@@ -101,6 +101,40 @@ class Verdict:
     window: tuple[int, int] | None = None
 
 
+@dataclass(frozen=True)
+class Names:
+    """The names a check (or a part of one) reads, so that an exercise can check them when it is loaded.
+
+    ``signals`` are trace columns, ``events`` plant events and ``actions`` scenario actions as
+    ``(kind, subject)`` pairs (subject None: any), ``tasks`` the OBs whose calls it counts.
+    """
+
+    signals: tuple[str, ...] = ()
+    events: tuple[tuple[str, str | None], ...] = ()
+    actions: tuple[tuple[str, str | None], ...] = ()
+    tasks: tuple[str, ...] = ()
+
+    def __add__(self, other: Names) -> Names:
+        def merged(a: tuple[Any, ...], b: tuple[Any, ...]) -> tuple[Any, ...]:
+            return tuple(dict.fromkeys(a + b))
+
+        return Names(
+            merged(self.signals, other.signals),
+            merged(self.events, other.events),
+            merged(self.actions, other.actions),
+            merged(self.tasks, other.tasks),
+        )
+
+
+def names_of(*items: Any) -> Names:
+    """The names every item reads (None and items without names are skipped)."""
+    out = Names()
+    for item in items:
+        if hasattr(item, "names"):
+            out += item.names()
+    return out
+
+
 def signals_of(*items: Any) -> list[str]:
     names: list[str] = []
     for item in items:
@@ -117,11 +151,18 @@ class Check:
     weight: float = 1.0
     extra_signals: tuple[str, ...] = ()
 
+    def __post_init__(self) -> None:
+        self.defined_at = defined_at()  # where the instructor wrote it, for the errors of load-time validation
+
     def evaluate(self, ctx: Context) -> Verdict:  # pragma: no cover - overridden
         raise NotImplementedError
 
     def describe(self) -> str:  # pragma: no cover - overridden
         raise NotImplementedError
+
+    def names(self) -> Names:
+        """The names the check reads: its own parts' (each check adds them) and the signals it plots."""
+        return Names(tuple(self.extra_signals))
 
     def named(self, name: str) -> Check:
         """Give the check the name reports show."""

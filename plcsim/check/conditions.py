@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from plcsim.check.base import Context, signals_of
+from plcsim.check.base import Context, Names, signals_of
 from plcsim.errors import ConfigurationError
 
 # --------------------------------------------------------------------------------------------
@@ -26,6 +26,10 @@ class Condition:
 
     def signals(self) -> list[str]:
         return []
+
+    def names(self) -> Names:
+        """A condition reads only signals."""
+        return Names(tuple(self.signals()))
 
     def __invert__(self) -> Condition:
         return Not(self)

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from plcsim.check.base import Check, Context, Span, Verdict, signals_of
+from plcsim.check.base import Check, Context, Names, Span, Verdict, names_of, signals_of
 from plcsim.check.conditions import Condition, as_condition
 
 # --------------------------------------------------------------------------------------------
@@ -26,6 +26,10 @@ class Occurrences:
 
     def signals(self) -> list[str]:
         return []
+
+    def names(self) -> Names:
+        """The names it reads (edges and conditions: their signals)."""
+        return Names(tuple(self.signals()))
 
     def within(self, span: str | int) -> ResponseBuilder:
         """The response must come no later than ``span`` after each trigger."""
@@ -83,6 +87,11 @@ class EventOccurrences(Occurrences):
             events = [e for e in events if self.subject in (e.subject, e.part)]
         return np.array([e.t_ns for e in events], dtype=np.int64)
 
+    def names(self) -> Names:
+        if self.source == "scenario":
+            return Names(actions=((self.kind, self.subject),))
+        return Names(events=((self.kind, self.subject),))
+
     def describe(self) -> str:
         who = f" {self.subject}" if self.subject else ""
         if self.source == "scenario":
@@ -104,6 +113,9 @@ class Calls(Occurrences):
     def describe(self) -> str:
         return f"{self.task} is called"
 
+    def names(self) -> Names:
+        return Names(tasks=(self.task,))
+
 
 @dataclass(frozen=True)
 class Either(Occurrences):
@@ -119,6 +131,9 @@ class Either(Occurrences):
 
     def signals(self) -> list[str]:
         return signals_of(*self.parts)
+
+    def names(self) -> Names:
+        return names_of(*self.parts)
 
 
 def calls(task: str) -> Calls:
@@ -187,6 +202,9 @@ class Response(Check):
     at_least: int = 1
     name: str | None = None
     weight: float = 1.0
+
+    def names(self) -> Names:
+        return names_of(self.trigger, self.response, self.provided) + super().names()
 
     def describe(self) -> str:
         extra = f" while {self.provided.describe()}" if self.provided is not None else ""

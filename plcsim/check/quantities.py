@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from itertools import pairwise
 from typing import Any
 
-from plcsim.check.base import Check, Context, Span, Verdict, show_number
+from plcsim.check.base import Check, Context, Names, Span, Verdict, names_of, show_number
 from plcsim.check.conditions import Condition, as_condition
 from plcsim.check.occurrences import Occurrences, becomes
 from plcsim.trace import Trace
@@ -26,6 +26,10 @@ class Quantity(Check):
     every: bool = False
     name: str | None = None
     weight: float = 1.0
+    measured: tuple[Any, ...] = ()  # the occurrences or condition it measures, for names()
+
+    def names(self) -> Names:
+        return Names(tuple(self.sources)) + names_of(*self.measured) + super().names()
 
     def equals(self, expected: float | str) -> Quantity:
         """Exactly this value (a duration literal is allowed for times)."""
@@ -102,7 +106,7 @@ def count(what: Occurrences | str | Condition) -> Quantity:
     def compute(ctx: Context) -> tuple[float, list[int]]:
         return float(len(occ.times(ctx))), []
 
-    return Quantity(f"number of times {occ.describe()}", compute, occ.signals())
+    return Quantity(f"number of times {occ.describe()}", compute, occ.signals(), measured=(occ,))
 
 
 def spacing(what: Occurrences) -> Quantity:
@@ -112,7 +116,7 @@ def spacing(what: Occurrences) -> Quantity:
         times = what.times(ctx)
         return [float(b - a) for a, b in pairwise(times)], [int(t) for t in times[:-1]]
 
-    q = Quantity(f"time between successive '{what.describe()}'", compute, what.signals(), unit="ns")
+    q = Quantity(f"time between successive '{what.describe()}'", compute, what.signals(), unit="ns", measured=(what,))
     q.every = True
     return q
 
@@ -139,7 +143,7 @@ def durations(condition: str | Condition, *, include_last: bool = False) -> Quan
                 k += 1
         return out, at
 
-    q = Quantity(f"time {cond.describe()} stays true", compute, cond.signals(), unit="ns")
+    q = Quantity(f"time {cond.describe()} stays true", compute, cond.signals(), unit="ns", measured=(cond,))
     q.every = True
     return q
 
@@ -159,7 +163,7 @@ def duty(condition: str | Condition, *, start: str | int = 0, end: str | int | N
             return None, []
         return float((ends[sel & rows] - times[sel & rows]).sum()) / total, []
 
-    return Quantity(f"fraction of time {cond.describe()}", compute, cond.signals())
+    return Quantity(f"fraction of time {cond.describe()}", compute, cond.signals(), measured=(cond,))
 
 
 def final(name: str) -> Quantity:

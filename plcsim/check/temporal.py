@@ -6,7 +6,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from plcsim.check.base import Check, Context, Span, Verdict, first_bad_row, row_values, signals_of, window_ns
+from plcsim.check.base import (
+    Check,
+    Context,
+    Names,
+    Span,
+    Verdict,
+    first_bad_row,
+    names_of,
+    row_values,
+    signals_of,
+    window_ns,
+)
 from plcsim.check.conditions import Condition, as_condition
 from plcsim.check.occurrences import EventOccurrences, Occurrences
 
@@ -28,6 +39,9 @@ class Never(Check):
         """Only look at ``start``..``end`` of the run."""
         self.window = (Span.parse(start), Span.parse(end))
         return self
+
+    def names(self) -> Names:
+        return names_of(self.what) + super().names()
 
     def describe(self) -> str:
         text = f"never {self.what.describe()}"
@@ -94,6 +108,9 @@ class Always(Check):
         self.tolerance = Span.parse(span)
         return self
 
+    def names(self) -> Names:
+        return names_of(self.condition) + super().names()
+
     def describe(self) -> str:
         return f"always {self.condition.describe()}"
 
@@ -138,6 +155,9 @@ class Holds(Check):
     minimum: Span | None
     name: str | None = None
     weight: float = 1.0
+
+    def names(self) -> Names:
+        return names_of(self.condition, self.release) + super().names()
 
     def describe(self) -> str:
         if self.release is not None:
@@ -204,6 +224,9 @@ class Eventually(Check):
         """It must happen before this time of the run."""
         self.deadline = Span.parse(deadline)
         return self
+
+    def names(self) -> Names:
+        return names_of(self.what) + super().names()
 
     def describe(self) -> str:
         return f"eventually {self.what.describe()}" + (f" before {self.deadline}" if self.deadline else "")
