@@ -232,13 +232,15 @@ class _Validation:
                 f"{did_you_mean(verb, VERBS)}; actions: {_choices(VERBS)}",
             )
             return
-        done = {a.target for s in applies for a in s.actions if a.verb == verb}
+        done = sorted({a.target for s in applies for a in s.actions if a.verb == verb})
         if (target is None and done) or target in done:
             return
         which = f"{verb} {target}" if target is not None else verb
-        listed = _choices(sorted(done)) if done else f"none of its scenarios does {verb}"
+        if not done:
+            self.add(where, f"{label} looks for the action {which!r}, but none of its scenarios does {verb}")
+            return
         self.add(
             where,
             f"{label} looks for the action {which!r}, which none of its scenarios does"
-            f"{did_you_mean(target, done) if target else ''}; targets of {verb}: {listed}",
+            f"{did_you_mean(target or '', done)}; they {verb}: {_choices(done)}",
         )

@@ -189,6 +189,8 @@ class SideViewPlant:
         self.end_stops = list(end_stops)
         self.dead_plates = list(dead_plates)
         self.panel = panel
+        if panel is None:
+            self.EVENTS = self.EVENTS - OperatorPanel.EVENTS
         self.workpiece = workpiece
         self.max_step_ns = int(max_step_ns)
         self.stations: dict[str, Station] = {s.name: s for s in stations}
