@@ -13,8 +13,9 @@ student's program declares are not there, since a check cannot rely on them.
 
 from __future__ import annotations
 
+import dataclasses
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING, Any
 
 from plcsim.check import Check, Quantity, Span
@@ -214,6 +215,7 @@ class _Validation:
         for task in used.tasks:
             if not _TASK.fullmatch(task):
                 self.add(where, f"{label} counts calls of {task!r}; name a task as 'OB30'")
+        self._spans(check, label, where)
         if isinstance(check, Quantity):
             for bound in (check.lo, check.hi):
                 if isinstance(bound, str):
@@ -221,6 +223,24 @@ class _Validation:
                         Span.parse(bound)
                     except PlcError as exc:
                         self.add(where, f"{label}: bound {bound!r}: {exc}")
+            numbers = [b for b in (check.lo, check.hi) if isinstance(b, (int, float))]
+            if len(numbers) == 2 and numbers[0] > numbers[1]:
+                self.add(where, f"{label}: the bounds {check.lo} and {check.hi} run backwards; no value lies between")
+
+    def _spans(self, check: Check, label: str, where: str) -> None:
+        """Durations and windows: none negative for every scan time, none running backwards."""
+        negative = [s for s in _spans_of(check) if s.ns <= 0 and s.scans <= 0 and (s.ns or s.scans)]
+        for span in negative:
+            self.add(where, f"{label}: the duration {str(span)!r} is negative; durations count forwards")
+        if negative:
+            return
+        pairs = [
+            (getattr(check, "lo", None), getattr(check, "hi", None)),
+            getattr(check, "window", None) or (None, None),
+        ]
+        for lo, hi in pairs:
+            if isinstance(lo, Span) and isinstance(hi, Span) and lo.scans == hi.scans and hi.ns < lo.ns:
+                self.add(where, f"{label}: the window from {lo} to {hi} runs backwards")
 
     def _action(self, label: str, where: str, verb: str, target: str | None, applies: list[Scenario]) -> None:
         if verb == "action failed":
@@ -244,3 +264,14 @@ class _Validation:
             f"{label} looks for the action {which!r}, which none of its scenarios does"
             f"{did_you_mean(target or '', done)}; they {verb}: {_choices(done)}",
         )
+
+
+def _spans_of(check: Check) -> Iterator[Span]:
+    """The durations a check holds (reaction windows, tolerances, deadlines, time windows)."""
+    if not dataclasses.is_dataclass(check):
+        return
+    for f in dataclasses.fields(check):
+        value = getattr(check, f.name)
+        for item in value if isinstance(value, tuple) else (value,):
+            if isinstance(item, Span):
+                yield item

@@ -15,7 +15,7 @@ import exercises
 from exercises import all_exercises, broken_exercises, load_package
 from plants import Conv1, Panel
 from plcsim import CPU, Simulation, Tag
-from plcsim.check import action, count, event, final, never, rises
+from plcsim.check import action, count, event, eventually, falls, final, never, rises
 from plcsim.cli import main
 from plcsim.errors import ConfigurationError, ExerciseError
 from plcsim.exercise import IO, Exercise, only
@@ -271,6 +271,38 @@ def test_a_duration_bound_that_cannot_be_read():
         f"{__file__}:{line}: exercise 9.9.1: check 'runs': bound '1 sec': duration '1 sec': unknown unit 'sec'; "
         "use s, ms, us, min, h or scans"
     )
+
+
+@pytest.mark.parametrize(
+    ("make", "expected"),
+    [
+        (
+            lambda: falls("D1").within("-1s").after(rises("S1")),
+            "check 'D1 falls within -1s after S1 rises': the duration '-1s' is negative; durations count forwards",
+        ),
+        (
+            lambda: falls("D1").between("2s", "1s").after(rises("S1")),
+            "check 'D1 falls between 2s and 1s after S1 rises': the window from 2s to 1s runs backwards",
+        ),
+        (lambda: never("D1").during("2s", "1s"), "check 'never D1': the window from 2s to 1s runs backwards"),
+        (
+            lambda: eventually("D1").before("-1 scan"),
+            "check 'eventually D1 before -1 scan': the duration '-1 scan' is negative; durations count forwards",
+        ),
+        (
+            lambda: count(rises("D1")).between(3, 1),
+            "check 'number of times D1 rises between 3 and 1': the bounds 3 and 1 run backwards; no value lies between",
+        ),
+    ],
+    ids=["negative-reaction", "backwards-window", "backwards-during", "negative-deadline", "backwards-bounds"],
+)
+def test_a_check_whose_durations_cannot_hold(make, expected):
+    message = refused(lambda: conveyor(checks=[make()]))
+    assert re.fullmatch(rf"{HERE}:\d+: exercise 9\.9\.1: {re.escape(expected)}", message), message
+
+
+def test_a_duration_with_a_scan_subtracted_is_fine():
+    conveyor(checks=[falls("D1").within("0.5s - 1 scan").after(rises("S1"))])  # no error
 
 
 def test_every_mistake_is_listed_once():
