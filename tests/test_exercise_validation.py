@@ -199,6 +199,54 @@ def test_a_time_at_zero_is_fine():
     assert scenario.actions[0].t.lo_ns == 0 and scenario.duration_ns == 1_000_000_000
 
 
+# -- the rig, the I/O table, the wiring, the options ------------------------------------------------
+
+
+def small(io=IO_TABLE, rig=Conv1, **options) -> Exercise:
+    return Exercise(
+        number="9.9.1",
+        slug="small",
+        title="small",
+        task="...",
+        io=io,
+        rig=rig,
+        scenarios=[IDLE],
+        checks=[never("D1")],
+        solutions=[],
+        **options,
+    )
+
+
+SMALL_LINE = small.__code__.co_firstlineno + 1
+
+
+@pytest.mark.parametrize(
+    ("make", "expected"),
+    [
+        (
+            lambda: small(io=[*IO_TABLE, IO("S3", "a third sensor", "Bool", "%I0.2", "NO")]),
+            "wiring: CONV1 has no signal 'S3'; its signals: S1, S2, D1",
+        ),
+        (
+            lambda: small(io=[*IO_TABLE[:2], IO("D1", "conveyor forward", "Boool", "%Q0.0")]),
+            "the I/O table, data blocks or CPU options are wrong: unknown data type 'Boool'; did you mean 'Bool'?",
+        ),
+        (
+            lambda: small(scenario_cpu={"idel": {}}),
+            "scenario_cpu names scenario 'idel'; did you mean 'idle'?; scenarios: idle",
+        ),
+        (
+            lambda: small(rig=lambda: Conv1(end="nowhere")),
+            "the rig could not be built: ValueError: CONV1: end must be 'open' or 'stop', not 'nowhere'",
+        ),
+        (lambda: small(dt="0ms"), "dt='0ms' must be a positive step such as '1ms'"),
+    ],
+    ids=["wired-to-nothing", "unknown-type", "scenario-options", "rig", "dt"],
+)
+def test_exercise_wide_mistakes_are_reported_at_the_exercise(make, expected):
+    assert refused(make) == f"{__file__}:{SMALL_LINE}: exercise 9.9.1: {expected}"
+
+
 # -- checks ----------------------------------------------------------------------------------------------
 
 
