@@ -63,6 +63,9 @@ class Machine:
             self.starts += 1
         self.on = value
 
+    def event_subjects(self) -> set[str]:
+        return set()
+
     def quiescent(self) -> bool:
         """Always: a step only adds time (and ON time), so any number of steps may be taken at once."""
         return True

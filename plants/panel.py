@@ -73,6 +73,10 @@ class Panel:
     def operate(self, name: str, value: Any) -> None:
         self.panel.operate(name, value, self.sensors, self.events, self.now_ns)
 
+    def event_subjects(self) -> set[str]:
+        """Its events name the button or switch."""
+        return set(self.panel.controls)
+
     def quiescent(self) -> bool:
         """Always: a panel has no physics; a step only advances its clock."""
         return True

@@ -62,8 +62,9 @@ class PlantEvent:
     ``part entered``, ``part left`` (a sensor zone, ``subject`` = the sensor), ``part fell off``,
     ``end stop hit``, ``part jammed``, ``part released``, ``part knocked off``, ``motor jammed``,
     ``interlock violated``, ``button pressed``, ``button released``. A plant declares the kinds it can
-    emit as a class attribute ``EVENTS`` (a set of strings); an exercise then refuses, when it is loaded,
-    a check or trigger waiting for an event the plant never emits.
+    emit as a class attribute ``EVENTS`` (a set of strings) and the subjects they can name (a part's id
+    aside) with a method ``event_subjects()``; an exercise then refuses, when it is loaded, a check or
+    trigger waiting for an event the plant never emits, or for one about a name it does not have.
     """
 
     t_ns: int
@@ -167,7 +168,8 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
     * drawables have ``(N, 2)`` finite float points (N ≥ 3 for polygons, ≥ 2 for lines, 1 for circles and labels),
       RGB colours and a path; ``bounds`` is a proper rectangle;
     * both runs give identical sensors, events and geometry (determinism);
-    * if the plant declares ``EVENTS``, every event it emitted is of a declared kind.
+    * if the plant declares ``EVENTS`` and ``event_subjects()``, every event it emitted is of a declared kind
+      and names a declared subject.
 
     Returns a summary: ``{"signals", "events", "drawables", "digest"}`` (digest = sha256 of the second run).
     """
@@ -253,6 +255,8 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
             need(bool(e.kind) and isinstance(e.kind, str), f"event at {e.t_ns} ns has no kind")
             declared = getattr(plant, "EVENTS", None)
             need(declared is None or e.kind in declared, f"event {e.kind!r} is not among the declared EVENTS")
+            subjects = plant.event_subjects() if hasattr(plant, "event_subjects") else None
+            need(subjects is None or e.subject in subjects, f"event {e.kind!r}: undeclared subject {e.subject!r}")
             last = max(last, e.t_ns)
         static, dynamic = plant.static_drawables(), plant.dynamic_drawables()
         check_drawables("static", static)

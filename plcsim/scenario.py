@@ -143,6 +143,8 @@ class Action:
             out.append(("signal to wait for", self.when.signal))
         if self.when is not None and self.when.event is not None:
             out.append(("plant event to wait for", self.when.event))
+        if self.when is not None and self.when.subject is not None:
+            out.append(("event subject (a part or plant name)", self.when.subject))
         return out
 
 
@@ -401,6 +403,7 @@ def check_names(
     actuators: Iterable[str],
     sensors: Iterable[str] | None = None,
     events: Iterable[str] | None = None,
+    subjects: Iterable[str] | None = None,
 ) -> None:
     """Check every name in the scenario before the run, naming the line and the valid choices."""
     for problem in name_problems(
@@ -412,6 +415,7 @@ def check_names(
         actuators=actuators,
         sensors=sensors,
         events=events,
+        subjects=subjects,
     ):
         raise ScenarioError(": ".join(problem))
 
@@ -426,12 +430,14 @@ def name_problems(
     actuators: Iterable[str],
     sensors: Iterable[str] | None = None,
     events: Iterable[str] | None = None,
+    subjects: Iterable[str] | None = None,
 ) -> list[tuple[str, str]]:
     """Every name of the scenario that does not exist: ``(file:line, "scenario ...: no ...; valid: ...")``.
 
     ``signals`` are what a fault can be put on (plant signals and wired tags), ``sensors`` what a trigger
-    waits for (the plant's sensors: nothing else is polled); ``events`` the plant's event vocabulary
-    (None: not declared, not checked).
+    waits for (the plant's sensors: nothing else is polled); ``events`` the plant's event vocabulary and
+    ``subjects`` the names its events are about, besides the scenario's parts (None: not declared, not
+    checked).
     """
     signal_list = list(signals)
     sensor_list = list(sensors) if sensors is not None else signal_list
@@ -450,6 +456,8 @@ def name_problems(
     }
     if events is not None:
         choices["plant event to wait for"] = sorted(events)
+    if subjects is not None:
+        choices["event subject (a part or plant name)"] = parts + sorted(set(subjects) - set(parts))
     problems = []
     for a in scenario.actions:
         for role, name in a.names():

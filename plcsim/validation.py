@@ -124,6 +124,12 @@ class _Validation:
         declared = getattr(self.plant, "EVENTS", None)
         return None if declared is None else sorted(declared)
 
+    @property
+    def plant_subjects(self) -> list[str] | None:
+        """The names the plant's events are about, a part's id aside (None: it does not say)."""
+        subjects = getattr(self.plant, "event_subjects", None)
+        return None if subjects is None else sorted(subjects())
+
     # -- scenarios ------------------------------------------------------------------------------
 
     def _scenario(self, scenario: Scenario) -> None:
@@ -148,6 +154,7 @@ class _Validation:
             actuators=actuators,
             sensors=sensors,
             events=self.plant_events,
+            subjects=self.plant_subjects,
         ):
             self.add(where, detail)
         for action in scenario.actions:
@@ -200,16 +207,24 @@ class _Validation:
                     f"{label} reads {name!r}, which the exercise does not have{did_you_mean(name, traced)}; "
                     f"a check can read: {_choices(traced)}",
                 )
-        events = self.plant_events
-        for kind, _subject in used.events:
+        applies = [s for s in self.exercise.scenarios if gc.scenarios is None or s.name in gc.scenarios]
+        events, subjects = self.plant_events, self.plant_subjects
+        parts = sorted({a.target for s in applies for a in s.actions if a.verb == "place"})
+        plant = getattr(self.plant, "name", "(no plant)")
+        for kind, subject in used.events:
             if events is not None and kind not in events:
-                plant = getattr(self.plant, "name", "(no plant)")
                 self.add(
                     where,
                     f"{label} waits for the plant event {kind!r}, which {plant} never emits"
                     f"{did_you_mean(kind, events)}; its events: {_choices(events)}",
                 )
-        applies = [s for s in self.exercise.scenarios if gc.scenarios is None or s.name in gc.scenarios]
+            elif subjects is not None and subject is not None and subject not in parts + subjects:
+                named = parts + [s for s in subjects if s not in parts]
+                self.add(
+                    where,
+                    f"{label} waits for {kind!r} of {subject!r}, which is neither a part of its scenarios nor "
+                    f"a name in {plant}{did_you_mean(subject, named)}; valid: {_choices(named)}",
+                )
         for verb, target in used.actions:
             self._action(label, where, verb, target, applies)
         for task in used.tasks:

@@ -160,6 +160,18 @@ def test_an_event_the_plant_cannot_emit_in_a_trigger():
     )
 
 
+def test_a_trigger_on_an_event_about_a_name_nobody_has():
+    line = here() + 2
+    scenario = Scenario(
+        "bad", place("p1", at="S1", t="1s"), remove("p1", when=after_event("part removed", "p11")), duration="5s"
+    )
+    message = refused(lambda: conveyor([scenario]))
+    assert message == (
+        f"{__file__}:{line}: exercise 9.9.1: scenario 'bad': remove 'p1' after 'part removed' of p11: "
+        "no event subject (a part or plant name) 'p11'; did you mean 'p1'?; valid: p1, D1, S1, S2, belt"
+    )
+
+
 def test_two_scenarios_with_one_name():
     message = refused(lambda: conveyor([Scenario("run", duration="1s"), Scenario("run", duration="2s")]))
     assert message == (
@@ -279,6 +291,17 @@ def test_an_event_the_plant_cannot_emit_in_a_check():
         "which CONV1 never emits; did you mean 'part fell off' or 'part left' or 'part knocked off'?; "
         f"its events: {CONV1_EVENTS}"
     )
+
+
+def test_a_check_on_an_event_about_a_name_nobody_has():
+    line = here() + 2
+    scenario = Scenario("one", place("p1", at="S1", t="1s"), duration="2s")
+    checks = [count(event("part entered", "S22")).equals(1).named("p1 reaches S2"), count(event("part left", "p1"))]
+    message = refused(lambda: conveyor([scenario], checks))
+    assert message == (
+        f"{__file__}:{line}: exercise 9.9.1: check 'p1 reaches S2' waits for 'part entered' of 'S22', which is "
+        "neither a part of its scenarios nor a name in CONV1; did you mean 'S2'?; valid: p1, D1, S1, S2, belt"
+    )  # the second check, about the part p1, is fine
 
 
 def test_a_panel_never_reports_parts():

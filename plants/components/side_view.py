@@ -211,6 +211,12 @@ class SideViewPlant:
         self.seed = seed
         self.reset(seed=seed)
 
+    def event_subjects(self) -> set[str]:
+        """Every ``subject`` its events can name: beams, stations, belts, end stops, motors, panel controls."""
+        names = set(self.barrier) | set(self.stations) | set(self._belt_by_name) | set(self.motors)
+        names |= {s.name for s in self.end_stops} | set(self.panel.controls if self.panel is not None else ())
+        return names
+
     # --- protocol: lifecycle ---------------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None) -> None:
         """Back to the initial state: a new space, no parts, motors off, faults cleared, time 0."""
