@@ -82,13 +82,14 @@ class RunningTask:
 class Execution:
     """The running execution of a task: start, duration, next network, time lost to pre-emption."""
 
-    __slots__ = ("task", "t0", "duration", "offsets", "index", "shift", "paused_at")
+    __slots__ = ("task", "t0", "duration", "offsets", "index", "shift", "paused_at", "image_in")
 
     def __init__(self, task: RunningTask):
         self.task = task
         self.t0 = self.duration = self.index = self.shift = 0
         self.paused_at = -1
         self.offsets: list[int] = []
+        self.image_in: dict[str, Any] = {}  # the inputs as delivered when it started (for the trace)
 
     def next_time(self) -> int:
         if self.index < self.task.n:
@@ -160,17 +161,17 @@ class TaskRunner:
                 self._ticks[0] = 0
                 if t0 >= self._clock_next:
                     self._latch_clock_memory(t0)
-                if aliased_inputs:
+                if aliased_inputs or self.forces:
                     self._refresh_inputs(task)
                 else:
                     d.update(inputs)
-                    if self.forces:
-                        self._apply_forces()
+                    self.image_in = ex.image_in = inputs.copy()
                 duration = fixed or self._cycle_duration(task)
                 if duration != ex.duration or not ex.offsets:
                     ex.offsets = task.network_offsets(duration, cfg.network_cost_ns)
                 ex.t0, ex.duration, ex.index, ex.shift = t0, duration, 0, 0
                 self.scan_start_ns = t0
+                self.scan_inputs = ex.image_in
                 stack.append(ex)
                 if whole is not None:
                     try:
@@ -253,6 +254,7 @@ class TaskRunner:
         ex.t0, ex.duration, ex.index, ex.shift, ex.paused_at = t0, duration, 0, 0, -1
         if task.kind == "cyclic":
             self.scan_start_ns = t0
+            self.scan_inputs = ex.image_in
         self._stack.append(ex)
 
     def _advance_interrupt(self, task: RunningTask, start: int) -> None:
@@ -406,6 +408,7 @@ class TaskRunner:
                 self._diag_changed = False
                 self._set_system_bits()
         elif self.on_task_end is not None:
+            self.task_inputs = ex.image_in
             self.on_task_end(self, task.name, ex.t0, end)
 
     def _fault(self, task: RunningTask, k: int, event: str, message: str, exc: BaseException | None) -> None:
@@ -422,6 +425,8 @@ class TaskRunner:
     # -- process images -----------------------------------------------------------------------
 
     def _refresh_inputs(self, task: RunningTask) -> None:
+        """Read the task's inputs into the process image, and keep what was read (``image_in``): the
+        trace records it, so a program that writes an input changes its image, never its record."""
         d = self.t.__dict__
         if task.kind == "cyclic":
             inputs = self.inputs
@@ -437,10 +442,16 @@ class TaskRunner:
                 store(self.t, name, self.inputs[name])
         if self.forces:
             self._apply_forces()
+        if task.kind == "cyclic":
+            image = {name: d[name] for name in self.input_names}
+        else:  # a partition: the other inputs are as delivered at their last refresh
+            image = {**self.image_in, **{name: d[name] for name in task.inputs}}
+        self.image_in = task.execution.image_in = image
 
     def _refresh_inputs_stopped(self) -> None:
         for name in self.input_names:
             store(self.t, name, self.inputs[name])
+        self.image_in = {name: self.t.__dict__[name] for name in self.input_names}
 
     def _write_outputs(self, task: RunningTask) -> None:
         if self.forces:
