@@ -96,7 +96,7 @@ class CPU(TaskRunner, HostAccess):
         self.forces: dict[str, Any] = {}
         self.on_scan_end: Callable[[CPU], None] | None = None
         self.on_task_end: Callable[[CPU, str, int, int], None] | None = None
-        self.on_cut: Callable[[CPU, str, int, dict[str, Any]], None] | None = None
+        self.on_cut: Callable[[CPU, str, int], None] | None = None
         self.scan_count = 0
         self.scan_start_ns = 0
         self.scan_end_ns = 0
@@ -169,8 +169,8 @@ class CPU(TaskRunner, HostAccess):
         self.output_names = [e.name for e in table if e.address is not None and e.address.area == "Q"]
         self.inputs = {name: self.inputs.get(name, self.t.__dict__[name]) for name in self.input_names}
         self.outputs = {name: switched_off(self.t.__dict__[name]) for name in self.output_names}
-        # the inputs as delivered at their last refresh; of the scan, of the task whose row is written
-        self.image_in = self.scan_inputs = self.task_inputs = dict(self.inputs)
+        # each input as the plant delivered it at its last refresh (what the trace records)
+        self.image_in: dict[str, Any] = dict(self.inputs)
         aliased = {c.key for c in self.aliases if c.container is self.t}
         self._aliased_inputs = [n for n in self.input_names if n in aliased]
         self._plain_inputs = [n for n in self.input_names if n not in aliased]
@@ -310,11 +310,11 @@ class CPU(TaskRunner, HostAccess):
         An execution the power cut interrupts keeps what its networks already did (a retentive tag it
         changed keeps the change, as on a real S7-1200); :attr:`on_cut` reports it, so that the trace
         has a row for it before the restart."""
-        cut = [(ex.task.name, ex.t0, ex.image_in) for ex in reversed(self._stack)]
+        cut = [(ex.task.name, ex.t0) for ex in reversed(self._stack)]
         self.stop(reason="power off")
         if self.on_cut is not None:
-            for task, t0, image in cut:
-                self.on_cut(self, task, t0, image)
+            for task, t0 in cut:
+                self.on_cut(self, task, t0)
         self.start()
 
     # -- running ------------------------------------------------------------------------------

@@ -82,14 +82,13 @@ class RunningTask:
 class Execution:
     """The running execution of a task: start, duration, next network, time lost to pre-emption."""
 
-    __slots__ = ("task", "t0", "duration", "offsets", "index", "shift", "paused_at", "image_in")
+    __slots__ = ("task", "t0", "duration", "offsets", "index", "shift", "paused_at")
 
     def __init__(self, task: RunningTask):
         self.task = task
         self.t0 = self.duration = self.index = self.shift = 0
         self.paused_at = -1
         self.offsets: list[int] = []
-        self.image_in: dict[str, Any] = {}  # the inputs as delivered when it started (for the trace)
 
     def next_time(self) -> int:
         if self.index < self.task.n:
@@ -165,13 +164,12 @@ class TaskRunner:
                     self._refresh_inputs(task)
                 else:
                     d.update(inputs)
-                    self.image_in = ex.image_in = inputs.copy()
+                    self.image_in = inputs.copy()
                 duration = fixed or self._cycle_duration(task)
                 if duration != ex.duration or not ex.offsets:
                     ex.offsets = task.network_offsets(duration, cfg.network_cost_ns)
                 ex.t0, ex.duration, ex.index, ex.shift = t0, duration, 0, 0
                 self.scan_start_ns = t0
-                self.scan_inputs = ex.image_in
                 stack.append(ex)
                 if whole is not None:
                     try:
@@ -254,7 +252,6 @@ class TaskRunner:
         ex.t0, ex.duration, ex.index, ex.shift, ex.paused_at = t0, duration, 0, 0, -1
         if task.kind == "cyclic":
             self.scan_start_ns = t0
-            self.scan_inputs = ex.image_in
         self._stack.append(ex)
 
     def _advance_interrupt(self, task: RunningTask, start: int) -> None:
@@ -408,7 +405,6 @@ class TaskRunner:
                 self._diag_changed = False
                 self._set_system_bits()
         elif self.on_task_end is not None:
-            self.task_inputs = ex.image_in
             self.on_task_end(self, task.name, ex.t0, end)
 
     def _fault(self, task: RunningTask, k: int, event: str, message: str, exc: BaseException | None) -> None:
@@ -425,8 +421,8 @@ class TaskRunner:
     # -- process images -----------------------------------------------------------------------
 
     def _refresh_inputs(self, task: RunningTask) -> None:
-        """Read the task's inputs into the process image, and keep what was read (``image_in``): the
-        trace records it, so a program that writes an input changes its image, never its record."""
+        """Read the task's inputs into the process image, and keep what was delivered (``image_in``): the
+        trace records that, so a program that writes an input changes its image, never its record."""
         d = self.t.__dict__
         if task.kind == "cyclic":
             inputs = self.inputs
@@ -443,10 +439,9 @@ class TaskRunner:
         if self.forces:
             self._apply_forces()
         if task.kind == "cyclic":
-            image = {name: d[name] for name in self.input_names}
-        else:  # a partition: the other inputs are as delivered at their last refresh
-            image = {**self.image_in, **{name: d[name] for name in task.inputs}}
-        self.image_in = task.execution.image_in = image
+            self.image_in = {name: d[name] for name in self.input_names}
+        else:  # a partition: the other inputs stay as delivered at their last refresh
+            self.image_in.update((name, d[name]) for name in task.inputs)
 
     def _refresh_inputs_stopped(self) -> None:
         for name in self.input_names:

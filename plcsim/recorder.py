@@ -4,9 +4,10 @@ By default: every input, output and memory tag, every scalar member of a data bl
 Q and ET, each counter's CV, QU and QD. Clock and system memory bits are left out unless the
 program uses them. Reading for the trace never refreshes a timer (observing changes nothing).
 
-An input is recorded as the plant and the wiring delivered it: the process image as the task read it
-at its start, before its networks ran. A program that writes an input tag changes what it reads
-itself, never what the trace (and so the grader) sees.
+An input is recorded as the plant and the wiring delivered it: the value its last refresh of the
+process image read (OB1's at the start of the scan, or an interrupt's that read it since), before any
+network ran. A program that writes an input tag changes what it reads itself, never what the trace
+(and so the grader) sees.
 """
 
 from __future__ import annotations
@@ -137,7 +138,7 @@ class Recorder:
         self.cpu.on_cut = self.on_cut
 
     def on_scan(self, cpu: CPU) -> None:
-        values = self.row(cpu.t.__dict__, cpu.scan_inputs)
+        values = self.row(cpu.t.__dict__, cpu.image_in)
         if self.changes_only:
             if values == self._last:
                 return
@@ -150,25 +151,25 @@ class Recorder:
         full_row, d = self._full_row, self.cpu.t.__dict__
 
         def on_scan(cpu: CPU) -> None:
-            pending.append(full_row(d, cpu.scan_inputs, cpu.scan_start_ns, cpu.scan_end_ns))
+            pending.append(full_row(d, cpu.image_in, cpu.scan_start_ns, cpu.scan_end_ns))
             if len(pending) >= BLOCK:
                 pack()
 
         return on_scan
 
     def on_task(self, cpu: CPU, task: str, start_ns: int, end_ns: int) -> None:
-        values = self.row(cpu.t.__dict__, cpu.task_inputs)
+        values = self.row(cpu.t.__dict__, cpu.image_in)
         if self.changes_only:
             if values == self._last:
                 return
             self._last = values
         self.trace.add_row(start_ns, end_ns, _task_number(task), values)
 
-    def on_cut(self, cpu: CPU, task: str, start_ns: int, image_in: dict[str, Any]) -> None:
+    def on_cut(self, cpu: CPU, task: str, start_ns: int) -> None:
         """The row of an execution a power cut interrupted: what its networks did is kept (retentive
         tags keep it through the restart, so a check must see it); it ends at the cut, and its outputs
         are what the modules drive from then on (off)."""
-        values = self._stopped_row(cpu.t.__dict__, image_in, cpu.outputs)
+        values = self._stopped_row(cpu.t.__dict__, cpu.image_in, cpu.outputs)
         if self.changes_only and values == self._last:
             return
         self._last = values
@@ -190,9 +191,9 @@ def _task_number(task: str) -> int:
 
 def _compile_getter(sources: list[str], head: bool = False, outputs: bool = False) -> Callable[..., tuple[Any, ...]]:
     """A function returning the row as a tuple, generated once from the access paths (our code, not a
-    program's): ``d`` is the CPU's tags, ``i`` the input image the task read. With ``head`` it takes the
-    scan's start and end and returns the whole trace row; with ``outputs`` it takes the output modules'
-    values ``o`` (the sources name them)."""
+    program's): ``d`` is the CPU's tags, ``i`` the inputs as delivered (:attr:`CPU.image_in`). With
+    ``head`` it takes the scan's start and end and returns the whole trace row; with ``outputs`` it
+    takes the output modules' values ``o`` (the sources name them)."""
     body = "".join(f"{source}, " for source in sources)
     if head:
         return eval(f"lambda d, i, a, b: (a, b, 1, {body})", {"__builtins__": {}})  # built from tag names

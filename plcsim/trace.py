@@ -17,20 +17,22 @@ that read it:
 True
 
 **Row order.** A row is written when its execution ends, so rows are in the order of their end times
-(ties in the order they were recorded). An OB30 call that pre-empts an OB1 scan ends, and is recorded,
-before that scan: start times are in order only within one task. Ask per task rather than
-``searchsorted`` over :attr:`Trace.times`: :meth:`Trace.of_task` (the rows of one task),
-:meth:`Trace.scan_after` (the scan that saw something that happened at a time), :meth:`Trace.value_at`.
-An input's rises, falls and intervals follow the tasks' start times (when the image was read):
+(ties in the order they were recorded), and each row holds the state at its end. An OB30 call that
+pre-empts an OB1 scan ends, and is recorded, before that scan: start times are in order only within one
+task. Ask per task rather than ``searchsorted`` over :attr:`Trace.times`: :meth:`Trace.of_task` (the rows
+of one task), :meth:`Trace.scan_after` (the scan that saw something that happened at a time),
+:meth:`Trace.value_at`. An input holds what the plant delivered at its last refresh (OB1's at the scan
+start, or an interrupt's that read it since), never what the program wrote into it:
 
->>> tr = Trace(["S1", "M"], kinds={"S1": "input"}, types={"S1": "bool", "M": "bool"})
->>> tr.add_row(2_000_000, 3_000_000, 30, (True, True))    # OB30 at 2 ms, inside the OB1 scan from 0 ms
->>> tr.add_row(0, 10_000_000, 1, (False, True))           # that scan read S1 FALSE at 0 ms
->>> tr.add_row(10_000_000, 20_000_000, 1, (True, False))
->>> tr.rises("S1").tolist(), tr.scan_after(1_000_000), tr.scan_after(1_000_000, task="OB30")
-([2000000], 2, 0)
->>> tr.of_task("OB1").column("M").tolist(), tr.value_at("S1", 5_000_000)
-([True, False], True)
+>>> tr = Trace(["S1"], kinds={"S1": "input"}, types={"S1": "bool"})
+>>> tr.add_row(0, 10_000_000, 1, (False,))
+>>> tr.add_row(12_000_000, 13_000_000, 30, (True,))  # OB30 at 12 ms read S1 TRUE, inside the scan from 10 ms
+>>> tr.add_row(10_000_000, 21_000_000, 1, (True,))
+>>> tr.add_row(21_000_000, 31_000_000, 1, (True,))
+>>> tr.rises("S1").tolist(), tr.scan_after(11_000_000), tr.scan_after(11_000_000, task="OB30")
+([12000000], 3, 1)
+>>> tr.of_task("OB1").times.tolist(), tr.value_at("S1", 5_000_000), tr.value_at("S1", 12_000_000)
+([0, 10000000, 21000000], False, True)
 """
 
 from __future__ import annotations
@@ -231,15 +233,6 @@ class Trace:
             return None
         return np.argsort(times, kind="stable")
 
-    def _timeline(self, name: str) -> tuple[np.ndarray | None, np.ndarray]:
-        """The order in which a signal's rows follow each other in time, and when each became valid:
-        an input by the start of the task that read it, anything else in the order the rows were written."""
-        if self.kinds.get(name) == "input":
-            order = self._start_order()
-            if order is not None:
-                return order, self.times[order]
-        return None, self.signal_times(name)
-
     def signal_times(self, name: str) -> np.ndarray:
         """When each row's value of ``name`` became valid: scan end for outputs, scan start otherwise."""
         return self.end_times if self.kinds.get(name) == "output" else self.times
@@ -257,39 +250,31 @@ class Trace:
         value = col[order[max(k, 0)]]
         return bool(value) if self.types.get(name) == "bool" else value.item()
 
-    def _changes(self, name: str, rising: bool) -> tuple[np.ndarray | None, np.ndarray, np.ndarray]:
-        order, when = self._timeline(name)
+    def _edges(self, name: str, rising: bool) -> np.ndarray:
         col = self.column(name).astype(bool)
-        if order is not None:
-            col = col[order]
         if len(col) < 2:
-            return order, when, np.zeros(0, dtype=np.int64)
+            return np.zeros(0, dtype=np.int64)
         change = (col[1:] & ~col[:-1]) if rising else (~col[1:] & col[:-1])
-        return order, when, np.nonzero(change)[0] + 1
+        return np.nonzero(change)[0] + 1
 
     def rises(self, name: str) -> np.ndarray:
         """Times at which a Bool signal went FALSE -> TRUE."""
-        _, when, at = self._changes(name, True)
-        return when[at]
+        return self.signal_times(name)[self._edges(name, True)]
 
     def falls(self, name: str) -> np.ndarray:
         """Times at which a Bool signal went TRUE -> FALSE."""
-        _, when, at = self._changes(name, False)
-        return when[at]
+        return self.signal_times(name)[self._edges(name, False)]
 
     def rise_scans(self, name: str) -> np.ndarray:
         """Row numbers at which a Bool signal went FALSE -> TRUE."""
-        order, _, at = self._changes(name, True)
-        return at if order is None else order[at]
+        return self._edges(name, True)
 
     def intervals(self, name: str, value: bool = True) -> list[tuple[int, int | None]]:
         """``[(start, end)]`` while a Bool signal had ``value``; the last end is None if it still has it."""
-        order, when = self._timeline(name)
         col = self.column(name).astype(bool)
-        if order is not None:
-            col = col[order]
         if not value:
             col = ~col
+        when = self.signal_times(name)
         out: list[tuple[int, int | None]] = []
         start = None
         for k in np.flatnonzero(np.diff(np.concatenate(([False], col, [False])).astype(np.int8))):

@@ -85,13 +85,13 @@ OB30 = CyclicInterrupt(tick, period="30ms")
 """
 
 
-def _ob30_run() -> Simulation:
+def _ob30_run(write_at: str = "95ms") -> Simulation:
     cpu = CPU(
         tags={"S1": Tag("%I0.0"), "LED": Tag("%Q0.0"), "M1": Tag("%M0.0"), "M2": Tag("%M0.1")},
         program=WITH_OB30,
         cycle="10ms",
     )
-    sim = Simulation(cpu, scenario=Scenario("press", write("S1", True, t="95ms"), duration="200ms"))
+    sim = Simulation(cpu, scenario=Scenario("press", write("S1", True, t=write_at), duration="200ms"))
     sim.run()
     return sim
 
@@ -123,11 +123,17 @@ def test_the_scan_that_saw_a_write_is_the_first_of_its_task_starting_after_it():
 
 
 def test_an_input_rises_once_at_the_first_task_that_read_it():
-    tr = _ob30_run().trace
-    first = int(seen_at(tr, [95 * MS])[0])
-    assert tr.rises("S1").tolist() == [first]
+    """S1 written at 116 ms, inside the OB1 scan 114..125 ms that the OB30 call at 120 ms pre-empts:
+    OB30 reads it first (its row comes first), the scan's row ends with it as delivered, the next
+    scans keep it. One rise, at 120 ms, and no fall, whatever the rows' start order."""
+    tr = _ob30_run("116ms").trace
+    k30 = tr.scan_after(116 * MS, task="OB30")
+    scan = int(np.flatnonzero((tr.tasks == 1) & (tr.times == 114 * MS))[0])
+    assert (tr.times[k30], k30 + 1) == (120 * MS, scan)  # the OB30 call is recorded just before the scan
+    assert tr.rises("S1").tolist() == [120 * MS]
     assert tr.falls("S1").tolist() == []
-    assert tr.intervals("S1") == [(first, None)]
+    assert tr.intervals("S1") == [(120 * MS, None)]
+    assert (tr.column("S1")[scan], tr.column("M1")[scan], tr.column("M2")[scan]) == (True, False, True)
 
 
 def test_seen_counts_a_tolerance_from_the_scan_that_read_the_cause():
