@@ -1,4 +1,11 @@
-"""Checks shared by the operating-hours meters 4.3.14 and 4.3.15 (computed from the trace)."""
+"""Checks shared by the operating-hours meters 4.3.14 and 4.3.15 (computed from the trace).
+
+Every reset is judged in the execution that handled it: the first row, among those ending after the
+HMI write of NULUJ, in which NULUJ is FALSE again. It is the scan that saw the write (the first one of
+its task starting at or after it), or the scan the write fell into, if a later network of that scan
+already read it (with an OB30 pre-empting OB1 between networks). Rows are taken in the trace's order
+(end times), so a program with an OB30 is judged like one without.
+"""
 
 from __future__ import annotations
 
@@ -8,10 +15,28 @@ from collections.abc import Callable
 import numpy as np
 
 from plcsim.check import Quantity, measure
-from plcsim.literals import datetime_literal
+from plcsim.literals import datetime_literal, format_ns, to_ns
+from plcsim.scenario import Action, write
 from plcsim.trace import Trace
 
 Meter = Callable[[Trace], np.ndarray]
+DTL_FIELDS = ("YEAR", "MONTH", "DAY", "HOUR", "MINUTE", "SECOND", "NANOSECOND")
+
+
+def resets_in_every_phase(start: str, cycle: str = "100ms") -> list[Action]:
+    """NULUJ written ten times, 3 s + one cycle apart, each at a random instant inside its own tenth of
+    the second: whatever the phase of the scans against Clock_1Hz, one write is read by the scan that
+    also sees the 1 s pulse, so a program that counts after it resets shows 1 s in the reset scan.
+
+    >>> [a.t.lo_ns % 1_000_000_000 // 1_000_000 for a in resets_in_every_phase("30s")]
+    [10, 110, 210, 310, 410, 510, 610, 710, 810, 910]
+    """
+    t0, step = to_ns(start), to_ns(cycle)
+    out = []
+    for j in range(10):
+        at = t0 + j * (3_000_000_000 + step)
+        out.append(write("MOTOR.NULUJ", True, t=f"{format_ns(at + step // 10)}..{format_ns(at + step * 9 // 10)}"))
+    return out
 
 
 def seconds_meter(tr: Trace) -> np.ndarray:
@@ -24,14 +49,32 @@ def hms_meter(tr: Trace) -> np.ndarray:
     return tr.column("MOTOR.HODINY") * 3600 + tr.column("MOTOR.MINUTY") * 60 + tr.column("MOTOR.SEKUNDY")
 
 
-def _last_reset(tr: Trace) -> int:
-    writes = [e.t_ns for e in tr.events_of("write", "MOTOR.NULUJ", "scenario")]
-    return writes[-1] if writes else 0
+def _resets(tr: Trace) -> list[int]:
+    """The times of the scenario's writes of NULUJ."""
+    return [e.t_ns for e in tr.events_of("write", "MOTOR.NULUJ", "scenario")]
 
 
-def _row_after(tr: Trace, t_ns: int) -> int:
-    """The first scan that saw something written at ``t_ns`` (an HMI write): the first starting after it."""
-    return int(np.searchsorted(tr.times, t_ns, side="left"))
+def _handler(tr: Trace, write_ns: int, before_ns: int | None = None) -> int | None:
+    """The row of the execution that handled a NULUJ written at ``write_ns``: the first row ending after
+    it in which NULUJ is FALSE (before the next write, if given), or the execution that row pre-empted;
+    None if NULUJ stayed TRUE."""
+    ends = tr.end_times
+    window = ends > write_ns
+    if before_ns is not None:
+        window &= ends <= before_ns
+    rows = np.flatnonzero(window & ~tr.column("MOTOR.NULUJ"))
+    if not len(rows):
+        return None
+    k = int(rows[0])
+    # an interrupt call inside a scan is recorded first: the scan around it is the one judged
+    around = np.flatnonzero((np.arange(len(ends)) > k) & (tr.times <= tr.times[k]) & (tr.tasks != tr.tasks[k]))
+    return int(around[-1]) if len(around) else k
+
+
+def _handlers(tr: Trace) -> list[tuple[int, int | None]]:
+    """Each NULUJ write with the row that handled it."""
+    writes = _resets(tr)
+    return [(w, _handler(tr, w, nxt)) for w, nxt in zip(writes, [*writes[1:], None])]
 
 
 def _belt_on_since(tr: Trace, start: int) -> tuple[float, int]:
@@ -47,11 +90,20 @@ def _belt_on_since(tr: Trace, start: int) -> tuple[float, int]:
 
 
 def counts_running_seconds(meter: Meter, *signals: str) -> Quantity:
-    """The meter at the end equals the seconds the belt ran since the last NULUJ, within 1 s per start."""
+    """The meter at the end equals the seconds the belt ran since the last reset, within 1 s per start.
 
-    def error(tr: Trace) -> float:
-        reset = _last_reset(tr)
-        seconds, starts = _belt_on_since(tr, reset)
+    The count starts at the end of the scan that zeroed the meter (the scan that saw NULUJ), not at the
+    HMI write: the program cannot count before it has read the write."""
+
+    def error(tr: Trace) -> float | None:
+        handled = _handlers(tr)
+        start = 0
+        if handled:
+            k = handled[-1][1]
+            if k is None:
+                return None
+            start = int(tr.end_times[k])
+        seconds, starts = _belt_on_since(tr, start)
         return abs(float(meter(tr)[-1]) - seconds) - max(1, starts)
 
     return (
@@ -82,71 +134,107 @@ def still_while_off(meter: Meter, *signals: str) -> Quantity:
     )
 
 
+def _nested(tr: Trace, k: int) -> int:
+    """How many executions of other tasks ran inside the execution of row ``k`` (interrupt calls that
+    pre-empted it, each with its own row)."""
+    inside = (tr.tasks != tr.tasks[k]) & (tr.times >= tr.times[k]) & (tr.end_times <= tr.end_times[k])
+    return int(np.count_nonzero(inside))
+
+
 def zero_after_reset(meter: Meter, *signals: str) -> Quantity:
-    def value(tr: Trace) -> float | None:
-        k = _row_after(tr, _last_reset(tr))
-        return None if k >= len(tr) else float(meter(tr)[k])
+    """At the end of the scan that handled each NULUJ the meter is 0: the scan adds nothing after the
+    reset. An interrupt that pre-empts that scan after the reset may count its own second (one each)."""
+
+    def values(tr: Trace) -> list[float | None] | None:
+        m = meter(tr)
+        out: list[float | None] = []
+        for _, k in _handlers(tr):
+            out.append(None if k is None else float(m[k] - min(m[k], _nested(tr, k))))
+        return out or None
 
     return (
-        measure("the meter in the scan that saw NULUJ", value, "MOTOR.NULUJ", *signals)
+        measure(
+            "the meter at the end of the scan that handled NULUJ (less 1 s per interrupt call inside that scan)",
+            values,
+            "MOTOR.NULUJ",
+            *signals,
+        )
         .equals(0)
         .named("NULUJ zeroes the meter in the same scan")
     )
 
 
 def nuluj_resets_itself() -> Quantity:
-    def value(tr: Trace) -> float | None:
-        k = _row_after(tr, _last_reset(tr))
-        return None if k >= len(tr) else float(tr.column("MOTOR.NULUJ")[k])
+    """NULUJ is FALSE at the end of the scan that saw it: the first execution of the handling task that
+    started at or after the write (or the one the write fell into) handled it."""
+
+    def late_scans(tr: Trace) -> list[float]:
+        out = []
+        for w, k in _handlers(tr):
+            task = int(tr.tasks[k]) if k is not None else 1
+            rows = tr.rows_of(task)
+            saw = rows[(tr.times[rows] >= w) & (rows < (k if k is not None else len(tr)))]
+            out.append(float(len(saw)))
+        return out
 
     return (
-        measure("NULUJ at the end of the scan that saw it", value, "MOTOR.NULUJ")
+        measure("scans that saw NULUJ and left it TRUE", late_scans, "MOTOR.NULUJ")
         .equals(0)
         .named("NULUJ resets itself in the same scan")
     )
 
 
 def stores_reset_time() -> Quantity:
-    """DATUM_CAS holds the CPU's local date and time of the reset scan (RD_LOC_T)."""
+    """DATUM_CAS holds the CPU's local date and time of the scan that handled NULUJ (RD_LOC_T), ±1 scan."""
 
-    def error(tr: Trace) -> float | None:
-        k = _row_after(tr, _last_reset(tr))
-        if k >= len(tr):
-            return None
-        f = {
-            name: int(tr.column(f"MOTOR.DATUM_CAS.{name}")[k])
-            for name in ("YEAR", "MONTH", "DAY", "HOUR", "MINUTE", "SECOND", "NANOSECOND")
-        }
-        try:
-            stored = dt.datetime(f["YEAR"], f["MONTH"], f["DAY"], f["HOUR"], f["MINUTE"], f["SECOND"])
-        except ValueError:
-            return float("inf")
+    def errors(tr: Trace) -> list[float | None] | None:
         start, nanos = datetime_literal(tr.meta["rtc_start"])
-        expected = start + dt.timedelta(microseconds=(nanos + int(tr.times[k])) // 1000)
-        return abs((stored - expected).total_seconds() + f["NANOSECOND"] / 1e9)
+        out: list[float | None] = []
+        for _, k in _handlers(tr):
+            if k is None:
+                out.append(None)
+                continue
+            f = {name: int(tr.column(f"MOTOR.DATUM_CAS.{name}")[k]) for name in DTL_FIELDS}
+            try:
+                stored = dt.datetime(f["YEAR"], f["MONTH"], f["DAY"], f["HOUR"], f["MINUTE"], f["SECOND"])
+            except ValueError:
+                out.append(float("inf"))
+                continue
+            # the CPU's time as simulated ns: the same origin as the row times
+            at = round((stored - start).total_seconds()) * 1_000_000_000 + f["NANOSECOND"] - nanos
+            lo, hi = int(tr.times[k]), int(tr.end_times[k])
+            out.append(float(max(lo - at, at - hi, 0)))
+        return out or None
 
     return (
         measure(
-            "seconds between DATUM_CAS and the CPU's time of the reset", error, "MOTOR.NULUJ", "MOTOR.DATUM_CAS.SECOND"
+            "time between DATUM_CAS and the scan that handled NULUJ",
+            errors,
+            "MOTOR.NULUJ",
+            "MOTOR.DATUM_CAS.SECOND",
+            unit="ns",
         )
-        .at_most(0.25)
+        .at_most("1 scan")
         .named("NULUJ stores the date and time of the reset")
     )
 
 
 def survives_power_cycle(meter: Meter, *signals: str) -> Quantity:
-    """The meter and DATUM_CAS read the same just before and just after a power cycle."""
+    """The meter and DATUM_CAS read the same at the power cut (the last row ending by then: a scan the
+    cut interrupted has its row) and in the first execution after the restart."""
 
     def change(tr: Trace) -> float | None:
         cycles = [e.t_ns for e in tr.events_of("power_cycle", source="scenario")]
         if not cycles:
             return None
-        k = _row_after(tr, cycles[0])
-        if k == 0 or k >= len(tr):
+        before = np.flatnonzero(tr.end_times <= cycles[0])
+        after = np.flatnonzero(tr.times >= cycles[0])
+        if not len(before) or not len(after):
             return None
+        k0, k1 = int(before[-1]), int(after[0])
         m = meter(tr)
-        stamp = tr.column("MOTOR.DATUM_CAS.SECOND")
-        return float(abs(m[k] - m[k - 1]) + abs(stamp[k] - stamp[k - 1]))
+        stamp = sum(np.abs(tr.column(f"MOTOR.DATUM_CAS.{name}")[[k0, k1]] @ [1, -1]) for name in DTL_FIELDS)
+        return float(abs(m[k1] - m[k0]) + stamp)
 
     return (
         measure("change of the meter and of DATUM_CAS across the power cycle", change, *signals)

@@ -5,6 +5,7 @@ from exercises._conveyor import CONV1_IO
 from exercises._hours import (
     counts_running_seconds,
     nuluj_resets_itself,
+    resets_in_every_phase,
     seconds_meter,
     still_while_off,
     stores_reset_time,
@@ -45,12 +46,13 @@ EXERCISE = Exercise(
             "belt runs",
             place("p1", at="S1", t="1s..2s"),
             knock_off("p1", t="4s..5s"),
-            write("MOTOR.NULUJ", True, t="30s..40s"),
+            *resets_in_every_phase("30s"),
             place("p2", at="S1", t="80s..85s"),
             remove("p2", when=held("S2", "1s")),
             duration="125s",
-            description="the first object is knocked off, so the belt runs empty; NULUJ at 30..40 s; a second "
-            "object stops the belt at S2 at about 85..90 s and the belt stays off",
+            description="the first object is knocked off, so the belt runs empty; NULUJ ten times from 30 s, "
+            "one of them read by the scan of the 1 s pulse; a second object stops the belt at S2 at about "
+            "85..90 s and the belt stays off",
         ),
         Scenario(
             "power cycle",
@@ -83,6 +85,14 @@ EXERCISE = Exercise(
             "wrong",
             "Clock_1Hz used as a level: the ADD runs in every scan of the half second",
             fails=("the meter counts the seconds the belt ran",),
+        ),
+        solution(
+            NUMBER,
+            "wrong-reset-first",
+            "wrong",
+            "the reset network comes before the counting network: a reset read in the scan of the 1 s pulse "
+            "leaves SEKUNDY at 1",
+            fails=("NULUJ zeroes the meter in the same scan",),
         ),
         solution(
             NUMBER,

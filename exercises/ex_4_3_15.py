@@ -14,12 +14,19 @@ from exercises._hours import (
 from plants import Conv1
 from plcsim.check import always, value
 from plcsim.exercise import Exercise, only
-from plcsim.scenario import Scenario, knock_off, place, power_cycle, write
+from plcsim.scenario import Action, Scenario, knock_off, place, power_cycle, write
 from plcsim.tags import DB
 from plcsim.types import DTL, Bool, UInt, USInt
 
 NUMBER = "4.3.15"
 SIGNALS = ("MOTOR.HODINY", "MOTOR.MINUTY", "MOTOR.SEKUNDY")
+
+
+def earlier_hours(t: str) -> list[Action]:
+    """The retentive meter already holds 17 h 43 min 21 s of earlier runs (as an HMI sets it): a reset
+    must zero the minutes and hours too, not only the seconds."""
+    return [write("MOTOR.HODINY", 17, t=t), write("MOTOR.MINUTY", 43, t=t), write("MOTOR.SEKUNDY", 21, t=t)]
+
 
 EXERCISE = Exercise(
     number=NUMBER,
@@ -50,16 +57,19 @@ EXERCISE = Exercise(
     scenarios=[
         Scenario(
             "two hours",
+            *earlier_hours(t="0s"),
             place("p1", at="S1", t="1s..2s"),
             knock_off("p1", t="4s..5s"),
             write("MOTOR.NULUJ", True, t="10s..20s"),
             duration="7350s",
-            description="the belt runs empty for about 2 h 2 min after NULUJ (the textbook's example: 7325 s)",
+            description="the meter holds 17 h 43 min 21 s from earlier runs; the belt runs empty for about "
+            "2 h 2 min after NULUJ (the textbook's example: 7325 s)",
         ),
         Scenario(
             "power cycle",
             place("p1", at="S1", t="1s..2s"),
             knock_off("p1", t="4s..5s"),
+            *earlier_hours(t="0s"),
             write("MOTOR.NULUJ", True, t="10s..15s"),
             power_cycle(t="100s..110s"),
             place("p2", at="S1", t="120s..125s"),
@@ -84,6 +94,13 @@ EXERCISE = Exercise(
             "reference",
             explanation="count, then carry seconds into minutes and minutes into hours in "
             "the same scan; NULUJ: MOVE 0 to three outputs, RD_LOC_T",
+        ),
+        solution(
+            NUMBER,
+            "wrong-reset-seconds-only",
+            "wrong",
+            "NULUJ zeroes only SEKUNDY (as in 4.3.14): the minutes and hours of earlier runs survive the reset",
+            fails=("NULUJ zeroes the meter in the same scan",),
         ),
         solution(
             NUMBER,

@@ -96,6 +96,7 @@ class CPU(TaskRunner, HostAccess):
         self.forces: dict[str, Any] = {}
         self.on_scan_end: Callable[[CPU], None] | None = None
         self.on_task_end: Callable[[CPU, str, int, int], None] | None = None
+        self.on_cut: Callable[[CPU, str, int], None] | None = None
         self.scan_count = 0
         self.scan_start_ns = 0
         self.scan_end_ns = 0
@@ -168,6 +169,8 @@ class CPU(TaskRunner, HostAccess):
         self.output_names = [e.name for e in table if e.address is not None and e.address.area == "Q"]
         self.inputs = {name: self.inputs.get(name, self.t.__dict__[name]) for name in self.input_names}
         self.outputs = {name: switched_off(self.t.__dict__[name]) for name in self.output_names}
+        # each input as the plant delivered it at its last refresh (what the trace records)
+        self.image_in: dict[str, Any] = dict(self.inputs)
         aliased = {c.key for c in self.aliases if c.container is self.t}
         self._aliased_inputs = [n for n in self.input_names if n in aliased]
         self._plain_inputs = [n for n in self.input_names if n not in aliased]
@@ -302,8 +305,16 @@ class CPU(TaskRunner, HostAccess):
             self._diag("RUN->STOP", f"the CPU switched to STOP ({reason})")
 
     def power_cycle(self) -> None:
-        """Power off and on: retain tags survive, everything else restarts from its start value."""
+        """Power off and on: retain tags survive, everything else restarts from its start value.
+
+        An execution the power cut interrupts keeps what its networks already did (a retentive tag it
+        changed keeps the change, as on a real S7-1200); :attr:`on_cut` reports it, so that the trace
+        has a row for it before the restart."""
+        cut = [(ex.task.name, ex.t0) for ex in reversed(self._stack)]
         self.stop(reason="power off")
+        if self.on_cut is not None:
+            for task, t0 in cut:
+                self.on_cut(self, task, t0)
         self.start()
 
     # -- running ------------------------------------------------------------------------------

@@ -160,12 +160,11 @@ class TaskRunner:
                 self._ticks[0] = 0
                 if t0 >= self._clock_next:
                     self._latch_clock_memory(t0)
-                if aliased_inputs:
+                if aliased_inputs or self.forces:
                     self._refresh_inputs(task)
                 else:
                     d.update(inputs)
-                    if self.forces:
-                        self._apply_forces()
+                    self.image_in = inputs.copy()
                 duration = fixed or self._cycle_duration(task)
                 if duration != ex.duration or not ex.offsets:
                     ex.offsets = task.network_offsets(duration, cfg.network_cost_ns)
@@ -422,6 +421,8 @@ class TaskRunner:
     # -- process images -----------------------------------------------------------------------
 
     def _refresh_inputs(self, task: RunningTask) -> None:
+        """Read the task's inputs into the process image, and keep what was delivered (``image_in``): the
+        trace records that, so a program that writes an input changes its image, never its record."""
         d = self.t.__dict__
         if task.kind == "cyclic":
             inputs = self.inputs
@@ -437,10 +438,15 @@ class TaskRunner:
                 store(self.t, name, self.inputs[name])
         if self.forces:
             self._apply_forces()
+        if task.kind == "cyclic":
+            self.image_in = {name: d[name] for name in self.input_names}
+        else:  # a partition: the other inputs stay as delivered at their last refresh
+            self.image_in.update((name, d[name]) for name in task.inputs)
 
     def _refresh_inputs_stopped(self) -> None:
         for name in self.input_names:
             store(self.t, name, self.inputs[name])
+        self.image_in = {name: self.t.__dict__[name] for name in self.input_names}
 
     def _write_outputs(self, task: RunningTask) -> None:
         if self.forces:

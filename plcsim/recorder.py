@@ -3,6 +3,11 @@
 By default: every input, output and memory tag, every scalar member of a data block, each timer's
 Q and ET, each counter's CV, QU and QD. Clock and system memory bits are left out unless the
 program uses them. Reading for the trace never refreshes a timer (observing changes nothing).
+
+An input is recorded as the plant and the wiring delivered it: the value its last refresh of the
+process image read (OB1's at the start of the scan, or an interrupt's that read it since), before any
+network ran. A program that writes an input tag changes what it reads itself, never what the trace
+(and so the grader) sees.
 """
 
 from __future__ import annotations
@@ -86,10 +91,7 @@ class Recorder:
         self.row = _compile_getter(sources)
         self._full_row = _compile_getter(sources, head=True)
         physical = [f"o[{n!r}]" if kinds[n] == "output" else src for n, src in zip(names, sources)]
-        self._stopped_row = eval(
-            f"lambda d, o: ({''.join(f'{p}, ' for p in physical)})",  # built from tag names
-            {"__builtins__": {}},
-        )
+        self._stopped_row = _compile_getter(physical, outputs=True)
         self.changes_only = changes_only
         self._last: tuple[Any, ...] | None = None
 
@@ -105,7 +107,7 @@ class Recorder:
                 raise UnknownTagError(f"cannot trace {name!r}: it is a {entry.member.type.name}; trace its members")
             area = entry.address.area if entry.address is not None else "M"
             kind = {"I": "input", "Q": "output"}.get(area, "memory")
-            return kind, _type_name(entry.member.type), f"d[{head!r}]"
+            return kind, _type_name(entry.member.type), f"{'i' if kind == 'input' else 'd'}[{head!r}]"
         if isinstance(value, IecTimer):
             member = {"Q": "_q", "ET": "_et", "PT": "PT", "IN": "IN"}.get(rest)
             if member is None:
@@ -129,12 +131,14 @@ class Recorder:
     # -- hooks ---------------------------------------------------------------------------------
 
     def attach(self) -> None:
-        """Start recording: every OB1 scan and every interrupt execution writes a row."""
+        """Start recording: every OB1 scan, every interrupt execution and every execution a power cut
+        interrupts writes a row."""
         self.cpu.on_scan_end = self.on_scan if self.changes_only else self._fast_on_scan()
         self.cpu.on_task_end = self.on_task
+        self.cpu.on_cut = self.on_cut
 
     def on_scan(self, cpu: CPU) -> None:
-        values = self.row(cpu.t.__dict__)
+        values = self.row(cpu.t.__dict__, cpu.image_in)
         if self.changes_only:
             if values == self._last:
                 return
@@ -147,33 +151,52 @@ class Recorder:
         full_row, d = self._full_row, self.cpu.t.__dict__
 
         def on_scan(cpu: CPU) -> None:
-            pending.append(full_row(d, cpu.scan_start_ns, cpu.scan_end_ns))
+            pending.append(full_row(d, cpu.image_in, cpu.scan_start_ns, cpu.scan_end_ns))
             if len(pending) >= BLOCK:
                 pack()
 
         return on_scan
 
     def on_task(self, cpu: CPU, task: str, start_ns: int, end_ns: int) -> None:
-        values = self.row(cpu.t.__dict__)
+        values = self.row(cpu.t.__dict__, cpu.image_in)
         if self.changes_only:
             if values == self._last:
                 return
             self._last = values
-        self.trace.add_row(start_ns, end_ns, int(task[2:]) if task[2:].isdigit() else 0, values)
+        self.trace.add_row(start_ns, end_ns, _task_number(task), values)
+
+    def on_cut(self, cpu: CPU, task: str, start_ns: int) -> None:
+        """The row of an execution a power cut interrupted: what its networks did is kept (retentive
+        tags keep it through the restart, so a check must see it); it ends at the cut, and its outputs
+        are what the modules drive from then on (off)."""
+        values = self._stopped_row(cpu.t.__dict__, cpu.image_in, cpu.outputs)
+        if self.changes_only and values == self._last:
+            return
+        self._last = values
+        self.trace.add_row(start_ns, cpu.now, _task_number(task), values)
 
     def on_stopped(self, t_ns: int, end_ns: int) -> None:
         """A row while the CPU is in STOP: no scan runs; the outputs are what the modules drive (off)."""
-        values = self._stopped_row(self.cpu.t.__dict__, self.cpu.outputs)
+        values = self._stopped_row(self.cpu.t.__dict__, self.cpu.image_in, self.cpu.outputs)
         if self.changes_only and values == self._last:
             return
         self._last = values
         self.trace.add_row(t_ns, end_ns, 0, values)
 
 
-def _compile_getter(sources: list[str], head: bool = False) -> Callable[..., tuple[Any, ...]]:
+def _task_number(task: str) -> int:
+    """The row's task column: the OB number (1 for OB1, 30 for OB30)."""
+    return int(task[2:]) if task[2:].isdigit() else 0
+
+
+def _compile_getter(sources: list[str], head: bool = False, outputs: bool = False) -> Callable[..., tuple[Any, ...]]:
     """A function returning the row as a tuple, generated once from the access paths (our code, not a
-    program's); with ``head`` it takes the scan's start and end and returns the whole trace row."""
+    program's): ``d`` is the CPU's tags, ``i`` the inputs as delivered (:attr:`CPU.image_in`). With
+    ``head`` it takes the scan's start and end and returns the whole trace row; with ``outputs`` it
+    takes the output modules' values ``o`` (the sources name them)."""
     body = "".join(f"{source}, " for source in sources)
     if head:
-        return eval(f"lambda d, a, b: (a, b, 1, {body})", {"__builtins__": {}})  # built from tag names
-    return eval(f"lambda d: ({body})", {"__builtins__": {}})  # built from tag names, not program text
+        return eval(f"lambda d, i, a, b: (a, b, 1, {body})", {"__builtins__": {}})  # built from tag names
+    if outputs:
+        return eval(f"lambda d, i, o: ({body})", {"__builtins__": {}})  # built from tag names
+    return eval(f"lambda d, i: ({body})", {"__builtins__": {}})  # built from tag names, not program text

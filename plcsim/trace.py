@@ -15,6 +15,24 @@ that read it:
 [(3000000, 5000000)]
 >>> tr.value_at("D1", 3_500_000)
 True
+
+**Row order.** A row is written when its execution ends, so rows are in the order of their end times
+(ties in the order they were recorded), and each row holds the state at its end. An OB30 call that
+pre-empts an OB1 scan ends, and is recorded, before that scan: start times are in order only within one
+task. Ask per task rather than ``searchsorted`` over :attr:`Trace.times`: :meth:`Trace.of_task` (the rows
+of one task), :meth:`Trace.scan_after` (the scan that saw something that happened at a time),
+:meth:`Trace.value_at`. An input holds what the plant delivered at its last refresh (OB1's at the scan
+start, or an interrupt's that read it since), never what the program wrote into it:
+
+>>> tr = Trace(["S1"], kinds={"S1": "input"}, types={"S1": "bool"})
+>>> tr.add_row(0, 10_000_000, 1, (False,))
+>>> tr.add_row(12_000_000, 13_000_000, 30, (True,))  # OB30 at 12 ms read S1 TRUE, inside the scan from 10 ms
+>>> tr.add_row(10_000_000, 21_000_000, 1, (True,))
+>>> tr.add_row(21_000_000, 31_000_000, 1, (True,))
+>>> tr.rises("S1").tolist(), tr.scan_after(11_000_000), tr.scan_after(11_000_000, task="OB30")
+([12000000], 3, 1)
+>>> tr.of_task("OB1").times.tolist(), tr.value_at("S1", 5_000_000), tr.value_at("S1", 12_000_000)
+([0, 10000000, 21000000], False, True)
 """
 
 from __future__ import annotations
@@ -34,6 +52,20 @@ BLOCK = 4096
 """Rows per packed numpy block."""
 HEAD = 3
 """Leading columns of every row: scan start, scan end, task number."""
+
+
+def task_number(task: str | int) -> int:
+    """The task column's value for a task: ``"OB1"`` -> 1, ``"ob30"`` -> 30, ``30`` -> 30 (0: STOP rows).
+
+    >>> task_number("OB30"), task_number(1)
+    (30, 1)
+    """
+    if isinstance(task, int):
+        return task
+    text = task.strip().upper()
+    if not (text.startswith("OB") and text[2:].isdigit()):
+        raise ValueError(f"a task is named like 'OB1' or 'OB30', not {task!r}")
+    return int(text[2:])
 
 
 @dataclass(frozen=True)
@@ -166,18 +198,56 @@ class Trace:
     def __contains__(self, name: object) -> bool:
         return name in self._index
 
+    # -- tasks and order -------------------------------------------------------------------------
+
+    def rows_of(self, task: str | int) -> np.ndarray:
+        """The row numbers of one task's executions (``"OB1"``, ``"OB30"``), in order."""
+        return np.flatnonzero(self.table[:, 2] == task_number(task))
+
+    def of_task(self, task: str | int) -> Trace:
+        """A trace of one task's rows only (names, meta and events shared): its times are in order."""
+        view = Trace(self.names, self.kinds, self.types, self.meta, self.events)
+        view._blocks = [self.table[self.rows_of(task)]]
+        return view
+
+    def scan_after(self, t_ns: int, task: str | int = "OB1") -> int | None:
+        """The row of the first execution of ``task`` that started at or after ``t_ns``: the scan that saw
+        what happened at ``t_ns`` (an HMI write, a press, a sensor's new level). None if there is none."""
+        rows = self.rows_of(task)
+        k = int(np.searchsorted(self.times[rows], t_ns, side="left"))
+        return int(rows[k]) if k < len(rows) else None
+
+    def rows_started_by(self, t_ns: np.ndarray | int) -> np.ndarray:
+        """For each time, the row whose execution started last at or before it (row 0 if none did):
+        the scan in which a condition is read at that time, whatever the rows' order."""
+        times = self.times
+        order = self._start_order()
+        ordered = times if order is None else times[order]
+        k = np.clip(np.searchsorted(ordered, t_ns, side="right") - 1, 0, max(len(times) - 1, 0))
+        return k if order is None else order[k]
+
+    def _start_order(self) -> np.ndarray | None:
+        """Row numbers sorted by start time (ties in recording order); None if the rows already are."""
+        times = self.times
+        if len(times) < 2 or bool(np.all(times[1:] >= times[:-1])):
+            return None
+        return np.argsort(times, kind="stable")
+
     def signal_times(self, name: str) -> np.ndarray:
         """When each row's value of ``name`` became valid: scan end for outputs, scan start otherwise."""
         return self.end_times if self.kinds.get(name) == "output" else self.times
 
-    def value_at(self, name: str, t_ns: int) -> Any:
-        """The value of a signal at time ``t_ns`` (the last row valid at or before it; the first row before)."""
-        when = self.signal_times(name)
-        k = int(np.searchsorted(when, t_ns, side="right")) - 1
-        col = self.column(name)
+    def value_at(self, name: str, t_ns: int, task: str | int | None = None) -> Any:
+        """The value of a signal at time ``t_ns``: the row valid at or before it that became valid last
+        (the first row if none is); with ``task``, among that task's rows only."""
+        source = self if task is None else self.of_task(task)
+        col = source.column(name)
         if len(col) == 0:
-            raise ValueError("the trace is empty")
-        value = col[max(k, 0)]
+            raise ValueError("the trace is empty" if task is None else f"the trace has no row of {task}")
+        when = source.signal_times(name)
+        order = np.argsort(when, kind="stable")
+        k = int(np.searchsorted(when[order], t_ns, side="right")) - 1
+        value = col[order[max(k, 0)]]
         return bool(value) if self.types.get(name) == "bool" else value.item()
 
     def _edges(self, name: str, rising: bool) -> np.ndarray:
@@ -185,20 +255,19 @@ class Trace:
         if len(col) < 2:
             return np.zeros(0, dtype=np.int64)
         change = (col[1:] & ~col[:-1]) if rising else (~col[1:] & col[:-1])
-        return self.signal_times(name)[1:][change]
+        return np.nonzero(change)[0] + 1
 
     def rises(self, name: str) -> np.ndarray:
         """Times at which a Bool signal went FALSE -> TRUE."""
-        return self._edges(name, True)
+        return self.signal_times(name)[self._edges(name, True)]
 
     def falls(self, name: str) -> np.ndarray:
         """Times at which a Bool signal went TRUE -> FALSE."""
-        return self._edges(name, False)
+        return self.signal_times(name)[self._edges(name, False)]
 
     def rise_scans(self, name: str) -> np.ndarray:
         """Row numbers at which a Bool signal went FALSE -> TRUE."""
-        col = self.column(name).astype(bool)
-        return np.nonzero(col[1:] & ~col[:-1])[0] + 1
+        return self._edges(name, True)
 
     def intervals(self, name: str, value: bool = True) -> list[tuple[int, int | None]]:
         """``[(start, end)]`` while a Bool signal had ``value``; the last end is None if it still has it."""

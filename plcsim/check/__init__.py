@@ -13,8 +13,10 @@ Building blocks:
 
 * **occurrences** (points in time): ``rises("D1")``, ``falls("D1")``, ``event("part entered", "S2")``,
   ``action("press", "ACK")`` (a scenario action), ``becomes(condition)``, ``calls("OB30")`` (the
-  starts of an interrupt task), ``either(a, b)``. An edge needs a scan before it: a signal already
-  TRUE in the first scan has not risen (check it with ``eventually(...).before(...)``).
+  starts of an interrupt task), ``either(a, b)``, ``seen(action("write", "NULUJ"))`` (the starts of the
+  scans that saw it: a tolerance counts from the scan that read the cause, not from the cause). An
+  edge needs a scan before it: a signal already TRUE in the first scan has not risen (check it with
+  ``eventually(...).before(...)``).
 * **conditions** (true or false in each scan): a tag name (``"D1"`` means D1 is TRUE), ``off("D1")``,
   ``value("CISLO") > 0``, ``all_of(...)``, ``any_of(...)``, ``not_(...)``, ``implies(a, b)``,
   ``same("LED", "TLACIDLO")``.
@@ -63,6 +65,7 @@ from plcsim.check.occurrences import (
     Occurrences,
     Response,
     ResponseBuilder,
+    Seen,
     action,
     becomes,
     calls,
@@ -70,6 +73,8 @@ from plcsim.check.occurrences import (
     event,
     falls,
     rises,
+    seen,
+    seen_at,
 )
 from plcsim.check.quantities import Quantity, count, durations, duty, final, measure, spacing, value_at
 from plcsim.check.static import StaticCheck, program_uses_no
@@ -116,6 +121,8 @@ __all__ = [
     "action",
     "calls",
     "either",
+    "seen",
+    "seen_at",
     "never",
     "always",
     "holds",
@@ -142,6 +149,7 @@ __all__ = [
     "EventOccurrences",
     "Response",
     "ResponseBuilder",
+    "Seen",
     "Always",
     "Eventually",
     "Holds",

@@ -9,6 +9,7 @@ import numpy as np
 
 from plcsim.check.base import Check, Context, Names, Span, Verdict, names_of, signals_of
 from plcsim.check.conditions import Condition, as_condition
+from plcsim.trace import Trace
 
 # --------------------------------------------------------------------------------------------
 # Occurrences: points in time
@@ -136,6 +137,47 @@ class Either(Occurrences):
         return names_of(*self.parts)
 
 
+@dataclass(frozen=True)
+class Seen(Occurrences):
+    """The starts of the scans that saw other occurrences (the first execution of ``task`` starting at or
+    after each): the instant the program could first react, from which a reaction time counts."""
+
+    what: Occurrences
+    task: str = "OB1"
+
+    def times(self, ctx: Context) -> np.ndarray:
+        return seen_at(ctx.trace, self.what.times(ctx), self.task)
+
+    def describe(self) -> str:
+        return f"the {self.task} scan that saw {self.what.describe()}"
+
+    def signals(self) -> list[str]:
+        return self.what.signals()
+
+
+def seen_at(trace: Trace, t_ns: np.ndarray | list[int], task: str = "OB1") -> np.ndarray:
+    """The start of the first ``task`` execution at or after each time (times no scan saw are left out).
+
+    An HMI write at 150 ms is seen by the 10 ms scan that starts at 150 ms; one at 155 ms by the scan at 160 ms:
+
+    >>> from plcsim.trace import Trace
+    >>> tr = Trace(["M"], types={"M": "bool"})
+    >>> for k in range(20):
+    ...     tr.add_row(k * 10_000_000, (k + 1) * 10_000_000, 1, (False,))
+    >>> seen_at(tr, [150_000_000, 155_000_000, 999_000_000]).tolist()
+    [150000000, 160000000]
+    """
+    starts = trace.times[trace.rows_of(task)]
+    k = np.searchsorted(starts, np.asarray(t_ns, dtype=np.int64), side="left")
+    return starts[k[k < len(starts)]]
+
+
+def seen(what: Occurrences, task: str = "OB1") -> Seen:
+    """The scans that saw ``what``: ``rises("LED").within("1 scan").after(seen(action("write", "ACK")))``
+    counts the scan from the scan that read the HMI write, not from the write itself."""
+    return Seen(what, task)
+
+
 def calls(task: str) -> Calls:
     """The instants an interrupt task runs (its trace rows): ``rises("LED").within("2ms").after(calls("OB30"))``."""
     return Calls(task)
@@ -214,8 +256,7 @@ class Response(Check):
         triggers = self.trigger.times(ctx)
         if self.provided is not None and len(triggers):
             rows = self.provided.rows(ctx)
-            idx = np.clip(np.searchsorted(ctx.trace.times, triggers, side="right") - 1, 0, len(rows) - 1)
-            triggers = triggers[rows[idx]]
+            triggers = triggers[rows[ctx.trace.rows_started_by(triggers)]]
         signals = signals_of(self.trigger, self.response, self.provided)
         if len(triggers) < self.at_least:
             return Verdict(
