@@ -19,6 +19,7 @@ import math
 import struct
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import Any
 
 from plcsim.errors import DeclarationError, LiteralError, PlcTypeError
@@ -246,9 +247,9 @@ class StructType(DataType):
 
     def __init__(self, name: str, members: Mapping[str, DataType | Member]):
         self.name = name
-        self.members: dict[str, Member] = {}
-        for key, spec in members.items():
-            self.members[key] = as_member(spec, f"{name}.{key}")
+        self.members: Mapping[str, Member] = MappingProxyType(
+            {key: as_member(spec, f"{name}.{key}") for key, spec in members.items()}
+        )  # read-only: DTL is one object for every program
         self.bits = sum(m.type.bits for m in self.members.values())
 
     def default(self) -> Any:
