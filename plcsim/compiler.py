@@ -230,10 +230,11 @@ def check_subset(
             )
     _check_constants(tree, filename)
     visible = known | module_names
-    decl_only = set(declaration_only)
+    own_tags = _declared_tags(tree)
+    decl_only = set(declaration_only) | own_tags
     for stmt in tree.body:
         if isinstance(stmt, ast.FunctionDef):
-            _check_function(stmt, filename, visible, decl_only)
+            _check_function(stmt, filename, visible, decl_only, own_tags)
             continue
         for node in ast.walk(stmt):
             if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and node.id not in visible:
@@ -292,6 +293,19 @@ def _fold(node: ast.expr, memo: dict[int, Any]) -> Any:
     return value
 
 
+def _declared_tags(tree: ast.Module) -> set[str]:
+    """Module-level names bound to a declaration (``SEEN = Int(0)``): a network reads them as t.SEEN."""
+    return {
+        target.id
+        for stmt in tree.body
+        if isinstance(stmt, ast.Assign)
+        and isinstance(stmt.value, ast.Call)
+        and not (isinstance(stmt.value.func, ast.Name) and stmt.value.func.id == "TIME")
+        for target in stmt.targets
+        if isinstance(target, ast.Name) and not target.id.startswith("OB")
+    }
+
+
 def _check_binding(name: str, node: ast.AST, filename: str, reserved: set[str]) -> None:
     if name.startswith("_"):
         raise SubsetError(f"{_where(filename, node)}: names starting with _ are reserved ({name})")
@@ -328,7 +342,9 @@ def _module_level_names(tree: ast.Module) -> set[str]:
     return names
 
 
-def _check_function(func: ast.FunctionDef, filename: str, visible: set[str], declaration_only: set[str]) -> None:
+def _check_function(
+    func: ast.FunctionDef, filename: str, visible: set[str], declaration_only: set[str], own_tags: set[str]
+) -> None:
     local = {a.arg for a in func.args.args + func.args.kwonlyargs + func.args.posonlyargs}
     inside = [n for part in (func.args, *func.body) for n in ast.walk(part)]  # not the decorators: @label
     for node in inside:
@@ -346,6 +362,10 @@ def _check_function(func: ast.FunctionDef, filename: str, visible: set[str], dec
             if node.id not in local and node.id not in visible:
                 raise _unknown_name(node, filename, local | visible)
             if node.id in declaration_only and node.id not in local:
+                if node.id in own_tags:
+                    raise SubsetError(
+                        f"{_where(filename, node)}: {node.id} is a tag of the program; in a network it is t.{node.id}"
+                    )
                 raise SubsetError(
                     f"{_where(filename, node)}: {node.id} declares a tag or an instance; declare it at module "
                     f"level (NAME = {node.id}(...)) and use it in a network as t.NAME"

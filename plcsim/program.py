@@ -63,9 +63,11 @@ from plcsim.module_level import NetworkRef, evaluate_module
 from plcsim.program_text import read_program_text
 from plcsim.safe_math import SAFE_FUNCTIONS, bounded_range
 from plcsim.tags import DB, DataBlock, Tag, TagTable
-from plcsim.types import ArrayType, DataType, ElementaryType, Member, StringType, StructType
+from plcsim.types import ArrayType, DataType, ElementaryType, Member, StringType, StructType, value_count
 
 MAX_LABELS_S7_1200 = 32
+MAX_VALUES = 1_000_000
+"""The most values a program may declare (an S7-1200 has 50..150 KB of work memory: far fewer)."""
 MAX_MERGED_STATEMENTS = 5000
 """Above this many statements an OB's networks are not merged into one function (see merge_networks):
 the merge speeds up scans of ordinary programs and would only slow down loading a huge one."""
@@ -321,6 +323,7 @@ class Program:
                     f"{name} = {value.name}() for a symbolic tag or {name} = Tag('%M10.0', {value.name}) "
                     f"for an addressed one"
                 )
+        self._check_size(values.lines)
         for name, value in values.bindings.items():
             self.tasks[name] = self._task(name, value, values.labels, values.lines[name])
         for name in self.functions:
@@ -330,6 +333,18 @@ class Program:
             message = no_ob1_message(self._filename, self._tree, bool(self.tasks))
             if message:
                 raise ProgramError(message)
+
+    def _check_size(self, lines: Mapping[str, int]) -> None:
+        """Refuse declarations that would fill the host's memory (``Array(0, 100000000, Int)``)."""
+        total = 0
+        for name, decl in self.declarations.items():
+            members = decl.members.values() if isinstance(decl, DataBlock) else [decl]
+            total += sum(value_count(m.type) if isinstance(m, Member) else 1 for m in members)
+            if total > MAX_VALUES:
+                raise DeclarationError(
+                    f"{self._filename}, line {lines.get(name, '?')}: {name} brings the program to {total} "
+                    f"values; a program may declare at most {MAX_VALUES} (an S7-1200's work memory holds far fewer)"
+                )
 
     def _task(self, name: str, value: Any, labels: dict[str, str], line: int) -> TaskSpec:
         where = f"{self._filename}, line {line}"

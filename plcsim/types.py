@@ -300,6 +300,15 @@ class StringType(DataType):
 String = StringType()
 
 
+def value_count(dtype: DataType) -> int:
+    """How many values a tag of this type holds (an ARRAY[0..9] of a 3-member STRUCT holds 30)."""
+    if isinstance(dtype, ArrayType):
+        return (dtype.hi - dtype.lo + 1) * value_count(dtype.element)
+    if isinstance(dtype, StructType):
+        return sum(value_count(m.type) for m in dtype.members.values())
+    return 1
+
+
 def as_member(spec: DataType | Member, where: str) -> Member:
     """Normalise a member declaration given as a type or as ``Type(start, retain=...)``."""
     if isinstance(spec, Member):

@@ -11,7 +11,7 @@ import pytest
 
 from plcsim import CPU, Program, Tag
 from plcsim.compiler import MAX_NESTING
-from plcsim.errors import ProgramError, SubsetError
+from plcsim.errors import DeclarationError, ProgramError, SubsetError
 
 PANEL = {"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")}
 
@@ -131,3 +131,16 @@ def test_size_taking_text_builders_are_refused(method):
 def test_modulo_still_computes_numbers():
     cpu = run("X = Int(0)\ndef OB1(t):\n    t.X = 17 % 5 + MOD(7, 4)\n")
     assert cpu.read("X") == 2 + 3
+
+
+@pytest.mark.parametrize(
+    "declaration",
+    [
+        "A = DB(X=Array(0, 100000000, Int))",
+        "A = DB(X=Array(0, 2000, Array(0, 2000, Bool)))",
+        "N = UDT(" + ", ".join(f"M{i}=Array(0, 999, Int)" for i in range(10)) + ")\nA = DB(X=Array(0, 200, N))",
+    ],
+)
+def test_a_declaration_too_big_for_any_plc_is_refused_before_it_is_built(declaration):
+    with pytest.raises(DeclarationError, match=r"lab.py, line \d+: A brings the program to \d+ values; a program may"):
+        Program.from_source(declaration + "\ndef OB1(t):\n    pass\n", "lab.py")

@@ -136,3 +136,8 @@ def test_module_level_code_is_never_executed_at_download():
     program = Program.from_source("SEEN = Int(0)\n" + NET, "lab.py")
     compiled_names = set(program.compile(CPU(tags=PANEL, program=program).table).code.co_names)
     assert compiled_names == {"OB1"}
+
+
+def test_a_declared_tag_named_bare_in_a_network_says_write_t_name():
+    with pytest.raises(SubsetError, match=r"lab.py, line 3: SEEN is a tag of the program; in a network it is t.SEEN"):
+        load("SEEN = Int(0)\ndef OB1(t):\n    t.LED = SEEN > 0\n")
