@@ -19,7 +19,7 @@ import builtins
 import io
 import operator
 import tokenize
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -201,16 +201,15 @@ def check_subset(
 
     ``declaration_only`` names (``Tag``, ``DB``, ``IEC_TIMER`` ...) may be used at module level only.
     """
-    _check_nesting(tree, filename)
     known = set(known_names) | ALLOWED_BUILTINS
     reserved = known - {"True", "False", "None"}
     module_names = _module_level_names(tree)
     declared = {id(t) for s in tree.body if isinstance(s, ast.Assign) for t in s.targets}  # seen as t.NAME
-    for node in ast.walk(tree):
+    for node, line in _nodes_not_too_deep(tree, filename):
         kind = type(node)
         if kind not in ALLOWED_NODES:
             reason = _REFUSED_NODES.get(kind, f"{kind.__name__} syntax is not part of PLC programs")
-            raise SubsetError(f"{_where(filename, node)}: {reason}")
+            raise SubsetError(f"{filename}, line {line}: {reason}")
         if kind is ast.Name and node.id.startswith("_"):
             raise SubsetError(f"{_where(filename, node)}: names starting with _ are reserved ({node.id})")
         if kind is ast.Attribute and (node.attr.startswith("_") or node.attr in _FORBIDDEN_ATTRS):
@@ -266,7 +265,7 @@ def _check_constants(tree: ast.Module, filename: str) -> None:
 
 
 def _fold(node: ast.expr, memo: dict[int, Any]) -> Any:
-    """The value of a constant expression, or _NOT_CONSTANT (depth is bounded by _check_nesting)."""
+    """The value of a constant expression, or _NOT_CONSTANT (depth is bounded by _nodes_not_too_deep)."""
     if isinstance(node, ast.Constant):
         return node.value
     if id(node) in memo:
@@ -316,17 +315,20 @@ def _check_binding(name: str, node: ast.AST, filename: str, reserved: set[str]) 
         )
 
 
-def _check_nesting(tree: ast.Module, filename: str) -> None:
-    """Refuse expressions and blocks nested deeper than MAX_NESTING (iteratively, so depth costs nothing)."""
-    todo: list[tuple[ast.AST, int]] = [(tree, 0)]
+def _nodes_not_too_deep(tree: ast.Module, filename: str) -> Iterator[tuple[ast.AST, int | str]]:
+    """Every node of ``tree`` with its line (an operator has the line of its expression), refusing
+    nesting deeper than MAX_NESTING (iteratively: depth costs nothing)."""
+    todo: list[tuple[ast.AST, int, int | str]] = [(tree, 0, "?")]
     while todo:
-        node, depth = todo.pop()
+        node, depth, line = todo.pop()
+        line = getattr(node, "lineno", line)
         if depth > MAX_NESTING:
             raise SubsetError(
-                f"{_where(filename, node)}: the code is nested too deeply (more than {MAX_NESTING} levels); "
+                f"{filename}, line {line}: the code is nested too deeply (more than {MAX_NESTING} levels); "
                 f"split the expression into several assignments"
             )
-        todo.extend((child, depth + 1) for child in ast.iter_child_nodes(node))
+        yield node, line
+        todo.extend((child, depth + 1, line) for child in ast.iter_child_nodes(node))
 
 
 def _module_level_names(tree: ast.Module) -> set[str]:
@@ -537,12 +539,7 @@ class StoreRewriter(ast.NodeTransformer):
         if root is not None:
             self.root_name = root
             self.env[root] = self.typing.root
-            for sub in ast.walk(node):
-                if isinstance(sub, ast.Name) and sub.id == root and isinstance(sub.ctx, ast.Store):
-                    raise ProgramError(
-                        f"{_where(self.typing.filename, sub)}: do not assign to {root}, it holds the tags"
-                    )
-        self.env.update(self._bool_locals(node))
+        self.env.update(self._bool_locals(node))  # also refuses a store into the root name
         self.generic_visit(node)
         if self.uses_root_dict:
             hoist = ast.parse(f"{ROOT_DICT} = {ROOT_GUARD}({self.root_name})").body[0]
@@ -567,14 +564,18 @@ class StoreRewriter(ast.NodeTransformer):
         A name bound any other way (a for loop, a tuple, an inner def, a parameter, +=) is not one."""
         values: dict[str, list[ast.expr | None]] = {}
         simple: set[int] = set()
-        for node in ast.walk(func):
+        for node in ast.walk(func):  # breadth first: an Assign comes before its target names
             if isinstance(node, ast.Assign) and all(isinstance(t, ast.Name) for t in node.targets):
                 for target in node.targets:
                     values.setdefault(target.id, []).append(node.value)
                     simple.add(id(target))
-        for node in ast.walk(func):
-            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store) and id(node) not in simple:
-                values.setdefault(node.id, []).append(None)
+            elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+                if node.id == self.root_name:
+                    raise ProgramError(
+                        f"{_where(self.typing.filename, node)}: do not assign to {node.id}, it holds the tags"
+                    )
+                if id(node) not in simple:
+                    values.setdefault(node.id, []).append(None)
             elif isinstance(node, ast.FunctionDef) and node is not func:
                 values.setdefault(node.name, []).append(None)
             elif isinstance(node, ast.arg):

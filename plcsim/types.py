@@ -50,6 +50,15 @@ class DataType:
     name: str
     bits: int
 
+    def _seal(self) -> None:
+        """Make the type read-only: the elementary types and ``String`` are shared by every program."""
+        object.__setattr__(self, "_sealed", True)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if getattr(self, "_sealed", False):
+            raise AttributeError(f"the data type {self.name} is read-only ({name} cannot be set)")
+        object.__setattr__(self, name, value)
+
     def default(self) -> Any:  # pragma: no cover - overridden
         raise NotImplementedError
 
@@ -76,6 +85,7 @@ class ElementaryType(DataType):
         self.name, self.bits, self.kind, self.lo, self.hi = name, bits, kind, lo, hi
         self.fmt = struct.Struct(">" + fmt) if fmt else None
         self.coerce: Callable[..., Any] = self._make_coerce()
+        self._seal()
 
     def default(self) -> Any:
         """The zero value of the type (FALSE, 0, 0.0, T#0ms, '')."""
@@ -292,6 +302,7 @@ class StringType(DataType):
             return value[:max_len]
 
         self.coerce = coerce_string
+        self._seal()
 
     def default(self) -> str:
         return ""

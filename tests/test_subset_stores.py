@@ -105,3 +105,12 @@ def test_bool_locals_still_skip_the_check_when_they_only_hold_bools():
 def test_refused_programs_name_the_fix_in_words():
     with pytest.raises(SubsetError, match="choose another name"):
         Program.from_source("def OB1(t):\n    P = 2\n", "lab.py")
+
+
+def test_shared_types_are_read_only_even_for_the_host():
+    from plcsim.types import String
+
+    for dtype in (Int, Bool, String):
+        with pytest.raises(AttributeError, match="is read-only"):
+            dtype.coerce = print
+    assert Int.coerce(32768) == -32768
