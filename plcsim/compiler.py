@@ -806,13 +806,19 @@ class StoreRewriter(ast.NodeTransformer):
 
 
 def _tag_path(node: ast.expr, root: str) -> str | None:
-    """``t.DATA.SB`` -> ``"DATA.SB"`` (a chain of plain attributes from the root), else None."""
+    """``t.DATA.SB`` -> ``"DATA.SB"``, ``t.DATA.ARR[2]`` -> ``"DATA.ARR[2]"`` (attributes and constant
+    indices from the root), else None."""
     parts: list[str] = []
-    while isinstance(node, ast.Attribute):
-        parts.append(node.attr)
-        node = node.value
-    if isinstance(node, ast.Name) and node.id == root and parts:
-        return ".".join(reversed(parts))
+    while True:
+        if isinstance(node, ast.Attribute):
+            parts.append("." + node.attr)
+        elif isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Constant) and type(node.slice.value) is int:
+            parts.append(f"[{node.slice.value}]")
+        else:
+            break
+        node = node.value  # type: ignore[union-attr]
+    if isinstance(node, ast.Name) and node.id == root and parts and parts[-1].startswith("."):
+        return "".join(reversed(parts))[1:]
     return None
 
 

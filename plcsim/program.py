@@ -56,7 +56,7 @@ from plcsim.compiler import (
     merge_networks,
     parse,
 )
-from plcsim.errors import DeclarationError, PlcError, ProgramError, SubsetError
+from plcsim.errors import DeclarationError, NoOB1Error, PlcError, ProgramError, SubsetError
 from plcsim.instructions import BOOL_RESULTS, CPU_BOUND, FB_TYPES, PURE_INSTRUCTIONS
 from plcsim.literals import time_ms, to_ns
 from plcsim.module_level import NetworkRef, evaluate_module
@@ -332,7 +332,7 @@ class Program:
         if "OB1" not in self.tasks:  # a program of interrupts only is valid; one of no OB, or an ob1, is not
             message = no_ob1_message(self._filename, self._tree, bool(self.tasks))
             if message:
-                raise ProgramError(message)
+                raise NoOB1Error(message)
 
     def _check_size(self, lines: Mapping[str, int]) -> None:
         """Refuse declarations that would fill the host's memory (``Array(0, 100000000, Int)``)."""

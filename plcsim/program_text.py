@@ -1,7 +1,7 @@
 """Reading a program file as Python does: bytes, an optional UTF-8 BOM, a PEP 263 coding line.
 
 A file that is not in the encoding it declares (most often a Windows-1250 file with Slovak or Czech
-letters saved by an old editor) is a :class:`ProgramError` naming the file, the line, the byte and
+letters saved by an old editor) is a :class:`~plcsim.errors.ProgramFileError` naming the file, the line, the byte and
 the encoding tried, with the fix.
 
 >>> decode_program(b"\\xef\\xbb\\xbfdef OB1(t):\\n    pass\\n", "lab.py").splitlines()[0]
@@ -17,7 +17,7 @@ import io
 import tokenize
 from pathlib import Path
 
-from plcsim.errors import ProgramError
+from plcsim.errors import ProgramFileError
 
 
 def read_program_text(path: Path) -> str:
@@ -25,7 +25,7 @@ def read_program_text(path: Path) -> str:
     try:
         data = path.read_bytes()
     except OSError as exc:
-        raise ProgramError(f"cannot read program {path}: {exc.strerror}") from None
+        raise ProgramFileError(f"cannot read program {path}: {exc.strerror}") from None
     return decode_program(data, str(path))
 
 
@@ -34,13 +34,13 @@ def decode_program(data: bytes, filename: str) -> str:
     try:
         encoding, _ = tokenize.detect_encoding(io.BytesIO(data).readline)
     except SyntaxError as exc:
-        raise ProgramError(f"{filename}: {exc.msg}; save the file as UTF-8") from None
+        raise ProgramFileError(f"{filename}: {exc.msg}; save the file as UTF-8") from None
     try:
         text = data.decode(encoding)
     except UnicodeDecodeError as exc:
         line = data.count(b"\n", 0, exc.start) + 1
         column = exc.start - (data.rfind(b"\n", 0, exc.start) + 1) + 1
-        raise ProgramError(
+        raise ProgramFileError(
             f"{filename}, line {line}: byte 0x{data[exc.start]:02x} (column {column}) is not valid "
             f"{codecs.lookup(encoding).name}; the file was read as {encoding} and is probably in another "
             f"encoding (such as Windows-1250). Save it as UTF-8 (in the editor: Save with Encoding -> UTF-8)"

@@ -9,7 +9,7 @@ from __future__ import annotations
 import pytest
 
 from plcsim import Program
-from plcsim.errors import ProgramError
+from plcsim.errors import NoOB1Error, ProgramError, ProgramFileError
 
 SLOVAK = "def OB1(t):\n    # Ľahký štart: žltá LED svieti\n    t.LED = t.TL\n"
 
@@ -34,7 +34,7 @@ def test_a_pep263_coding_line_is_honoured(tmp_path):
 def test_a_windows_1250_file_names_the_file_line_byte_encoding_and_fix(tmp_path):
     path = tmp_path / "zadanie.py"
     path.write_bytes(SLOVAK.encode("cp1250"))
-    with pytest.raises(ProgramError) as info:
+    with pytest.raises(ProgramFileError) as info:
         Program.from_file(path)
     message = str(info.value)
     assert message.startswith(f"{path}, line 2: byte 0x{'Ľ'.encode('cp1250')[0]:02x} (column 7)")
@@ -50,7 +50,7 @@ def test_an_unknown_coding_line_is_a_program_error(tmp_path):
 
 
 def test_an_unreadable_file_is_a_program_error(tmp_path):
-    with pytest.raises(ProgramError, match=r"cannot read program .*missing.py"):
+    with pytest.raises(ProgramFileError, match=r"cannot read program .*missing.py"):
         Program.from_file(tmp_path / "missing.py")
 
 
@@ -60,7 +60,7 @@ def test_an_unreadable_file_is_a_program_error(tmp_path):
 def test_a_file_without_code_says_no_ob1_and_how_to_write_it(tmp_path, text):
     path = tmp_path / "lab.py"
     path.write_text(text)
-    with pytest.raises(ProgramError) as info:
+    with pytest.raises(NoOB1Error) as info:
         Program.from_file(path)
     message = str(info.value)
     assert message.startswith(f"{path}: no OB1: the file holds no code")
@@ -77,7 +77,7 @@ def test_a_file_without_code_says_no_ob1_and_how_to_write_it(tmp_path, text):
     ],
 )
 def test_a_wrong_case_ob1_asks_did_you_mean(source, line, wrong):
-    with pytest.raises(ProgramError) as info:
+    with pytest.raises(NoOB1Error) as info:
         Program.from_source(source, "lab.py")
     assert str(info.value).startswith(f"lab.py, line {line}: no OB1: {wrong} is not OB1")
     assert "did you mean OB1?" in str(info.value)

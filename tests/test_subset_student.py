@@ -82,11 +82,11 @@ def test_an_edge_memory_bit_may_be_written_as_a_tag(memory):
     assert cpu.read("N") == 2 and cpu.read("SB1") is False
 
 
-@pytest.mark.parametrize("out", ["'A', 'DATA.B'", "t.A, t.DATA.B"])
+@pytest.mark.parametrize("out", ["'A', 'DATA.B', 'DATA.ARR[2]'", "t.A, t.DATA.B, t.DATA.ARR[2]"])
 def test_move_outputs_may_be_written_as_tags(out):
-    cpu = cpu_for(f"A = Int(0)\nDATA = DB(B=Int)\ndef OB1(t):\n    MOVE(7, {out})\n")
+    cpu = cpu_for(f"A = Int(0)\nDATA = DB(B=Int, ARR=Array(0, 3, Int))\ndef OB1(t):\n    MOVE(7, {out})\n")
     cpu.scan()
-    assert (cpu.read("A"), cpu.read("DATA.B")) == (7, 7)
+    assert (cpu.read("A"), cpu.read("DATA.B"), cpu.read("DATA.ARR[2]"), cpu.read("DATA.ARR[1]")) == (7, 7, 7, 0)
 
 
 def test_a_tag_as_edge_memory_must_exist():
