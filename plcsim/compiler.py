@@ -2,12 +2,16 @@
 
 Three jobs, each a pass over the syntax tree:
 
-1. :func:`check_subset` accepts only the PLC subset of Python: no imports, classes, exceptions,
-   ``global``, comprehensions or names starting with ``_``; only a few builtins (``abs``, ``min``,
-   ``max``, ``range`` ...). A violation is a :class:`SubsetError` naming the line and the fix.
+1. :func:`check_subset` accepts only the PLC subset of Python, a whitelist of syntax
+   (:data:`ALLOWED_NODES`; imports, classes, exceptions, ``global``, comprehensions ... are refused
+   with a reason a student understands, anything newer by default), no names starting with ``_``,
+   no rebinding of an instruction's name, stores only into tags and local variables, bounded
+   nesting and bounded constants; only a few builtins (``abs``, ``min``, ``max``, ``range`` ...).
+   A violation is a :class:`SubsetError` naming the line and the fix.
 2. :class:`StoreRewriter` turns every store into a tag into a converted store (an INT wraps, a
    BOOL refuses a number), checks tag names against the tag table at load time (a typo is reported
-   with the nearest names before the program runs), and puts a watchdog tick into every loop.
+   with the nearest names before the program runs), puts a watchdog tick into every loop, and
+   turns ``**``, ``*``, ``<<`` and ``%`` into the bounded operators of :mod:`plcsim.safe_math`.
 3. :func:`analyse` collects what graders and the timer rule need: which tags each function uses,
    SET/RESET coils, timers whose Q and ET are never read, edge calls hidden behind ``and``/``or``.
 """

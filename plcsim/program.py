@@ -1,7 +1,8 @@
 """How a user program is written and bound to the CPU's tasks.
 
 A program is a Python file in the PLC subset. Module-level assignments declare the program's own
-tags and instances; functions are networks; names ``OB1``, ``OB30`` ... ``OB38`` and ``OB100`` bind
+tags and instances (they are evaluated by :mod:`plcsim.module_level`, never executed); functions are
+networks; names ``OB1``, ``OB30`` ... ``OB38`` and ``OB100`` bind
 networks to tasks::
 
     POM = Tag("%M10.0")                 # a PLC tag at an absolute address

@@ -114,3 +114,27 @@ def test_shared_types_are_read_only_even_for_the_host():
         with pytest.raises(AttributeError, match="is read-only"):
             dtype.coerce = print
     assert Int.coerce(32768) == -32768
+
+
+@pytest.mark.parametrize(
+    ("declaration", "call", "member"),
+    [
+        ("T = IEC_TIMER()", "t.T.TON(IN=2, PT='1s')", "T.IN is Bool"),
+        ("T = IEC_TIMER()", "t.T.TOF(IN=OB1, PT='1s')", "T.IN is Bool"),
+        ("T = IEC_TIMER()", "t.T.TP(IN=[1], PT='1s')", "T.IN is Bool"),
+        ("T = IEC_TIMER()", "t.T.TONR(IN=True, PT='1s', R=3)", "T.R is Bool"),
+        ("C = IEC_COUNTER()", "t.C.CTU(CU=2, PV=3)", "C.CU is Bool"),
+        ("C = IEC_COUNTER()", "t.C.CTD(CD=True, LD=OB1, PV=3)", "C.LD is Bool"),
+        ("C = IEC_COUNTER()", "t.C.CTUD(CU=True, CD=1, PV=3)", "C.CD is Bool"),
+        ("E = R_TRIG()", "t.E.R_TRIG(CLK=OB1)", "E.CLK is Bool"),
+        ("E = F_TRIG()", "t.E.F_TRIG(CLK=2)", "E.CLK is Bool"),
+        ("C = IEC_COUNTER()", "t.C.CTU(CU=True, PV=10**6)", "PV 1000000 is outside the count type's range"),
+    ],
+)
+def test_a_box_input_of_the_wrong_type_stops_the_cpu_instead_of_landing_in_the_instance(declaration, call, member):
+    cpu = run(f"{declaration}\ndef OB1(t):\n    t.LED = {call}\n")
+    assert cpu.mode == "STOP" and member in cpu.error.message
+    name = declaration.split()[0]
+    for key in ("IN", "R", "CU", "CD", "LD", "CLK", "Stat_Bit"):
+        value = getattr(getattr(cpu.t, name), key, False)
+        assert value is True or value is False, (key, value)
