@@ -209,6 +209,7 @@ def check_subset(
     reserved = known - {"True", "False", "None"}
     module_names = _module_level_names(tree)
     declared = {id(t) for s in tree.body if isinstance(s, ast.Assign) for t in s.targets}  # seen as t.NAME
+    memo: dict[int, Any] = {}  # constant values of the sub-expressions folded so far
     for node, line in _nodes_not_too_deep(tree, filename):
         kind = type(node)
         if kind not in ALLOWED_NODES:
@@ -226,12 +227,16 @@ def check_subset(
                 raise SubsetError(f"{_where(filename, node)}: *args and **kwargs are not part of PLC programs")
         if kind is ast.Name and isinstance(node.ctx, ast.Store) and id(node) not in declared:
             _check_binding(node.id, node, filename, reserved)
+        if kind is ast.BinOp or kind is ast.UnaryOp:
+            try:
+                _fold(node, memo, 0)  # type: ignore[arg-type]
+            except ProgramError as exc:
+                raise SubsetError(f"{filename}, line {line}: {exc}") from None
         if kind is ast.For and not all(isinstance(n, ast.Name | ast.Tuple | ast.Store) for n in ast.walk(node.target)):
             raise SubsetError(
                 f"{_where(filename, node)}: a for loop counts with a plain variable (for i in range(...)); "
                 f"store into a tag inside the loop"
             )
-    _check_constants(tree, filename)
     visible = known | module_names
     own_tags = _declared_tags(tree)
     decl_only = set(declaration_only) | own_tags
@@ -257,32 +262,25 @@ _PLAIN_OPS: dict[type, Any] = {
 }
 
 
-def _check_constants(tree: ast.Module, filename: str) -> None:
-    """Fold constant arithmetic with the bounded operators: ``9**9**9`` is refused here, at load time."""
-    memo: dict[int, Any] = {}
-    for node in ast.walk(tree):
-        if isinstance(node, ast.BinOp | ast.UnaryOp):
-            try:
-                _fold(node, memo)
-            except ProgramError as exc:
-                raise SubsetError(f"{_where(filename, node)}: {exc}") from None
-
-
-def _fold(node: ast.expr, memo: dict[int, Any]) -> Any:
-    """The value of a constant expression, or _NOT_CONSTANT (depth is bounded by _nodes_not_too_deep)."""
+def _fold(node: ast.expr, memo: dict[int, Any], depth: int) -> Any:
+    """The value of a constant expression with the bounded operators, or _NOT_CONSTANT; ``9**9**9`` is
+    refused here (a ProgramError), at load time. Deeper than MAX_NESTING it gives up (the nesting check
+    refuses such code anyway)."""
     if isinstance(node, ast.Constant):
         return node.value
     if id(node) in memo:
         return memo[id(node)]
+    if depth > MAX_NESTING:
+        return _NOT_CONSTANT
     value: Any = _NOT_CONSTANT
     if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub | ast.UAdd | ast.Invert):
-        operand = _fold(node.operand, memo)
+        operand = _fold(node.operand, memo, depth + 1)
         if isinstance(operand, int | float) and not (isinstance(node.op, ast.Invert) and isinstance(operand, float)):
             value = (
                 -operand if isinstance(node.op, ast.USub) else ~operand if isinstance(node.op, ast.Invert) else operand
             )
     elif isinstance(node, ast.BinOp):
-        left, right = _fold(node.left, memo), _fold(node.right, memo)
+        left, right = _fold(node.left, memo, depth + 1), _fold(node.right, memo, depth + 1)
         if left is not _NOT_CONSTANT and right is not _NOT_CONSTANT:
             safe = SAFE_OPS.get(type(node.op))
             func = SAFE_FUNCTIONS[safe] if safe else _PLAIN_OPS.get(type(node.op))
@@ -546,8 +544,8 @@ class StoreRewriter(ast.NodeTransformer):
         self.env.update(self._bool_locals(node))  # also refuses a store into the root name
         self.generic_visit(node)
         if self.uses_root_dict:
-            hoist = ast.parse(f"{ROOT_DICT} = {ROOT_GUARD}({self.root_name})").body[0]
-            ast.copy_location(hoist, node)
+            guard = ast.Call(ast.Name(ROOT_GUARD, ast.Load()), [ast.Name(self.root_name, ast.Load())], [])
+            hoist = ast.copy_location(ast.Assign([ast.Name(ROOT_DICT, ast.Store())], guard), node)
             docstring = (
                 1
                 if (
@@ -912,8 +910,10 @@ def analyse(tree: ast.Module, typing: Typing) -> Analysis:
         params = [a.arg for a in stmt.args.args]
         root = typing.root_params.get(stmt.name) or ("t" if params and params[0] == "t" else None)
         env = {root: typing.root} if root else {}
-        used_values = _used_call_values(stmt)
+        bare: set[int] = set()  # calls whose value is thrown away (ast.walk meets an Expr before its call)
         for node in ast.walk(stmt):
+            if isinstance(node, ast.Expr):
+                bare.add(id(node.value))
             if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id == root:
                 (facts.writes if isinstance(node.ctx, ast.Store) else facts.reads).add(node.attr)
             if (
@@ -938,7 +938,7 @@ def analyse(tree: ast.Module, typing: Typing) -> Analysis:
                     if isinstance(base, FBType) and func.attr in FB_BOXES.get(base.name, ()):
                         path = ast.unparse(func.value)
                         result.box_calls.append((path, func.attr, node.lineno))
-                        if id(node) in used_values:
+                        if id(node) not in bare:
                             result.timer_reads.add(path)
             if isinstance(node, ast.Attribute) and node.attr in ("Q", "ET") and isinstance(node.ctx, ast.Load):
                 base = _safe_type(typing, node.value, env)
@@ -956,12 +956,6 @@ def _safe_type(typing: Typing, node: ast.expr, env: dict[str, Any]) -> Any:
         return typing.type_of(node, env)
     except UnknownTagError:
         return None
-
-
-def _used_call_values(func: ast.FunctionDef) -> set[int]:
-    """ids of Call nodes whose value is used (not a bare expression statement)."""
-    bare = {id(s.value) for s in ast.walk(func) if isinstance(s, ast.Expr)}
-    return {id(n) for n in ast.walk(func) if isinstance(n, ast.Call) and id(n) not in bare}
 
 
 def _collect_coils(node: ast.If, result: Analysis, typing: Typing, env: dict[str, Any]) -> None:
