@@ -2,12 +2,16 @@
 
 Three jobs, each a pass over the syntax tree:
 
-1. :func:`check_subset` accepts only the PLC subset of Python: no imports, classes, exceptions,
-   ``global``, comprehensions or names starting with ``_``; only a few builtins (``abs``, ``min``,
-   ``max``, ``range`` ...). A violation is a :class:`SubsetError` naming the line and the fix.
+1. :func:`check_subset` accepts only the PLC subset of Python, a whitelist of syntax
+   (:data:`ALLOWED_NODES`; imports, classes, exceptions, ``global``, comprehensions ... are refused
+   with a reason a student understands, anything newer by default), no names starting with ``_``,
+   no rebinding of an instruction's name, stores only into tags and local variables, bounded
+   nesting and bounded constants; only a few builtins (``abs``, ``min``, ``max``, ``range`` ...).
+   A violation is a :class:`SubsetError` naming the line and the fix.
 2. :class:`StoreRewriter` turns every store into a tag into a converted store (an INT wraps, a
    BOOL refuses a number), checks tag names against the tag table at load time (a typo is reported
-   with the nearest names before the program runs), and puts a watchdog tick into every loop.
+   with the nearest names before the program runs), puts a watchdog tick into every loop, and
+   turns ``**``, ``*``, ``<<`` and ``%`` into the bounded operators of :mod:`plcsim.safe_math`.
 3. :func:`analyse` collects what graders and the timer rule need: which tags each function uses,
    SET/RESET coils, timers whose Q and ET are never read, edge calls hidden behind ``and``/``or``.
 """
@@ -16,7 +20,10 @@ from __future__ import annotations
 
 import ast
 import builtins
-from collections.abc import Iterable
+import io
+import operator
+import tokenize
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -24,6 +31,7 @@ from plcsim.errors import ProgramError, SubsetError, UnknownTagError, did_you_me
 from plcsim.instructions import BOOL_RESULTS, FB_BOXES, FB_MEMBERS, FB_WRITABLE
 from plcsim.literals import time_ms
 from plcsim.memory import parse_address
+from plcsim.safe_math import SAFE_FUNCTIONS
 from plcsim.tags import FBType
 from plcsim.types import ArrayType, Bool, ElementaryType, StructType, Time
 
@@ -47,7 +55,7 @@ ALLOWED_BUILTINS = {
     "None",
 }
 
-_FORBIDDEN_NODES: dict[type, str] = {
+_REFUSED_NODES: dict[type, str] = {
     ast.Import: "imports are not part of PLC programs; every instruction (TON, P, MOVE ...) is already available",
     ast.ImportFrom: "imports are not part of PLC programs; every instruction (TON, P, MOVE ...) is already available",
     ast.ClassDef: "classes are not part of PLC programs; use a DB(...) or a struct for data",
@@ -72,7 +80,31 @@ _FORBIDDEN_NODES: dict[type, str] = {
     ast.Starred: "* unpacking is not part of PLC programs",
     ast.Set: "sets are not part of PLC programs",
     ast.Match: "match is not part of PLC programs; use if/elif",
+    ast.AnnAssign: "annotated assignments (x: int = ...) are not part of PLC programs; write x = ...",
+    ast.MatMult: "the @ operator is not part of PLC programs",
 }
+"""Common constructs outside the subset, with the reason a student is given."""
+
+ALLOWED_NODES: frozenset[type] = frozenset(
+    {
+        # statements
+        ast.Module, ast.FunctionDef, ast.Assign, ast.AugAssign, ast.Return, ast.If, ast.For, ast.While,
+        ast.Break, ast.Continue, ast.Pass, ast.Expr,
+        # expressions
+        ast.BoolOp, ast.BinOp, ast.UnaryOp, ast.IfExp, ast.Compare, ast.Call, ast.Constant, ast.Attribute,
+        ast.Subscript, ast.Slice, ast.Name, ast.List, ast.Tuple, ast.Dict, ast.keyword, ast.arguments, ast.arg,
+        ast.Load, ast.Store,
+        # operators
+        ast.And, ast.Or, ast.Add, ast.Sub, ast.Mult, ast.Div, ast.FloorDiv, ast.Mod, ast.Pow, ast.LShift,
+        ast.RShift, ast.BitOr, ast.BitXor, ast.BitAnd, ast.Invert, ast.Not, ast.UAdd, ast.USub, ast.Eq,
+        ast.NotEq, ast.Lt, ast.LtE, ast.Gt, ast.GtE, ast.Is, ast.IsNot, ast.In, ast.NotIn,
+    }
+)  # fmt: skip
+"""The syntax of the PLC subset; any other node (including syntax a newer Python adds) is refused."""
+
+MAX_NESTING = 100
+"""How deeply expressions and blocks may nest (deeper is refused, long before the compiler's own limit)."""
+
 _DANGEROUS = {
     "open",
     "exec",
@@ -112,7 +144,22 @@ _DANGEROUS = {
     "chr",
     "ord",
 }
-_FORBIDDEN_ATTRS = {"format", "format_map", "mro", "gi_frame", "f_globals", "f_locals", "tb_frame"}
+_FORBIDDEN_ATTRS = {
+    "format",
+    "format_map",
+    "mro",
+    "gi_frame",
+    "f_globals",
+    "f_locals",
+    "tb_frame",
+    # text and byte builders whose size is an argument: "x".ljust(10**9) is a gigabyte in one call
+    "ljust",
+    "rjust",
+    "center",
+    "zfill",
+    "expandtabs",
+    "to_bytes",
+}
 
 
 def _where(filename: str, node: ast.AST) -> str:
@@ -122,44 +169,168 @@ def _where(filename: str, node: ast.AST) -> str:
 def parse(source: str, filename: str) -> ast.Module:
     """Parse the program; a syntax error becomes a ProgramError with its line and a pointer."""
     try:
-        return ast.parse(source, filename=filename)
+        return ast.parse(source.removeprefix("\ufeff"), filename=filename)
     except SyntaxError as exc:
         line = (exc.text or "").rstrip("\n")
         pointer = " " * max(0, (exc.offset or 1) - 1) + "^"
         raise ProgramError(
             f"{filename}, line {exc.lineno}: syntax error: {exc.msg}\n    {line}\n    {pointer}"
         ) from None
+    except (RecursionError, MemoryError):
+        raise SubsetError(
+            f"{filename}, line {_busiest_line(source)}: the code is nested too deeply for Python to read; "
+            f"split the expression into several assignments"
+        ) from None
 
 
-def check_subset(tree: ast.Module, filename: str, known_names: Iterable[str]) -> None:
-    """Reject anything outside the PLC subset of Python, naming the line and the fix."""
+def _busiest_line(source: str) -> int | str:
+    """The line whose statement has the most operators and brackets (where a too-deep expression is)."""
+    counts: dict[int, int] = {}
+    start = 1
+    try:
+        for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+            if tok.type == tokenize.OP:
+                counts[start] = counts.get(start, 0) + 1
+            elif tok.type in (tokenize.NEWLINE, tokenize.NL):
+                start = tok.end[0] + 1
+    except (tokenize.TokenError, SyntaxError):
+        pass
+    return max(counts, key=counts.__getitem__) if counts else "?"
+
+
+def check_subset(
+    tree: ast.Module, filename: str, known_names: Iterable[str], declaration_only: Iterable[str] = ()
+) -> None:
+    """Reject anything outside the PLC subset of Python, naming the line and the fix.
+
+    ``declaration_only`` names (``Tag``, ``DB``, ``IEC_TIMER`` ...) may be used at module level only.
+    """
     known = set(known_names) | ALLOWED_BUILTINS
+    reserved = known - {"True", "False", "None"}
     module_names = _module_level_names(tree)
-    functions: list[ast.FunctionDef] = []
-    for node in ast.walk(tree):
-        reason = _FORBIDDEN_NODES.get(type(node))
-        if reason:
-            raise SubsetError(f"{_where(filename, node)}: {reason}")
-        if isinstance(node, ast.Name) and node.id.startswith("_"):
+    declared = {id(t) for s in tree.body if isinstance(s, ast.Assign) for t in s.targets}  # seen as t.NAME
+    memo: dict[int, Any] = {}  # constant values of the sub-expressions folded so far
+    for node, line in _nodes_not_too_deep(tree, filename):
+        kind = type(node)
+        if kind not in ALLOWED_NODES:
+            reason = _REFUSED_NODES.get(kind, f"{kind.__name__} syntax is not part of PLC programs")
+            raise SubsetError(f"{filename}, line {line}: {reason}")
+        if kind is ast.Name and node.id.startswith("_"):
             raise SubsetError(f"{_where(filename, node)}: names starting with _ are reserved ({node.id})")
-        if isinstance(node, ast.Attribute) and (node.attr.startswith("_") or node.attr in _FORBIDDEN_ATTRS):
+        if kind is ast.Attribute and (node.attr.startswith("_") or node.attr in _FORBIDDEN_ATTRS):
             raise SubsetError(f"{_where(filename, node)}: the attribute .{node.attr} is not available in PLC programs")
-        if isinstance(node, ast.arg) and node.arg.startswith("_"):
-            raise SubsetError(f"{_where(filename, node)}: names starting with _ are reserved ({node.arg})")
-        if isinstance(node, ast.FunctionDef):
-            if node.name.startswith("_"):
-                raise SubsetError(f"{_where(filename, node)}: names starting with _ are reserved ({node.name})")
+        if kind is ast.arg:
+            _check_binding(node.arg, node, filename, reserved)
+        if kind is ast.FunctionDef:
+            _check_binding(node.name, node, filename, reserved)
             if node.args.vararg or node.args.kwarg:
                 raise SubsetError(f"{_where(filename, node)}: *args and **kwargs are not part of PLC programs")
-            functions.append(node)
-    for func in functions:  # names last, so that `try ... except Exception` is reported as the try it is
-        _check_names(func, filename, known | module_names)
+        if kind is ast.Name and isinstance(node.ctx, ast.Store) and id(node) not in declared:
+            _check_binding(node.id, node, filename, reserved)
+        if kind is ast.BinOp or kind is ast.UnaryOp:
+            try:
+                _fold(node, memo, 0)  # type: ignore[arg-type]
+            except ProgramError as exc:
+                raise SubsetError(f"{filename}, line {line}: {exc}") from None
+        if kind is ast.For and not all(isinstance(n, ast.Name | ast.Tuple | ast.Store) for n in ast.walk(node.target)):
+            raise SubsetError(
+                f"{_where(filename, node)}: a for loop counts with a plain variable (for i in range(...)); "
+                f"store into a tag inside the loop"
+            )
+    visible = known | module_names
+    own_tags = _declared_tags(tree)
+    decl_only = set(declaration_only) | own_tags
     for stmt in tree.body:
         if isinstance(stmt, ast.FunctionDef):
+            _check_function(stmt, filename, visible, decl_only, own_tags)
             continue
         for node in ast.walk(stmt):
-            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and node.id not in known | module_names:
-                raise _unknown_name(node, filename, known | module_names)
+            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and node.id not in visible:
+                raise _unknown_name(node, filename, visible)
+
+
+_NOT_CONSTANT = object()
+_PLAIN_OPS: dict[type, Any] = {
+    ast.Add: operator.add,
+    ast.Sub: operator.sub,
+    ast.Div: operator.truediv,
+    ast.FloorDiv: operator.floordiv,
+    ast.BitOr: operator.or_,
+    ast.BitAnd: operator.and_,
+    ast.BitXor: operator.xor,
+    ast.RShift: operator.rshift,
+}
+
+
+def _fold(node: ast.expr, memo: dict[int, Any], depth: int) -> Any:
+    """The value of a constant expression with the bounded operators, or _NOT_CONSTANT; ``9**9**9`` is
+    refused here (a ProgramError), at load time. Deeper than MAX_NESTING it gives up (the nesting check
+    refuses such code anyway)."""
+    if isinstance(node, ast.Constant):
+        return node.value
+    if id(node) in memo:
+        return memo[id(node)]
+    if depth > MAX_NESTING:
+        return _NOT_CONSTANT
+    value: Any = _NOT_CONSTANT
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub | ast.UAdd | ast.Invert):
+        operand = _fold(node.operand, memo, depth + 1)
+        if isinstance(operand, int | float) and not (isinstance(node.op, ast.Invert) and isinstance(operand, float)):
+            value = (
+                -operand if isinstance(node.op, ast.USub) else ~operand if isinstance(node.op, ast.Invert) else operand
+            )
+    elif isinstance(node, ast.BinOp):
+        left, right = _fold(node.left, memo, depth + 1), _fold(node.right, memo, depth + 1)
+        if left is not _NOT_CONSTANT and right is not _NOT_CONSTANT:
+            safe = SAFE_OPS.get(type(node.op))
+            func = SAFE_FUNCTIONS[safe] if safe else _PLAIN_OPS.get(type(node.op))
+            try:
+                value = func(left, right) if func else _NOT_CONSTANT
+            except ProgramError:
+                raise
+            except Exception:  # noqa: BLE001 - 1/0 or "a" - 1 is reported by Python when the line runs
+                value = _NOT_CONSTANT
+    memo[id(node)] = value
+    return value
+
+
+def _declared_tags(tree: ast.Module) -> set[str]:
+    """Module-level names bound to a declaration (``SEEN = Int(0)``): a network reads them as t.SEEN."""
+    return {
+        target.id
+        for stmt in tree.body
+        if isinstance(stmt, ast.Assign)
+        and isinstance(stmt.value, ast.Call)
+        and not (isinstance(stmt.value.func, ast.Name) and stmt.value.func.id == "TIME")
+        for target in stmt.targets
+        if isinstance(target, ast.Name) and not target.id.startswith("OB")
+    }
+
+
+def _check_binding(name: str, node: ast.AST, filename: str, reserved: set[str]) -> None:
+    if name.startswith("_"):
+        raise SubsetError(f"{_where(filename, node)}: names starting with _ are reserved ({name})")
+    if name in reserved:
+        raise SubsetError(
+            f"{_where(filename, node)}: {name} is the name of an instruction, a type or a builtin; "
+            f"choose another name (for example {name.lower()}_value)"
+        )
+
+
+def _nodes_not_too_deep(tree: ast.Module, filename: str) -> Iterator[tuple[ast.AST, int | str]]:
+    """Every node of ``tree`` with its line (an operator has the line of its expression), refusing
+    nesting deeper than MAX_NESTING (iteratively: depth costs nothing)."""
+    todo: list[tuple[ast.AST, int, int | str]] = [(tree, 0, "?")]
+    while todo:
+        node, depth, line = todo.pop()
+        line = getattr(node, "lineno", line)
+        if depth > MAX_NESTING:
+            raise SubsetError(
+                f"{filename}, line {line}: the code is nested too deeply (more than {MAX_NESTING} levels); "
+                f"split the expression into several assignments"
+            )
+        yield node, line
+        todo.extend((child, depth + 1, line) for child in ast.iter_child_nodes(node))
 
 
 def _module_level_names(tree: ast.Module) -> set[str]:
@@ -167,30 +338,51 @@ def _module_level_names(tree: ast.Module) -> set[str]:
     for stmt in tree.body:
         if isinstance(stmt, ast.FunctionDef):
             names.add(stmt.name)
-        elif isinstance(stmt, (ast.Assign, ast.AnnAssign, ast.AugAssign)):
-            targets = stmt.targets if isinstance(stmt, ast.Assign) else [stmt.target]
-            for target in targets:
+        elif isinstance(stmt, ast.Assign):
+            for target in stmt.targets:
                 for node in ast.walk(target):
                     if isinstance(node, ast.Name):
                         names.add(node.id)
-        elif isinstance(stmt, (ast.For, ast.If, ast.While)):
-            for node in ast.walk(stmt):
-                if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
-                    names.add(node.id)
     return names
 
 
-def _check_names(func: ast.FunctionDef, filename: str, visible: set[str]) -> None:
+def _check_function(
+    func: ast.FunctionDef, filename: str, visible: set[str], declaration_only: set[str], own_tags: set[str]
+) -> None:
     local = {a.arg for a in func.args.args + func.args.kwonlyargs + func.args.posonlyargs}
-    for node in ast.walk(func):
+    inside = [n for part in (func.args, *func.body) for n in ast.walk(part)]  # not the decorators: @label
+    for node in inside:
         if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
             local.add(node.id)
         elif isinstance(node, ast.FunctionDef) and node is not func:
             local.add(node.name)
-            local |= {a.arg for a in node.args.args}
-    for node in ast.walk(func):
-        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and node.id not in local | visible:
-            raise _unknown_name(node, filename, local | visible)
+            local |= {a.arg for a in node.args.args + node.args.kwonlyargs + node.args.posonlyargs}
+            if node.decorator_list:
+                raise SubsetError(
+                    f"{_where(filename, node.decorator_list[0])}: decorators are not allowed on inner functions"
+                )
+    for node in inside:
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
+            if node.id not in local and node.id not in visible:
+                raise _unknown_name(node, filename, local | visible)
+            if node.id in declaration_only and node.id not in local:
+                if node.id in own_tags:
+                    raise SubsetError(
+                        f"{_where(filename, node)}: {node.id} is a tag of the program; in a network it is t.{node.id}"
+                    )
+                raise SubsetError(
+                    f"{_where(filename, node)}: {node.id} declares a tag or an instance; declare it at module "
+                    f"level (NAME = {node.id}(...)) and use it in a network as t.NAME"
+                )
+        elif isinstance(node, (ast.Attribute, ast.Subscript)) and isinstance(node.ctx, ast.Store):
+            root = node.value
+            while isinstance(root, (ast.Attribute, ast.Subscript)):
+                root = root.value
+            if not (isinstance(root, ast.Name) and root.id in local):
+                raise SubsetError(
+                    f"{_where(filename, node)}: {ast.unparse(node)} cannot be assigned; a program stores only "
+                    f"into its tags (t.NAME = ..., t.DB.member = ...) and its own variables"
+                )
 
 
 def _builtins_list() -> str:
@@ -298,9 +490,26 @@ class Typing:
 # --------------------------------------------------------------------------------------------
 
 ROOT_DICT = "_t_dict"
+ROOT_GUARD = "_tags_of"
+"""Returns the tag object's member dict, after checking that it was given the CPU's tags."""
 TICK = "_tick"
 STORE = "_store"
 FB_STORE = "_fb_store"
+SAFE_OPS = {ast.Pow: "_pow", ast.Mult: "_mul", ast.LShift: "_lshift", ast.Mod: "_mod"}
+"""Operators whose result can grow without bound; the CPU supplies bounded versions (see safe_math)."""
+_NAMED_OPERANDS = {"P": (1,), "N": (1,), "P_TRIG": (1,), "N_TRIG": (1,), "P_COIL": (1, 2), "N_COIL": (1, 2)}
+"""Arguments of edge instructions that name a memory bit; ``t.SB1`` there means the tag's name."""
+_BOX_TYPES = {
+    "TON": "IEC_TIMER",
+    "TOF": "IEC_TIMER",
+    "TP": "IEC_TIMER",
+    "TONR": "IEC_TIMER",
+    "CTU": "IEC_COUNTER",
+    "CTD": "IEC_COUNTER",
+    "CTUD": "IEC_COUNTER",
+    "R_TRIG": "R_TRIG",
+    "F_TRIG": "F_TRIG",
+}
 
 
 def coerce_name(dtype: ElementaryType) -> str:
@@ -332,16 +541,11 @@ class StoreRewriter(ast.NodeTransformer):
         if root is not None:
             self.root_name = root
             self.env[root] = self.typing.root
-            for sub in ast.walk(node):
-                if isinstance(sub, ast.Name) and sub.id == root and isinstance(sub.ctx, ast.Store):
-                    raise ProgramError(
-                        f"{_where(self.typing.filename, sub)}: do not assign to {root}, it holds the tags"
-                    )
-        self.env.update(self._bool_locals(node))
+        self.env.update(self._bool_locals(node))  # also refuses a store into the root name
         self.generic_visit(node)
         if self.uses_root_dict:
-            hoist = ast.parse(f"{ROOT_DICT} = {self.root_name}.__dict__").body[0]
-            ast.copy_location(hoist, node)
+            guard = ast.Call(ast.Name(ROOT_GUARD, ast.Load()), [ast.Name(self.root_name, ast.Load())], [])
+            hoist = ast.copy_location(ast.Assign([ast.Name(ROOT_DICT, ast.Store())], guard), node)
             docstring = (
                 1
                 if (
@@ -357,23 +561,28 @@ class StoreRewriter(ast.NodeTransformer):
         return node
 
     def _bool_locals(self, func: ast.FunctionDef) -> dict[str, Any]:
-        """Local variables that only ever hold Bools (``edge = P(...)``), so storing them needs no check."""
+        """Local variables that only ever hold Bools (``edge = P(...)``), so storing them needs no check.
+
+        A name bound any other way (a for loop, a tuple, an inner def, a parameter, +=) is not one."""
         values: dict[str, list[ast.expr | None]] = {}
-        for node in ast.walk(func):
-            if isinstance(node, ast.Assign):
+        simple: set[int] = set()
+        for node in ast.walk(func):  # breadth first: an Assign comes before its target names
+            if isinstance(node, ast.Assign) and all(isinstance(t, ast.Name) for t in node.targets):
                 for target in node.targets:
-                    if isinstance(target, ast.Name):
-                        values.setdefault(target.id, []).append(node.value)
-                    else:
-                        for sub in ast.walk(target):
-                            if isinstance(sub, ast.Name) and isinstance(sub.ctx, ast.Store):
-                                values.setdefault(sub.id, []).append(None)
-            elif isinstance(node, (ast.AugAssign, ast.AnnAssign, ast.For)):
-                for sub in ast.walk(node.target):
-                    if isinstance(sub, ast.Name):
-                        values.setdefault(sub.id, []).append(None)
-        params = {a.arg for a in func.args.args}
-        candidates = {name for name, vals in values.items() if name not in params and None not in vals}
+                    values.setdefault(target.id, []).append(node.value)
+                    simple.add(id(target))
+            elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+                if node.id == self.root_name:
+                    raise ProgramError(
+                        f"{_where(self.typing.filename, node)}: do not assign to {node.id}, it holds the tags"
+                    )
+                if id(node) not in simple:
+                    values.setdefault(node.id, []).append(None)
+            elif isinstance(node, ast.FunctionDef) and node is not func:
+                values.setdefault(node.name, []).append(None)
+            elif isinstance(node, ast.arg):
+                values.setdefault(node.arg, []).append(None)
+        candidates = {name for name, vals in values.items() if None not in vals}
         while True:
             env = {**self.env, **{name: Bool for name in candidates}}
             keep = {name for name in candidates if all(_safe_type(self.typing, v, env) is Bool for v in values[name])}  # type: ignore[arg-type]
@@ -411,6 +620,8 @@ class StoreRewriter(ast.NodeTransformer):
         return node
 
     def visit_Call(self, node: ast.Call) -> ast.AST:
+        self._undeclared_instance(node)
+        self._names_for_tags(node)
         self.generic_visit(node)
         for kw in node.keywords:
             if kw.arg == "PT" and isinstance(kw.value, ast.Constant) and isinstance(kw.value.value, str):
@@ -419,6 +630,102 @@ class StoreRewriter(ast.NodeTransformer):
                 except Exception as exc:  # noqa: BLE001 - any bad literal is reported at its line
                     raise ProgramError(f"{_where(self.typing.filename, kw.value)}: {exc}") from None
         return node
+
+    def _undeclared_instance(self, node: ast.Call) -> None:
+        """``t.TRIG(CLK=...)`` or ``t.TON_X.TON(...)`` with no instance declared: say how to declare it."""
+        func = node.func
+        if not isinstance(func, ast.Attribute) or self.root_name is None:
+            return
+        if isinstance(func.value, ast.Name) and func.value.id == self.root_name:
+            name, box = func.attr, None
+        elif (
+            isinstance(func.value, ast.Attribute)
+            and isinstance(func.value.value, ast.Name)
+            and func.value.value.id == self.root_name
+        ):
+            name, box = func.value.attr, func.attr
+        else:
+            return
+        if name in self.typing.root.members:
+            return
+        words = {kw.arg for kw in node.keywords}
+        fb = _BOX_TYPES.get(box or "") or (
+            "R_TRIG"
+            if "CLK" in words
+            else "IEC_COUNTER"
+            if words & {"CU", "CD", "PV"}
+            else "IEC_TIMER"
+            if words & {"IN", "PT"}
+            else None
+        )
+        if box is None and fb is None:
+            return
+        fb = fb or "IEC_TIMER"
+        call = box or {"IEC_TIMER": "TON", "IEC_COUNTER": "CTU"}.get(fb, fb)
+        near = did_you_mean(name, self.typing.root.members)
+        raise UnknownTagError(
+            f"{_where(self.typing.filename, node)}: no instance {name!r}{near}; "
+            f"declare it at module level: `{name} = {fb}()`, then call t.{name}.{call}(...)"
+        )
+
+    def _names_for_tags(self, node: ast.Call) -> None:
+        """Edge memory bits and MOVE outputs are tags the instruction writes: ``t.SB1`` there means "SB1"."""
+        func = node.func
+        if not isinstance(func, ast.Name) or self.root_name is None:
+            return
+        positions = _NAMED_OPERANDS.get(func.id) or (range(1, len(node.args)) if func.id == "MOVE" else ())
+        for i in positions:
+            if i < len(node.args):
+                path = _tag_path(node.args[i], self.root_name)
+                if path is not None:
+                    self.typing.type_of(node.args[i], self.env)  # an unknown tag is reported here
+                    node.args[i] = ast.copy_location(ast.Constant(path), node.args[i])
+
+    # -- operators that can grow without bound, and TIME literals in comparisons ---------------
+
+    def visit_BinOp(self, node: ast.BinOp) -> ast.AST:
+        self.generic_visit(node)
+        name = SAFE_OPS.get(type(node.op))
+        if name is None:
+            return node
+        if isinstance(node.left, ast.Constant) and isinstance(node.right, ast.Constant):
+            try:  # fold here, so that 9**9**9 is refused when the program is loaded
+                value = SAFE_FUNCTIONS[name](node.left.value, node.right.value)
+            except ProgramError as exc:
+                raise SubsetError(f"{_where(self.typing.filename, node)}: {exc}") from None
+            except Exception:  # noqa: BLE001 - Python itself reports a bad constant operation at run time
+                value = None
+            if isinstance(value, int | float | str):
+                return ast.copy_location(ast.Constant(value), node)
+        call = ast.Call(ast.Name(name, ast.Load()), [node.left, node.right], [])
+        return ast.copy_location(call, node)
+
+    def visit_Compare(self, node: ast.Compare) -> ast.AST:
+        self.generic_visit(node)
+        operands = [node.left, *node.comparators]
+        timed = [self._is_time(o) for o in operands]
+        if not any(timed):
+            return node
+        for i, operand in enumerate(operands):
+            if isinstance(operand, ast.Constant) and isinstance(operand.value, str):
+                near = (i > 0 and timed[i - 1]) or (i + 1 < len(operands) and timed[i + 1])
+                if not near:
+                    continue
+                try:
+                    folded = ast.copy_location(ast.Constant(time_ms(operand.value)), operand)
+                except Exception as exc:  # noqa: BLE001 - any bad literal is reported at its line
+                    raise ProgramError(
+                        f"{_where(self.typing.filename, operand)}: {exc}; a TIME is compared with a TIME "
+                        f"literal such as '500ms' or TIME('1s500ms')"
+                    ) from None
+                if i == 0:
+                    node.left = folded
+                else:
+                    node.comparators[i - 1] = folded
+        return node
+
+    def _is_time(self, node: ast.expr) -> bool:
+        return _safe_type(self.typing, node, self.env) in (Time,)
 
     # -- stores ------------------------------------------------------------------------------
 
@@ -436,10 +743,14 @@ class StoreRewriter(ast.NodeTransformer):
         node.value = self.visit(node.value)
         if isinstance(node.target, ast.Attribute):
             load = ast.Attribute(_copy_load(node.target.value), node.target.attr, ast.Load())
-            value = ast.copy_location(ast.BinOp(load, node.op, node.value), node)
-            ast.fix_missing_locations(value)
-            return self._assign(node.target, value, node)
+            value = ast.fix_missing_locations(ast.copy_location(ast.BinOp(load, node.op, node.value), node))
+            return self._assign(node.target, self.visit_BinOp(value), node)  # type: ignore[arg-type]
         node.target = self.visit(node.target)
+        if type(node.op) in SAFE_OPS:
+            load = _copy_load(node.target)
+            value = ast.fix_missing_locations(ast.copy_location(ast.BinOp(load, node.op, node.value), node))
+            store = ast.Assign([node.target], self.visit_BinOp(value))  # type: ignore[arg-type]
+            return ast.fix_missing_locations(ast.copy_location(store, node))
         return node
 
     def _assign(self, target: ast.expr, value: ast.expr, node: ast.stmt) -> ast.AST | list[ast.stmt]:
@@ -466,6 +777,11 @@ class StoreRewriter(ast.NodeTransformer):
                 self.typing.member_type(base, key, node)
             return self._call_stmt(FB_STORE, [base_node, ast.Constant(key), value], node)
         if not isinstance(base, StructType):
+            if _tag_path(base_node, self.root_name or "") is not None:  # t.T1.TON.x, t.COUNT.x: no members
+                raise ProgramError(
+                    f"{_where(self.typing.filename, node)}: {ast.unparse(base_node)} has no members to assign; "
+                    f"store into a tag (t.NAME = ...) or a data-block member (t.DB.member = ...)"
+                )
             return self._call_stmt(STORE, [base_node, ast.Constant(key), value], node)
         mtype = self.typing.member_type(base, key, node)
         is_root = base is self.typing.root
@@ -481,13 +797,31 @@ class StoreRewriter(ast.NodeTransformer):
             self.uses_root_dict = True
             dict_node: ast.expr = ast.Name(ROOT_DICT, ast.Load())
         else:
+            self.uses_root_dict = True  # the chain starts at the tags: check that they are the CPU's
             dict_node = ast.Attribute(base_node, "__dict__", ast.Load())
         store = ast.Assign([ast.Subscript(dict_node, ast.Constant(key), ast.Store())], value)
-        return ast.fix_missing_locations(ast.copy_location(store, node))
+        return ast.copy_location(store, node)  # the whole module's locations are fixed once, after rewriting
 
     def _call_stmt(self, func: str, args: list[ast.expr], node: ast.stmt) -> ast.stmt:
         call = ast.Expr(ast.Call(ast.Name(func, ast.Load()), args, []))
-        return ast.fix_missing_locations(ast.copy_location(call, node))
+        return ast.copy_location(call, node)
+
+
+def _tag_path(node: ast.expr, root: str) -> str | None:
+    """``t.DATA.SB`` -> ``"DATA.SB"``, ``t.DATA.ARR[2]`` -> ``"DATA.ARR[2]"`` (attributes and constant
+    indices from the root), else None."""
+    parts: list[str] = []
+    while True:
+        if isinstance(node, ast.Attribute):
+            parts.append("." + node.attr)
+        elif isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Constant) and type(node.slice.value) is int:
+            parts.append(f"[{node.slice.value}]")
+        else:
+            break
+        node = node.value  # type: ignore[union-attr]
+    if isinstance(node, ast.Name) and node.id == root and parts and parts[-1].startswith("."):
+        return "".join(reversed(parts))[1:]
+    return None
 
 
 def _as_list(x: ast.AST | list[ast.stmt]) -> list[ast.stmt]:
@@ -576,8 +910,10 @@ def analyse(tree: ast.Module, typing: Typing) -> Analysis:
         params = [a.arg for a in stmt.args.args]
         root = typing.root_params.get(stmt.name) or ("t" if params and params[0] == "t" else None)
         env = {root: typing.root} if root else {}
-        used_values = _used_call_values(stmt)
+        bare: set[int] = set()  # calls whose value is thrown away (ast.walk meets an Expr before its call)
         for node in ast.walk(stmt):
+            if isinstance(node, ast.Expr):
+                bare.add(id(node.value))
             if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id == root:
                 (facts.writes if isinstance(node.ctx, ast.Store) else facts.reads).add(node.attr)
             if (
@@ -602,7 +938,7 @@ def analyse(tree: ast.Module, typing: Typing) -> Analysis:
                     if isinstance(base, FBType) and func.attr in FB_BOXES.get(base.name, ()):
                         path = ast.unparse(func.value)
                         result.box_calls.append((path, func.attr, node.lineno))
-                        if id(node) in used_values:
+                        if id(node) not in bare:
                             result.timer_reads.add(path)
             if isinstance(node, ast.Attribute) and node.attr in ("Q", "ET") and isinstance(node.ctx, ast.Load):
                 base = _safe_type(typing, node.value, env)
@@ -620,12 +956,6 @@ def _safe_type(typing: Typing, node: ast.expr, env: dict[str, Any]) -> Any:
         return typing.type_of(node, env)
     except UnknownTagError:
         return None
-
-
-def _used_call_values(func: ast.FunctionDef) -> set[int]:
-    """ids of Call nodes whose value is used (not a bare expression statement)."""
-    bare = {id(s.value) for s in ast.walk(func) if isinstance(s, ast.Expr)}
-    return {id(n) for n in ast.walk(func) if isinstance(n, ast.Call) and id(n) not in bare}
 
 
 def _collect_coils(node: ast.If, result: Analysis, typing: Typing, env: dict[str, Any]) -> None:

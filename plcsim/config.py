@@ -52,6 +52,9 @@ class CPUConfig:
         rtc_start: the CPU's local date and time at simulated time 0 (for RD_LOC_T).
         family: ``S7-1200`` or ``S7-1500`` (SCALE/UNSCALE exist only on the S7-1500).
         memory: sizes of %I, %Q and %M.
+        input_writes: what a program storing into an input tag (%I) gets when it is loaded: ``warn``
+            (a load warning naming the line; the store changes only the program's process image) or
+            ``error`` (the program is refused).
     """
 
     cycle: str | int = "1ms"
@@ -71,6 +74,7 @@ class CPUConfig:
     rtc_start: str = "DTL#2026-01-05-08:00:00"
     family: str = "S7-1200"
     memory: MemoryLayout = field(default_factory=MemoryLayout)
+    input_writes: str = "warn"
 
     def __post_init__(self) -> None:
         try:
@@ -79,6 +83,8 @@ class CPUConfig:
             raise ConfigurationError(f"timer_dialect {self.timer_dialect!r}: use 's7_1200' or 'iec'") from None
         if self.counter_overflow not in ("wrap", "saturate"):
             raise ConfigurationError(f"counter_overflow {self.counter_overflow!r}: use 'wrap' or 'saturate'")
+        if self.input_writes not in ("warn", "error"):
+            raise ConfigurationError(f"input_writes {self.input_writes!r}: use 'warn' or 'error'")
         if self.family not in ("S7-1200", "S7-1500"):
             raise ConfigurationError(f"family {self.family!r}: use 'S7-1200' or 'S7-1500'")
         self.cycle_ns = to_ns(self.cycle, "cycle")

@@ -38,9 +38,9 @@ from typing import Any
 
 from plcsim.access import HostAccess, store_instance_member, store_into
 from plcsim.clock import Clock
-from plcsim.compiler import FB_STORE, STORE, TICK
+from plcsim.compiler import FB_STORE, ROOT_GUARD, STORE, TICK
 from plcsim.config import CLOCK_BITS, RUN, STOP, SYSTEM_BITS, CPUConfig, DiagnosticEntry
-from plcsim.errors import ConfigurationError, PlcError
+from plcsim.errors import ConfigurationError, PlcError, PlcTypeError
 from plcsim.execution import NEVER, CycleWatchdog, Execution, RunningTask, TaskRunner, switched_off, tuple_getter
 from plcsim.instructions.edges import bit_resolver, make_edge_instructions
 from plcsim.instructions.system import make_move, make_rd_loc_t
@@ -196,7 +196,11 @@ class CPU(TaskRunner, HostAccess):
         self._load_table(table, _address_strings(program))
         aliased = frozenset(c.key if c.container is self.t else f"{c.container._path}.{c.key}" for c in self.aliases)
         compiled = program.compile(
-            self.table, aliased, strict_timers=self.config.textbook_strict_timers, family=self.config.family
+            self.table,
+            aliased,
+            strict_timers=self.config.textbook_strict_timers,
+            family=self.config.family,
+            input_writes=self.config.input_writes,
         )
         namespace = runtime_namespace(compiled, self._bound_instructions())
         exec(compiled.code, namespace)
@@ -254,6 +258,16 @@ class CPU(TaskRunner, HostAccess):
                 raise CycleWatchdog()
 
         bound[TICK] = tick
+
+        def tags_of(tags: Any) -> dict[str, Any]:
+            if tags is not self.t:
+                raise PlcTypeError(
+                    f"a network was called with {type(tags).__name__} instead of the tags; call a network "
+                    f"(or a function that stores into t.NAME) with t"
+                )
+            return tags.__dict__
+
+        bound[ROOT_GUARD] = tags_of
         bound[STORE] = store_into
         bound[FB_STORE] = store_instance_member
         return bound

@@ -42,6 +42,14 @@ class SubsetError(ProgramError):
     """A construct outside the PLC subset of Python (imports, dunder access, open/exec/eval)."""
 
 
+class NoOB1Error(ProgramError):
+    """A program with no OB1 (an empty file, only comments, ``def ob1``): it would never run."""
+
+
+class ProgramFileError(ProgramError):
+    """A program file that cannot be read or decoded (the message names the encoding tried)."""
+
+
 class ConfigurationError(PlcError, ValueError):
     """A CPU, wiring, scenario or exercise option with an invalid value."""
 

@@ -175,6 +175,8 @@ class TaskRunner:
                     try:
                         whole(t)
                         ex.index = n
+                    except KeyboardInterrupt:
+                        raise
                     except BaseException as exc:  # noqa: BLE001 - sorted out in _after_exception
                         self._after_exception(ex, exc, NEVER)
                         if self.mode != RUN:  # the fault stopped the CPU: do not run the network again
@@ -312,7 +314,9 @@ class TaskRunner:
                     k = n
                     break
             ex.index = k
-        except Exception as exc:  # noqa: BLE001 - a student's error must not crash the host
+        except KeyboardInterrupt:  # the person at the host pressed Ctrl-C: not the program's fault
+            raise
+        except BaseException as exc:  # noqa: BLE001 - any error of a student's (RecursionError, SystemExit ...) is a STOP
             ex.index = k
             self._run_failed(ex, exc)
         finally:
@@ -334,7 +338,9 @@ class TaskRunner:
             self._run_networks(ex, until_ns)
         except ReturnFromBlock:
             ex.index = task.n
-        except Exception as problem:  # noqa: BLE001 - a student's error must not crash the host
+        except KeyboardInterrupt:
+            raise
+        except BaseException as problem:  # noqa: BLE001 - a student's error must not crash the host
             self._run_failed(ex, problem)
 
     def _run_failed(self, ex: Execution, exc: BaseException) -> None:
@@ -535,6 +541,8 @@ def describe_error(exc: BaseException) -> str:
     name = type(exc).__name__
     if isinstance(exc, PlcError):
         return text
+    if isinstance(exc, RecursionError):
+        return f"{name}: {text} (a network or function calls itself, directly or through another, without end)"
     return f"{name}: {text}" if text else name
 
 

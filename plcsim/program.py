@@ -1,7 +1,8 @@
 """How a user program is written and bound to the CPU's tasks.
 
 A program is a Python file in the PLC subset. Module-level assignments declare the program's own
-tags and instances; functions are networks; names ``OB1``, ``OB30`` ... ``OB38`` and ``OB100`` bind
+tags and instances (they are evaluated by :mod:`plcsim.module_level`, never executed); functions are
+networks; names ``OB1``, ``OB30`` ... ``OB38`` and ``OB100`` bind
 networks to tasks::
 
     POM = Tag("%M10.0")                 # a PLC tag at an absolute address
@@ -34,7 +35,6 @@ import builtins
 import inspect
 import re
 import textwrap
-import traceback
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,6 +45,7 @@ from plcsim.compiler import (
     ALLOWED_BUILTINS,
     FB_STORE,
     MERGED_ROOT,
+    ROOT_GUARD,
     STORE,
     TICK,
     Analysis,
@@ -56,13 +57,21 @@ from plcsim.compiler import (
     merge_networks,
     parse,
 )
-from plcsim.errors import DeclarationError, PlcError, ProgramError
+from plcsim.errors import DeclarationError, NoOB1Error, PlcError, ProgramError, SubsetError
 from plcsim.instructions import BOOL_RESULTS, CPU_BOUND, FB_TYPES, PURE_INSTRUCTIONS
 from plcsim.literals import time_ms, to_ns
+from plcsim.module_level import NetworkRef, evaluate_module
+from plcsim.program_text import read_program_text
+from plcsim.safe_math import SAFE_FUNCTIONS, bounded_range
 from plcsim.tags import DB, DataBlock, Tag, TagTable
-from plcsim.types import ArrayType, DataType, ElementaryType, Member, StringType, StructType
+from plcsim.types import ArrayType, DataType, ElementaryType, Member, StringType, StructType, value_count
 
 MAX_LABELS_S7_1200 = 32
+MAX_VALUES = 1_000_000
+"""The most values a program may declare (an S7-1200 has 50..150 KB of work memory: far fewer)."""
+MAX_MERGED_STATEMENTS = 5000
+"""Above this many statements an OB's networks are not merged into one function (see merge_networks):
+the merge speeds up scans of ordinary programs and would only slow down loading a huge one."""
 DEFAULT_INTERRUPT_PERIOD = "100ms"
 DEFAULT_INTERRUPT_PRIORITY = 8
 
@@ -114,11 +123,15 @@ def TIME(literal: str) -> int:
     return time_ms(literal)
 
 
-DECLARATION_NAMES: dict[str, Any] = {
+TYPE_NAMES: dict[str, Any] = {
     **{t.name: t for t in plc_types.ELEMENTARY.values()},
     "TOD": plc_types.TimeOfDay,
     "String": plc_types.String,
     "DTL": plc_types.DTL,
+}
+"""Data types: declared at module level, and named in networks (``CONVERT(x, Int)``)."""
+
+DECLARATION_ONLY: dict[str, Any] = {
     "Array": Array,
     "Struct": Struct,
     "UDT": UDT,
@@ -126,9 +139,11 @@ DECLARATION_NAMES: dict[str, Any] = {
     "DB": DB,
     "CyclicInterrupt": CyclicInterrupt,
     "label": label,
-    "TIME": TIME,
     **FB_TYPES,
 }
+"""Names that declare something; a network cannot use them (it sees the declared tag as t.NAME)."""
+
+DECLARATION_NAMES: dict[str, Any] = {**TYPE_NAMES, **DECLARATION_ONLY, "TIME": TIME}
 """Names a program may use at module level to declare tags, DBs, instances and tasks."""
 
 PROGRAM_NAMES = set(DECLARATION_NAMES) | set(PURE_INSTRUCTIONS) | CPU_BOUND
@@ -190,20 +205,40 @@ class CompiledProgram:
 
 
 class Program:
-    """A user program: its declarations and its tasks, checked against the PLC subset of Python."""
+    """A user program: its declarations and its tasks, checked against the PLC subset of Python.
+
+    The checked syntax tree is the only form of the program that is ever compiled: ``source`` and
+    ``tree`` are read-only, and the module level is evaluated as declarations, never executed.
+    """
 
     def __init__(
         self, source: str, filename: str = "<program>", *, extra_declarations: Mapping[str, Any] | None = None
     ):
-        self.source = source
-        self.filename = filename
-        self.tree = parse(source, filename)
-        check_subset(self.tree, filename, PROGRAM_NAMES)
-        self.functions = {s.name: s for s in self.tree.body if isinstance(s, ast.FunctionDef)}
+        self._source = source
+        self._filename = filename
+        self._tree = parse(source, filename)
+        check_subset(self._tree, filename, PROGRAM_NAMES, DECLARATION_ONLY)
+        self.functions = {s.name: s for s in self._tree.body if isinstance(s, ast.FunctionDef)}
         self.declarations: dict[str, Any] = dict(extra_declarations or {})
         self.types: dict[str, StructType] = {}
         self.tasks: dict[str, TaskSpec] = {}
+        self.constants: dict[str, Any] = {}
         self._collect()
+
+    @property
+    def source(self) -> str:
+        """The program text as loaded (for display; what runs is compiled from :attr:`tree`)."""
+        return self._source
+
+    @property
+    def filename(self) -> str:
+        """The file the program came from (every error names it)."""
+        return self._filename
+
+    @property
+    def tree(self) -> ast.Module:
+        """The syntax tree that passed the subset check; compiling starts from a copy of it."""
+        return self._tree
 
     # -- constructors -------------------------------------------------------------------------
 
@@ -214,13 +249,9 @@ class Program:
 
     @classmethod
     def from_file(cls, path: str | Path) -> Program:
-        """Load a program from a ``.py`` file (errors name the file and line)."""
+        """Load a program from a ``.py`` file (errors name the file and line; see :func:`read_program_text`)."""
         path = Path(path)
-        try:
-            text = path.read_text(encoding="utf-8")
-        except OSError as exc:
-            raise ProgramError(f"cannot read program {path}: {exc.strerror}") from None
-        return cls(text, str(path))
+        return cls(read_program_text(path), str(path))
 
     @classmethod
     def from_functions(cls, tags: Mapping[str, Any] | None = None, **obs: Any) -> Program:
@@ -266,57 +297,77 @@ class Program:
     # -- phase 1: declarations and tasks --------------------------------------------------------
 
     def _collect(self) -> None:
-        namespace = declaration_namespace()
-        try:
-            exec(compile(self.tree, self.filename, "exec"), namespace)
-        except PlcError as exc:
-            raise type(exc)(f"{self.filename}, line {_error_line(exc, self.filename)}: {exc}") from None
-        except Exception as exc:  # noqa: BLE001 - any error in a student's declarations is reported
-            raise ProgramError(
-                f"{self.filename}, line {_error_line(exc, self.filename)}: {type(exc).__name__}: {exc}"
-            ) from None
-        labels = {name: f.plc_label for name, f in namespace.items() if hasattr(f, "plc_label")}
-        self._declaration_lines = {
-            t.id: stmt.lineno
-            for stmt in self.tree.body
-            if isinstance(stmt, ast.Assign)
-            for t in stmt.targets
-            if isinstance(t, ast.Name)
-        }
-        for name in _assigned_in_order(self.tree):
-            value = namespace.get(name)
+        values = evaluate_module(self._tree, self._filename, DECLARATION_NAMES)
+        for name, line in values.lines.items():
+            if name in values.constants and name in PROGRAM_NAMES | ALLOWED_BUILTINS:
+                raise SubsetError(
+                    f"{self._filename}, line {line}: {name} is the name of an instruction, a type or a builtin; "
+                    f"choose another name for the constant"
+                )
+        self.constants = values.constants
+        self._declaration_lines = values.lines
+        for name in values.order:
             if _OB_RE.match(name):
-                self.tasks[name] = self._task(name, value, labels)
-            elif isinstance(value, (Tag, DataBlock, Member)):
+                continue
+            value = values.declared.get(name)
+            line = values.lines[name]
+            if isinstance(value, (Tag, DataBlock, Member)):
                 if name in self.declarations:
-                    raise DeclarationError(f"{self.filename}: {name!r} is declared twice")
+                    raise DeclarationError(f"{self._filename}, line {line}: {name!r} is declared twice")
                 self.declarations[name] = value
             elif isinstance(value, StructType) and value.name in ("UDT", "Struct"):
                 value.name = name
                 self.types[name] = value
             elif isinstance(value, (ElementaryType, StringType, StructType)):
                 raise DeclarationError(
-                    f"{self.filename}: {name} = {value.name} declares no tag; write {name} = {value.name}() "
-                    f"for a symbolic tag or {name} = Tag('%M10.0', {value.name}) for an addressed one"
+                    f"{self._filename}, line {line}: {name} = {value.name} declares no tag; write "
+                    f"{name} = {value.name}() for a symbolic tag or {name} = Tag('%M10.0', {value.name}) "
+                    f"for an addressed one"
                 )
+        self._check_size(values.lines)
+        for name, value in values.bindings.items():
+            self.tasks[name] = self._task(name, value, values.labels, values.lines[name])
         for name in self.functions:
             if _OB_RE.match(name) and name not in self.tasks:
-                self.tasks[name] = self._task(name, namespace[name], labels)
+                self.tasks[name] = self._task(name, NetworkRef(name), values.labels, self.functions[name].lineno)
+        if "OB1" not in self.tasks:  # a program of interrupts only is valid; one of no OB, or an ob1, is not
+            message = no_ob1_message(self._filename, self._tree, bool(self.tasks))
+            if message:
+                raise NoOB1Error(message)
 
-    def _task(self, name: str, value: Any, labels: dict[str, str]) -> TaskSpec:
-        kind, priority = task_kind(name)
+    def _check_size(self, lines: Mapping[str, int]) -> None:
+        """Refuse declarations that would fill the host's memory (``Array(0, 100000000, Int)``)."""
+        total = 0
+        for name, decl in self.declarations.items():
+            members = decl.members.values() if isinstance(decl, DataBlock) else [decl]
+            total += sum(value_count(m.type) if isinstance(m, Member) else 1 for m in members)
+            if total > MAX_VALUES:
+                raise DeclarationError(
+                    f"{self._filename}, line {lines.get(name, '?')}: {name} brings the program to {total} "
+                    f"values; a program may declare at most {MAX_VALUES} (an S7-1200's work memory holds far fewer)"
+                )
+
+    def _task(self, name: str, value: Any, labels: dict[str, str], line: int) -> TaskSpec:
+        where = f"{self._filename}, line {line}"
+        try:
+            kind, priority = task_kind(name)
+        except ProgramError as exc:
+            raise ProgramError(f"{where}: {exc}") from None
         period, phase, duration = 0, 0, None
         if isinstance(value, CyclicInterrupt):
             if kind != "interrupt":
-                raise ProgramError(
-                    f"{self.filename}: {name} is not a cyclic-interrupt OB; CyclicInterrupt is for OB30..OB38"
-                )
-            period = to_ns(value.period, f"{name} period")
-            phase = to_ns(value.phase, f"{name} phase")
+                raise ProgramError(f"{where}: {name} is not a cyclic-interrupt OB; CyclicInterrupt is for OB30..OB38")
+            try:
+                period = to_ns(value.period, f"{name} period")
+                phase = to_ns(value.phase, f"{name} phase")
+                duration = None if value.duration is None else to_ns(value.duration, f"{name} duration")
+            except PlcError as exc:
+                raise type(exc)(f"{where}: {exc}") from None
             if period <= 0:
-                raise ProgramError(f"{self.filename}: {name} needs a positive period, e.g. period='1s'")
+                raise ProgramError(f"{where}: {name} needs a positive period, e.g. period='1s'")
+            if not isinstance(value.priority, int) or isinstance(value.priority, bool):
+                raise ProgramError(f"{where}: {name} priority must be a whole number, e.g. priority=8")
             priority = value.priority
-            duration = None if value.duration is None else to_ns(value.duration, f"{name} duration")
             value = value.networks
         elif kind == "interrupt":
             period = to_ns(DEFAULT_INTERRUPT_PERIOD)
@@ -324,29 +375,25 @@ class Program:
         networks = []
         seen_labels: dict[str, str] = {}
         for func in funcs:
-            fname = getattr(func, "__name__", None)
-            node = self.functions.get(fname) if fname else None
+            node = self.functions.get(func) if isinstance(func, NetworkRef) else None
             if node is None:
+                raise ProgramError(f"{where}: {name} must be a network function or a list of them, got {func!r}")
+            fname = node.name
+            if len(node.args.args) != 1 or node.args.kwonlyargs or node.args.posonlyargs or node.args.defaults:
                 raise ProgramError(
-                    f"{self.filename}: {name} must be a network function or a list of them, got {func!r}"
-                )
-            if len(node.args.args) != 1:
-                raise ProgramError(
-                    f"{self.filename}, line {node.lineno}: network {fname} must take exactly one parameter, "
+                    f"{self._filename}, line {node.lineno}: network {fname} must take exactly one parameter, "
                     f"the tags (def {fname}(t): ...)"
                 )
             lab = labels.get(fname)
             if lab is not None:
                 if lab in seen_labels:
-                    raise ProgramError(
-                        f"{self.filename}: label {lab!r} is used twice in {name}; a label is unique per block"
-                    )
+                    raise ProgramError(f"{where}: label {lab!r} is used twice in {name}; a label is unique per block")
                 seen_labels[lab] = fname
             doc = ast.get_docstring(node) or ""
             networks.append(NetworkSpec(fname, doc.strip().splitlines()[0] if doc else fname, lab, node.lineno))
         if len(seen_labels) > MAX_LABELS_S7_1200:
             raise ProgramError(
-                f"{self.filename}: {name} has {len(seen_labels)} labels; an S7-1200 block allows {MAX_LABELS_S7_1200}"
+                f"{where}: {name} has {len(seen_labels)} labels; an S7-1200 block allows {MAX_LABELS_S7_1200}"
             )
         return TaskSpec(name, kind, networks, period, phase, priority, duration)
 
@@ -376,19 +423,22 @@ class Program:
         *,
         strict_timers: bool = True,
         family: str = "S7-1200",
+        input_writes: str = "warn",
     ) -> CompiledProgram:
-        """Compile against a tag table that already holds this program's declarations."""
+        """Compile against a tag table that already holds this program's declarations.
+
+        A store into an input tag (%I) is a warning, or with ``input_writes="error"`` a ProgramError."""
         root_params = {}
         for task in self.tasks.values():
             for net in task.networks:
                 root_params[net.name] = self.functions[net.name].args.args[0].arg
         typing = Typing(table.schema(), aliased, self.filename, root_params)
         analysis = analyse(self.tree, typing)
-        tree = ast.parse(self.source, self.filename)
+        tree = runtime_module(self._tree)
         merged: dict[str, str] = {}
         for task in self.tasks.values():
             funcs = [self.functions[n.name] for n in task.networks]
-            if len(funcs) > 1:
+            if len(funcs) > 1 and sum(len(f.body) for f in funcs) <= MAX_MERGED_STATEMENTS:
                 combined = merge_networks(funcs, task.name, root_params)
                 if combined is not None:
                     tree.body.append(combined)
@@ -398,6 +448,14 @@ class Program:
         tree = ast.fix_missing_locations(rewriter.visit(tree))
         code = compile(tree, self.filename, "exec")
         warnings = list(analysis.warnings)
+        for line, name in self._input_stores(table, root_params):
+            message = (
+                f"{self._filename}, line {line}: the program writes the input {name} "
+                f"({table[name].address}); an input is what the sensor delivers, the program should only read it"
+            )
+            if input_writes == "error":
+                raise ProgramError(message)
+            warnings.append(message + " (the write changes only the program's process image, not the plant)")
         self._check_jumps(analysis)
         if family == "S7-1200":
             for node in ast.walk(self.tree):
@@ -416,6 +474,25 @@ class Program:
             if strict_timers:
                 inert.add(path)
         return CompiledProgram(self, code, analysis, rewriter.coercers, inert, warnings, merged)
+
+    def _input_stores(self, table: TagTable, root_params: Mapping[str, str]) -> list[tuple[int, str]]:
+        """(line, tag) of every store into an input tag: t.IN = ..., t["IN"] = ..., MOVE(x, "IN")."""
+        inputs = {e.name for e in table if e.address is not None and e.address.area == "I"}
+        found: list[tuple[int, str]] = []
+        for func in self.functions.values():
+            root = root_params.get(func.name, "t")
+            for node in ast.walk(func):
+                name = None
+                if isinstance(node, ast.Attribute | ast.Subscript) and isinstance(node.ctx, ast.Store):
+                    if isinstance(node.value, ast.Name) and node.value.id == root:
+                        key = node.attr if isinstance(node, ast.Attribute) else getattr(node.slice, "value", None)
+                        name = key if key in inputs else None
+                elif isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "MOVE":
+                    outs = [_target_text(a, root) for a in node.args[1:]]
+                    name = next((o for o in outs if o in inputs), None)
+                if name is not None:
+                    found.append((node.lineno, name))
+        return sorted(found)
 
     def _check_jumps(self, analysis: Analysis) -> None:
         for task in self.tasks.values():
@@ -437,69 +514,91 @@ class Program:
         return f"<Program {self.filename}: {', '.join(self.tasks) or 'no tasks'}>"
 
 
-def _assigned_in_order(tree: ast.Module) -> list[str]:
-    names: list[str] = []
+def runtime_module(tree: ast.Module) -> ast.Module:
+    """What runs: a copy of the checked tree's network functions, without decorators (labels are
+    already collected) and without the module-level declarations (evaluated, never executed)."""
+    body = []
     for stmt in tree.body:
-        targets: list[ast.expr] = []
-        if isinstance(stmt, ast.Assign):
-            targets = stmt.targets
-        elif isinstance(stmt, ast.AnnAssign):
-            targets = [stmt.target]
-        for target in targets:
-            if isinstance(target, ast.Name) and target.id not in names:
-                names.append(target.id)
-    return names
+        if isinstance(stmt, ast.FunctionDef):
+            func = copy_tree(stmt)
+            func.decorator_list = []
+            body.append(func)
+    return ast.Module(body=body, type_ignores=[])
 
 
-def _error_line(exc: BaseException, filename: str) -> int | str:
-    for frame in reversed(traceback.extract_tb(exc.__traceback__)):
-        if frame.filename == filename:
-            return frame.lineno or "?"
-    return "?"
+def copy_tree(node: Any) -> Any:
+    """A deep copy of a syntax tree (several times faster than copy.deepcopy; depth is bounded by the
+    subset check)."""
+    if isinstance(node, list):
+        return [copy_tree(item) for item in node]
+    if not isinstance(node, ast.AST):
+        return node
+    new = node.__class__()
+    for name in node._fields:
+        setattr(new, name, copy_tree(getattr(node, name, None)))
+    for name in node._attributes:
+        if hasattr(node, name):
+            setattr(new, name, getattr(node, name))
+    return new
 
 
-def _not_here(name: str) -> Callable[..., Any]:
-    def stub(*args: Any, **kwargs: Any) -> Any:
-        raise ProgramError(f"{name} can only run inside a network, not while the program is declared")
+def no_ob1_message(filename: str, tree: ast.Module, has_tasks: bool) -> str:
+    """Why a program has no OB1, and how to write one (a lower-case ``def ob1`` is named); empty when a
+    program without OB1 is fine (it has other OBs and nothing that looks like a misspelt OB1)."""
+    near = [
+        s
+        for s in tree.body
+        if isinstance(s, ast.FunctionDef | ast.Assign)
+        and any(n.upper() == "OB1" for n in ([s.name] if isinstance(s, ast.FunctionDef) else _target_names(s)))
+    ]
+    if near:
+        wrong = near[0].name if isinstance(near[0], ast.FunctionDef) else _target_names(near[0])[0]
+        return (
+            f"{filename}, line {near[0].lineno}: no OB1: {wrong} is not OB1 (the name is case-sensitive); "
+            f"did you mean OB1? Write def OB1(t): ... or OB1 = [network, ...]"
+        )
+    if has_tasks:
+        return ""
+    what = "the file holds no code (it is empty or only comments)" if not tree.body else "nothing is bound to OB1"
+    return (
+        f"{filename}: no OB1: {what}. The program cycle OB1 runs the networks; write "
+        f"def OB1(t): ... for one network, or define networks (def start_belt(t): ...) and list them: "
+        f"OB1 = [start_belt, stop_belt]"
+    )
 
-    return stub
+
+def _target_text(node: ast.expr, root: str) -> str | None:
+    """The tag a MOVE output names: ``"LED"`` or ``t.LED``."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value
+    if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id == root:
+        return node.attr
+    return None
+
+
+def _target_names(stmt: ast.Assign) -> list[str]:
+    return [t.id for t in stmt.targets if isinstance(t, ast.Name)]
 
 
 def safe_builtins() -> dict[str, Any]:
     """The builtins a program may use."""
-    return {name: getattr(builtins, name) for name in ALLOWED_BUILTINS if hasattr(builtins, name)}
-
-
-def declaration_namespace() -> dict[str, Any]:
-    """The names visible while a program's module level runs (declarations only)."""
-    namespace: dict[str, Any] = {"__builtins__": safe_builtins(), **DECLARATION_NAMES, **PURE_INSTRUCTIONS}
-    for name in CPU_BOUND:
-        namespace[name] = _not_here(name)
-    namespace[TICK] = _module_tick()
-    namespace[STORE] = _not_here("storing into a tag")
-    namespace[FB_STORE] = _not_here("storing into an instance")
-    return namespace
-
-
-def _module_tick(budget: int = 1_000_000) -> Callable[[], None]:
-    count = [0]
-
-    def tick() -> None:
-        count[0] += 1
-        if count[0] > budget:
-            raise ProgramError("a loop at module level runs too long; declarations must not loop")
-
-    return tick
+    allowed = {name: getattr(builtins, name) for name in ALLOWED_BUILTINS if hasattr(builtins, name)}
+    allowed["range"] = bounded_range
+    return allowed
 
 
 def runtime_namespace(compiled: CompiledProgram, bound: Mapping[str, Any]) -> dict[str, Any]:
-    """The names a compiled program runs with: declarations, instructions, conversions and ``bound``."""
-    namespace: dict[str, Any] = {"__builtins__": safe_builtins(), **DECLARATION_NAMES, **PURE_INSTRUCTIONS}
-    namespace["label"] = lambda name: lambda func: func
+    """The names a compiled program runs with: types, instructions, conversions, constants and ``bound``.
+
+    Nothing in it lets a network change what another program sees: the types' members are read-only,
+    attribute stores go through :data:`~plcsim.compiler.STORE`, and declaration-only names are absent."""
+    namespace: dict[str, Any] = {"__builtins__": safe_builtins(), **TYPE_NAMES, "TIME": TIME, **PURE_INSTRUCTIONS}
     for dtype in plc_types.ELEMENTARY.values():
         namespace[coerce_name(dtype)] = dtype.coerce
+    namespace.update(SAFE_FUNCTIONS)
+    namespace.update(compiled.program.constants)
     namespace.update(bound)
-    missing = (CPU_BOUND | {TICK, STORE, FB_STORE}) - set(namespace)
+    missing = (CPU_BOUND | {TICK, STORE, FB_STORE, ROOT_GUARD}) - set(namespace)
     if missing:
         raise ProgramError(f"internal: the CPU did not provide {sorted(missing)}")
     return namespace

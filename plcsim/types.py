@@ -19,6 +19,7 @@ import math
 import struct
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import Any
 
 from plcsim.errors import DeclarationError, LiteralError, PlcTypeError
@@ -49,6 +50,15 @@ class DataType:
     name: str
     bits: int
 
+    def _seal(self) -> None:
+        """Make the type read-only: the elementary types and ``String`` are shared by every program."""
+        object.__setattr__(self, "_sealed", True)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if getattr(self, "_sealed", False):
+            raise AttributeError(f"the data type {self.name} is read-only ({name} cannot be set)")
+        object.__setattr__(self, name, value)
+
     def default(self) -> Any:  # pragma: no cover - overridden
         raise NotImplementedError
 
@@ -75,6 +85,7 @@ class ElementaryType(DataType):
         self.name, self.bits, self.kind, self.lo, self.hi = name, bits, kind, lo, hi
         self.fmt = struct.Struct(">" + fmt) if fmt else None
         self.coerce: Callable[..., Any] = self._make_coerce()
+        self._seal()
 
     def default(self) -> Any:
         """The zero value of the type (FALSE, 0, 0.0, T#0ms, '')."""
@@ -246,9 +257,9 @@ class StructType(DataType):
 
     def __init__(self, name: str, members: Mapping[str, DataType | Member]):
         self.name = name
-        self.members: dict[str, Member] = {}
-        for key, spec in members.items():
-            self.members[key] = as_member(spec, f"{name}.{key}")
+        self.members: Mapping[str, Member] = MappingProxyType(
+            {key: as_member(spec, f"{name}.{key}") for key, spec in members.items()}
+        )  # read-only: DTL is one object for every program
         self.bits = sum(m.type.bits for m in self.members.values())
 
     def default(self) -> Any:
@@ -291,12 +302,22 @@ class StringType(DataType):
             return value[:max_len]
 
         self.coerce = coerce_string
+        self._seal()
 
     def default(self) -> str:
         return ""
 
 
 String = StringType()
+
+
+def value_count(dtype: DataType) -> int:
+    """How many values a tag of this type holds (an ARRAY[0..9] of a 3-member STRUCT holds 30)."""
+    if isinstance(dtype, ArrayType):
+        return (dtype.hi - dtype.lo + 1) * value_count(dtype.element)
+    if isinstance(dtype, StructType):
+        return sum(value_count(m.type) for m in dtype.members.values())
+    return 1
 
 
 def as_member(spec: DataType | Member, where: str) -> Member:

@@ -17,7 +17,7 @@ from __future__ import annotations
 from typing import Any
 
 from plcsim.errors import ConfigurationError, PlcTypeError
-from plcsim.types import ElementaryType, Int
+from plcsim.types import Bool, ElementaryType, Int
 
 
 class IecCounter:
@@ -59,15 +59,24 @@ class IecCounter:
         return (cv - self._lo) % span + self._lo
 
     def _preset(self, PV: Any) -> int:
-        if PV.__class__ is int:
-            return PV
-        if isinstance(PV, int) and not isinstance(PV, bool):
-            return int(PV)
-        raise PlcTypeError(f"{self._path or 'counter'}: PV must be an integer, not {PV!r}")
+        if PV.__class__ is not int:
+            if not isinstance(PV, int) or isinstance(PV, bool):
+                raise PlcTypeError(f"{self._path or 'counter'}: PV must be an integer, not {PV!r}")
+            PV = int(PV)
+        if not self._lo <= PV <= self._hi:
+            raise PlcTypeError(
+                f"{self._path or 'counter'}: PV {PV} is outside the count type's range {self._lo}..{self._hi}"
+            )
+        return PV
+
+    def _bools(self, *operands: tuple[str, Any]) -> list[bool]:
+        """The box's BOOL inputs, refused when they are not Bools (a 2 or a function never lands in CU)."""
+        return [v if v is True or v is False else Bool.coerce(v, f"{self._path}.{name}") for name, v in operands]
 
     def CTUD(self, CU: bool = False, CD: bool = False, R: bool = False, LD: bool = False, PV: Any = 0) -> bool:
         """Count up on CU edges and down on CD edges; returns QU."""
         self._kind = self._kind or "CTUD"
+        CU, CD, R, LD = self._bools(("CU", CU), ("CD", CD), ("R", R), ("LD", LD))
         pv = self._preset(PV)
         cv = self.CV
         if R:
@@ -87,6 +96,8 @@ class IecCounter:
     def CTU(self, CU: bool, R: bool = False, PV: Any = 0) -> bool:
         """Count up on CU edges, reset with R; returns Q = CV >= PV."""
         self._kind = "CTU"
+        if (CU is not True and CU is not False) or (R is not True and R is not False):
+            CU, R = self._bools(("CU", CU), ("R", R))
         pv = self._preset(PV)
         if R:
             cv = 0
@@ -102,6 +113,8 @@ class IecCounter:
     def CTD(self, CD: bool, LD: bool = False, PV: Any = 0) -> bool:
         """Count down on CD edges, load PV with LD; returns Q = CV <= 0."""
         self._kind = "CTD"
+        if (CD is not True and CD is not False) or (LD is not True and LD is not False):
+            CD, LD = self._bools(("CD", CD), ("LD", LD))
         pv = self._preset(PV)
         if LD:
             cv = pv

@@ -18,6 +18,7 @@ from collections.abc import Callable
 from typing import Any
 
 from plcsim.errors import PlcTypeError, UnknownTagError, did_you_mean
+from plcsim.types import Bool
 
 
 class EdgeTrigger:
@@ -35,12 +36,16 @@ class EdgeTrigger:
 
     def R_TRIG(self, CLK: bool) -> bool:
         """Q is TRUE for the one call in which CLK went from FALSE to TRUE."""
+        if CLK is not True and CLK is not False:
+            CLK = Bool.coerce(CLK, f"{self._path}.CLK")
         self.Q = q = CLK and not self.Stat_Bit
         self.CLK = self.Stat_Bit = CLK
         return q
 
     def F_TRIG(self, CLK: bool) -> bool:
         """Q is TRUE for the one call in which CLK went from TRUE to FALSE."""
+        if CLK is not True and CLK is not False:
+            CLK = Bool.coerce(CLK, f"{self._path}.CLK")
         self.Q = q = (not CLK) and self.Stat_Bit
         self.CLK = self.Stat_Bit = CLK
         return q

@@ -26,6 +26,7 @@ from typing import Any
 
 from plcsim.errors import PlcTypeError
 from plcsim.literals import time_ms
+from plcsim.types import Bool
 
 
 class TimerDialect(StrEnum):
@@ -113,6 +114,8 @@ class IecTimer:
         """On-delay: Q turns TRUE when IN has been TRUE for PT; IN = FALSE resets Q and ET."""
         if self._inert:
             return self._q
+        if IN is not True and IN is not False:
+            IN = Bool.coerce(IN, f"{self._path}.IN")
         self._kind = "TON"
         if PT.__class__ is not int:
             PT = preset_ms(PT, self._path or "TON")
@@ -132,6 +135,8 @@ class IecTimer:
         """Off-delay: Q is TRUE while IN is TRUE and for PT after IN falls; ET stays at PT afterwards."""
         if self._inert:
             return self._q
+        if IN is not True and IN is not False:
+            IN = Bool.coerce(IN, f"{self._path}.IN")
         self._kind = "TOF"
         if PT.__class__ is not int:
             PT = preset_ms(PT, self._path or "TOF")
@@ -153,6 +158,8 @@ class IecTimer:
         """
         if self._inert:
             return self._q
+        if IN is not True and IN is not False:
+            IN = Bool.coerce(IN, f"{self._path}.IN")
         self._kind = "TP"
         if PT.__class__ is not int:
             PT = preset_ms(PT, self._path or "TP")
@@ -177,6 +184,10 @@ class IecTimer:
         """
         if self._inert:
             return self._q
+        if IN is not True and IN is not False:
+            IN = Bool.coerce(IN, f"{self._path}.IN")
+        if R is not True and R is not False:
+            R = Bool.coerce(R, f"{self._path}.R")
         self._kind = "TONR"
         if PT.__class__ is not int:
             PT = preset_ms(PT, self._path or "TONR")
