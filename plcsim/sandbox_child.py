@@ -1,0 +1,86 @@
+"""The grading child: ``python -m plcsim.sandbox_child REQUEST`` (started by :mod:`plcsim.sandbox`).
+
+It confines itself (:mod:`plcsim.confine`), loads the exercise and the submission, runs every
+scenario and writes the raw results (:mod:`plcsim.run_result`) to the file descriptor the grader
+passed; then it exits. It sends no score: the grader evaluates the checks itself.
+
+With a PID namespace, the process the grader started forks once: the fork is process 1 of the
+namespace and does the work, the first waits for it and exits with its status (a death by signal
+N as exit code 128 + N), so that the grader can tell a CPU-time limit from a crash.
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import os
+import sys
+from typing import Any
+
+SIGNAL_EXIT_BASE = 128
+MEMORY_EXIT = 86
+"""Exit code of a child that ran out of memory even for its failure message."""
+
+
+def main(argv: list[str]) -> int:
+    from plcsim import confine
+
+    request = json.loads(argv[1])
+    fd = int(request["fd"])
+    limits = request["limits"]
+    confine.set_limits(limits["cpu_seconds"], limits["memory_mb"])
+    if confine.enter_namespaces()[0]:
+        pid = os.fork()
+        if pid:
+            os.close(fd)
+            return _exit_code(os.waitpid(pid, 0)[1])
+        confine.die_with_parent()
+    try:
+        message = _grade(request, confine)
+    except MemoryError:
+        message = None
+    if message is None:
+        return MEMORY_EXIT
+    _write_all(fd, message)
+    os.close(fd)
+    return 0
+
+
+def _grade(request: dict[str, Any], confine: Any) -> bytes:
+    from plcsim.errors import PlcError
+    from plcsim.grading import load_error_kind, run_scenarios
+    from plcsim.program import Program
+    from plcsim.run_result import encode_failure, encode_runs
+
+    exercise = getattr(importlib.import_module(request["module"]), request["attribute"])
+    confine.forbid_processes(request.get("cgroup"))
+    confine.restrict_writes(request["scratch"])
+    try:
+        program = Program.from_file(request["path"])
+        runs, _ = run_scenarios(exercise, program, seed=request["seed"], scenarios=request["scenarios"])
+        return encode_runs(runs, geometry=request["geometry"])
+    except PlcError as exc:
+        return encode_failure(load_error_kind(exc), str(exc))
+    except MemoryError:
+        limit = request["limits"]["memory_mb"]
+        return encode_failure("memory limit", f"the submission ran out of memory (the limit is {limit} MB)")
+    except RecursionError as exc:
+        return encode_failure("program error", f"{request['path']}: the program nests too deeply ({exc})")
+    except Exception as exc:  # noqa: BLE001 - the grader reports it as a crash of the child
+        return encode_failure("crash", f"the grading child failed: {type(exc).__name__}: {exc}")
+
+
+def _exit_code(status: int) -> int:
+    if os.WIFSIGNALED(status):
+        return SIGNAL_EXIT_BASE + os.WTERMSIG(status)
+    return os.WEXITSTATUS(status) if os.WIFEXITED(status) else 1
+
+
+def _write_all(fd: int, data: bytes) -> None:
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view) :]
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
