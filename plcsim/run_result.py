@@ -157,6 +157,9 @@ def message_length(buffer: bytes) -> int | None:
     header = _header(buffer, start, head_len)
     if header.get("kind") == "failure":
         return start + head_len
+    if header.get("kind") != "runs" or set(header) != {"kind", "runs"}:
+        fields = _short(sorted(header)[:8])
+        raise InvalidResultError(f"the child's result is not a runs or failure message (fields {fields})")
     runs = header.get("runs")
     if not isinstance(runs, list):
         raise InvalidResultError("the child's result has no list of runs")

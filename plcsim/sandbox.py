@@ -37,6 +37,8 @@ from plcsim.sandbox_child import MEMORY_EXIT, SIGNAL_EXIT_BASE
 DEFAULT_ENTRY = "plcsim.sandbox_child"
 EXTRA_COLUMNS = 2_000
 """Columns a child may trace beyond the exercise's (the program's own tags); they are not graded."""
+EXIT_GRACE_S = 1.0
+"""How long a child whose pipe closed without a result may take to exit and tell its exit status."""
 _PROBE_PROGRAM = "def OB1(t):\n    pass\n"
 
 
@@ -99,6 +101,8 @@ def run_child(
     os.close(write_end)
     try:
         buffer, problem, timed_out = _collect(proc, read_end, limits.wall_seconds, cap)
+        if buffer is None and not timed_out:  # it ended by itself: let it report how, briefly
+            _wait_exit(proc.pid, EXIT_GRACE_S)
     finally:
         os.close(read_end)
         _kill_group(proc.pid)
@@ -130,7 +134,7 @@ def _collect(proc: subprocess.Popen, fd: int, wall_s: float, cap: int) -> tuple[
         remaining = deadline - time.monotonic()
         if remaining <= 0:
             return None, None, True
-        gone = proc.poll() is not None  # before select: what it wrote before exiting is readable now
+        gone = _exited(proc.pid)  # before select: what it wrote before exiting is readable now
         ready, _, _ = select.select([fd], [], [], min(remaining, 0.05))
         data = b""
         if ready:
@@ -162,12 +166,20 @@ def _kill_group(pgid: int) -> None:
         os.killpg(pgid, signal.SIGKILL)
 
 
+def _exited(pid: int) -> bool:
+    """True once the child has ended; it is left unreaped, for :func:`_reap` to read its CPU time."""
+    return os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is not None
+
+
+def _wait_exit(pid: int, seconds: float) -> None:
+    deadline = time.monotonic() + seconds
+    while not _exited(pid) and time.monotonic() < deadline:
+        time.sleep(0.01)
+
+
 def _reap(proc: subprocess.Popen) -> tuple[int, float]:
     """Wait for the child (already killed): its exit status and the CPU seconds it and its children used."""
-    try:
-        _, status, usage = os.wait4(proc.pid, 0)
-    except ChildProcessError:  # already reaped by Popen.poll()
-        return proc.returncode if proc.returncode is not None else 0, 0.0
+    _, status, usage = os.wait4(proc.pid, 0)
     proc.returncode = os.waitstatus_to_exitcode(status)
     return proc.returncode, usage.ru_utime + usage.ru_stime
 
@@ -238,11 +250,12 @@ def _make_cgroup() -> str | None:
     if not hasattr(os, "geteuid") or os.geteuid() != 0:
         return None
     for root in _CGROUP_ROOTS:
-        if not os.path.exists(os.path.join(root, "pids.max" if root.endswith("pids") else "cgroup.procs")):
-            continue
         path = os.path.join(root, f"plcsim-{os.getpid()}-{uuid.uuid4().hex[:12]}")
         try:
             os.mkdir(path)
+        except OSError:
+            continue
+        try:
             with open(os.path.join(path, "pids.max"), "w") as f:
                 f.write("1")
             return path

@@ -15,6 +15,7 @@ import importlib
 import json
 import os
 import sys
+from collections.abc import Callable
 from typing import Any
 
 SIGNAL_EXIT_BASE = 128
@@ -22,7 +23,8 @@ MEMORY_EXIT = 86
 """Exit code of a child that ran out of memory even for its failure message."""
 
 
-def main(argv: list[str]) -> int:
+def main(argv: list[str], work: Callable[[dict[str, Any]], bytes] | None = None) -> int:
+    """Confine this process, do ``work`` (default: grade the request) and send its message."""
     from plcsim import confine
 
     request = json.loads(argv[1])
@@ -36,25 +38,30 @@ def main(argv: list[str]) -> int:
             return _exit_code(os.waitpid(pid, 0)[1])
         confine.die_with_parent()
     try:
-        message = _grade(request, confine)
+        message = (work or grade_request)(request)
     except MemoryError:
-        message = None
-    if message is None:
         return MEMORY_EXIT
     _write_all(fd, message)
     os.close(fd)
     return 0
 
 
-def _grade(request: dict[str, Any], confine: Any) -> bytes:
+def lock_down(request: dict[str, Any]) -> list[str]:
+    """The confinement applied once the exercise is loaded: no new process, no write outside scratch."""
+    from plcsim import confine
+
+    return confine.forbid_processes(request.get("cgroup")) + confine.restrict_writes(request["scratch"])
+
+
+def grade_request(request: dict[str, Any]) -> bytes:
+    """Load the exercise, lock down, run the submission in every scenario: the message for the grader."""
     from plcsim.errors import PlcError
     from plcsim.grading import load_error_kind, run_scenarios
     from plcsim.program import Program
     from plcsim.run_result import encode_failure, encode_runs
 
     exercise = getattr(importlib.import_module(request["module"]), request["attribute"])
-    confine.forbid_processes(request.get("cgroup"))
-    confine.restrict_writes(request["scratch"])
+    lock_down(request)
     try:
         program = Program.from_file(request["path"])
         runs, _ = run_scenarios(exercise, program, seed=request["seed"], scenarios=request["scenarios"])
