@@ -231,8 +231,7 @@ def grade(
         report.warnings = list(runs[0].warnings) if runs else []
         evaluate(exercise, runs, analysis, report)
         export(exercise, runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir)
-    report.elapsed_s = time.perf_counter() - started
-    return report
+    return _finish(report, started)
 
 
 # --------------------------------------------------------------------------------------------
@@ -327,17 +326,25 @@ def grade_sandboxed(
             geometry=rrd_dir is not None,
             entry=child_entry or DEFAULT_ENTRY,
         )
-        if outcome.kind is not None:
-            failure_report(report, outcome.kind, outcome.message, exercise)
-        else:
-            analysis = parent_analysis(exercise, Path(path)) if _has_static_checks(exercise) else None
-            report.warnings = list(outcome.runs[0].warnings) if outcome.runs else []
-            evaluate(exercise, outcome.runs, analysis, report)
-            export(exercise, outcome.runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir)
+    except Exception as exc:  # noqa: BLE001 - the grader could not run the child: its fault, not the student's
+        return _finish(failure_report(report, "grader error", f"{type(exc).__name__}: {exc}", exercise), started)
+    if outcome.kind is not None:
+        return _finish(failure_report(report, outcome.kind, outcome.message, exercise), started)
+    try:
+        analysis = parent_analysis(exercise, Path(path)) if _has_static_checks(exercise) else None
     except PlcError as exc:
-        failure_report(report, load_error_kind(exc), str(exc), exercise)
+        return _finish(failure_report(report, load_error_kind(exc), str(exc), exercise), started)
+    try:
+        report.warnings = list(outcome.runs[0].warnings) if outcome.runs else []
+        evaluate(exercise, outcome.runs, analysis, report)
+        export(exercise, outcome.runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir)
     except Exception as exc:  # noqa: BLE001 - our own bug: reported as the grader's, not the student's
+        report.checks, report.runs = [], []
         failure_report(report, "grader error", f"{type(exc).__name__}: {exc}", exercise)
+    return _finish(report, started)
+
+
+def _finish(report: Report, started: float) -> Report:
     report.elapsed_s = time.perf_counter() - started
     return report
 
