@@ -10,8 +10,10 @@ whether it is in force (the grader lists the missing ones in the report's warnin
 * namespaces (Linux ``unshare``): a new PID namespace, so that every process the child starts dies
   with it, and a new network namespace (no interface but a down loopback); an unprivileged user gets
   them inside a new user namespace;
-* Landlock (Linux 5.13+): no file may be created, written, truncated or removed outside the scratch
-  folder, no TCP bind or connect (ABI 4), no signal to a process outside (ABI 6).
+* Landlock (Linux 5.13+): no file may be read but those the grader lists (the Python installation,
+  the packages; not the exercise's solutions, not the other submissions, not the other children's
+  scratch folders), none created, written, truncated or removed outside the scratch folder; no TCP
+  bind or connect (ABI 4), no signal to a process outside (ABI 6).
 
 On Windows and macOS none of these exist; the grader then warns that the child runs with a
 wall-time limit only (see :func:`available`).
@@ -38,6 +40,10 @@ _SYS = {"x86_64": (444, 445, 446), "aarch64": (444, 445, 446)}
 _FS_WRITE_ABI1 = sum(1 << k for k in (1, 4, 5, 6, 7, 8, 9, 10, 11, 12))
 """WRITE_FILE, REMOVE_DIR, REMOVE_FILE, MAKE_CHAR, MAKE_DIR, MAKE_REG, MAKE_SOCK, MAKE_FIFO, MAKE_BLOCK, MAKE_SYM."""
 _FS_REFER, _FS_TRUNCATE, _FS_IOCTL_DEV = 1 << 13, 1 << 14, 1 << 15
+_FS_READ = (1 << 0) | (1 << 2) | (1 << 3)
+"""EXECUTE, READ_FILE, READ_DIR."""
+_FS_FILE_RIGHTS = (1 << 0) | (1 << 1) | (1 << 2) | _FS_TRUNCATE | _FS_IOCTL_DEV
+"""The rights a rule on a file (not a folder) may carry: EXECUTE, WRITE_FILE, READ_FILE, TRUNCATE, IOCTL_DEV."""
 _NET_BIND_TCP, _NET_CONNECT_TCP = 1, 2
 _SCOPE_ABSTRACT_UNIX_SOCKET, _SCOPE_SIGNAL = 1, 2
 
@@ -134,37 +140,49 @@ class _PathBeneath(ctypes.Structure):
     _fields_ = [("allowed_access", ctypes.c_uint64), ("parent_fd", ctypes.c_int32)]
 
 
-def restrict_writes(scratch: str) -> list[str]:
-    """Landlock: writes only below ``scratch``, no TCP, no signals outside; returns what is missing."""
+def restrict_files(scratch: str, readable: list[str]) -> list[str]:
+    """Landlock: read only ``readable`` (files or folders), write only below ``scratch``, no TCP, no
+    signal outside; returns what is missing."""
     numbers = _SYS.get(os.uname().machine) if hasattr(os, "uname") else None
     if not sys.platform.startswith("linux") or numbers is None:
-        return ["no Landlock: the submission may write wherever the grading user may"]
+        return ["no Landlock: the submission may read and write wherever the grading user may"]
     create, add_rule, restrict = numbers
     libc = _libc()
     libc.syscall.restype = ctypes.c_long
     abi = libc.syscall(create, None, ctypes.c_size_t(0), ctypes.c_uint32(1))  # LANDLOCK_CREATE_RULESET_VERSION
     if abi < 1:
-        return ["no Landlock in this kernel: the submission may write wherever the grading user may"]
-    fs = _FS_WRITE_ABI1 | (_FS_REFER if abi >= 2 else 0) | (_FS_TRUNCATE if abi >= 3 else 0)
-    fs |= _FS_IOCTL_DEV if abi >= 5 else 0
-    attr = _RulesetAttr(fs, _NET_BIND_TCP | _NET_CONNECT_TCP if abi >= 4 else 0, 0)
+        return ["no Landlock in this kernel: the submission may read and write wherever the grading user may"]
+    write = _FS_WRITE_ABI1 | (_FS_REFER if abi >= 2 else 0) | (_FS_TRUNCATE if abi >= 3 else 0)
+    write |= _FS_IOCTL_DEV if abi >= 5 else 0
+    attr = _RulesetAttr(write | _FS_READ, _NET_BIND_TCP | _NET_CONNECT_TCP if abi >= 4 else 0, 0)
     if abi >= 6:
         attr.scoped = _SCOPE_ABSTRACT_UNIX_SOCKET | _SCOPE_SIGNAL
     size = 24 if abi >= 6 else 16 if abi >= 4 else 8
     ruleset = libc.syscall(create, ctypes.byref(attr), ctypes.c_size_t(size), ctypes.c_uint32(0))
     if ruleset < 0:
-        return [f"Landlock refused the rules (errno {ctypes.get_errno()}): writes are not confined"]
+        return [f"Landlock refused the rules (errno {ctypes.get_errno()}): files are not confined"]
     try:
-        where = os.open(scratch, os.O_PATH | os.O_DIRECTORY)
-        try:
-            rule = _PathBeneath(fs, where)
-            if libc.syscall(add_rule, ruleset, 1, ctypes.byref(rule), ctypes.c_uint32(0)) != 0:
-                return [f"Landlock refused the scratch folder (errno {ctypes.get_errno()}): writes are not confined"]
-        finally:
-            os.close(where)
+        missing = [] if _allow(libc, add_rule, ruleset, scratch, write | _FS_READ) else ["scratch folder refused"]
+        for path in readable:
+            _allow(libc, add_rule, ruleset, path, _FS_READ)
         libc.prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0)
-        if libc.syscall(restrict, ruleset, ctypes.c_uint32(0)) != 0:
-            return [f"Landlock could not be applied (errno {ctypes.get_errno()}): writes are not confined"]
+        if missing or libc.syscall(restrict, ruleset, ctypes.c_uint32(0)) != 0:
+            return [f"Landlock could not be applied (errno {ctypes.get_errno()}): files are not confined"]
     finally:
         os.close(ruleset)
     return [] if abi >= 4 else ["Landlock ABI < 4: TCP is not blocked"]
+
+
+def _allow(libc: Any, add_rule: int, ruleset: int, path: str, access: int) -> bool:
+    """Add a path-beneath rule; a file gets only the rights a file can have."""
+    try:
+        where = os.open(path, os.O_PATH | os.O_CLOEXEC)
+    except OSError:
+        return False
+    try:
+        if not os.path.isdir(path):
+            access &= _FS_FILE_RIGHTS
+        rule = _PathBeneath(access, where)
+        return libc.syscall(add_rule, ruleset, 1, ctypes.byref(rule), ctypes.c_uint32(0)) == 0
+    finally:
+        os.close(where)

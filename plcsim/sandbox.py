@@ -21,6 +21,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import sysconfig
 import tempfile
 import time
 import uuid
@@ -81,6 +82,7 @@ def run_child(
         "fd": write_end,
         "scratch": scratch,
         "cgroup": cgroup,
+        "readable": [str(path.resolve()), *_readable(exercise, path)],
     }
     try:
         proc = subprocess.Popen(
@@ -223,6 +225,57 @@ def _locate(exercise: Exercise) -> tuple[str, str]:
         f"exercise {exercise.number} is not importable by a module name, so a grading child cannot load it; "
         f"define it in a module (EXERCISE = Exercise(...)) or grade in this process with grade()"
     )
+
+
+_SYSTEM_READABLE = ("/usr", "/lib", "/lib64", "/etc", "/dev/null", "/dev/zero", "/dev/urandom")
+"""Besides the Python installation and the loaded packages: shared libraries, configuration, devices."""
+
+
+def _readable(exercise: Exercise, path: Path) -> list[str]:
+    """What the child may read (a list of allowed files and folders, not of forbidden ones): the Python
+    installation, the folders of the packages this process has loaded and the system's libraries; not
+    the exercise's solutions, not the other files of the submission's folder (the other students'),
+    not the temporary folder (the other children's scratch)."""
+    hidden = {s.path.resolve().parent for s in exercise.solutions}
+    hidden |= {h.parent for h in hidden if h.parent.name == "solutions"}
+    hidden.add(Path(tempfile.gettempdir()).resolve())
+    folder = path.resolve().parent  # its sub-folders may hold packages; its files are other submissions
+    roots = {Path(p) for p in _SYSTEM_READABLE}
+    roots |= {Path(p) for p in sysconfig.get_paths().values()}
+    roots |= {_package_root(m) for m in list(sys.modules.values())} - {None}  # type: ignore[arg-type]
+    out: list[str] = []
+
+    def within(inner: Path, outer: Path) -> bool:
+        return inner == outer or outer in inner.parents
+
+    def grant(p: Path) -> None:
+        if any(within(p, h) for h in hidden) or not p.exists():
+            return
+        if p.is_file() and p.parent == folder:
+            return
+        if not any(within(h, p) for h in hidden) and not within(folder, p):
+            out.append(str(p))
+            return
+        if p.is_dir():
+            for child in p.iterdir():
+                if not child.is_symlink():
+                    grant(child)
+
+    for root in sorted(roots):
+        grant(root.resolve())
+    granted = sorted(set(out))
+    return [g for g in granted if not any(Path(g) != Path(o) and within(Path(g), Path(o)) for o in granted)]
+
+
+def _package_root(module: Any) -> Path | None:
+    """The top-level package folder (or the file) a loaded module comes from."""
+    file = getattr(module, "__file__", None)
+    if not file:
+        return None
+    top = Path(file).resolve().parent if Path(file).name == "__init__.py" else Path(file).resolve()
+    for _ in range(module.__name__.count(".")):
+        top = top.parent
+    return top
 
 
 def _child_env(scratch: str) -> dict[str, str]:

@@ -47,10 +47,13 @@ def main(argv: list[str], work: Callable[[dict[str, Any]], bytes] | None = None)
 
 
 def lock_down(request: dict[str, Any]) -> list[str]:
-    """The confinement applied once the exercise is loaded: no new process, no write outside scratch."""
+    """The confinement applied once the exercise is loaded: no new process, reads only of what the
+    grader lists (the submission, the Python installation and packages), writes only in scratch."""
     from plcsim import confine
 
-    return confine.forbid_processes(request.get("cgroup")) + confine.restrict_writes(request["scratch"])
+    return confine.forbid_processes(request.get("cgroup")) + confine.restrict_files(
+        request["scratch"], request["readable"]
+    )
 
 
 def grade_request(request: dict[str, Any]) -> bytes:

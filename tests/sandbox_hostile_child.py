@@ -69,9 +69,16 @@ def work(request: dict[str, Any]) -> bytes:
             os._exit(0)
         Path(order["pid_file"]).write_text(str(pid))
         os._exit(3)
-    if do == "escape":  # after the lock-down: write outside scratch, fork, connect; report what worked
+    if do == "escape":  # after the lock-down: read secrets, write outside scratch, fork, connect
+        runs = _runs(request)
         lock_down(request)
         tried = []
+        for target in order["read"]:
+            try:
+                Path(target).read_bytes()
+                tried.append(f"read {target}")
+            except OSError as exc:
+                tried.append(f"read {target}: {type(exc).__name__}")
         for target in order["write"]:
             try:
                 Path(target).write_text("escaped")
@@ -91,7 +98,6 @@ def work(request: dict[str, Any]) -> bytes:
             tried.append("connected")
         except OSError as exc:
             tried.append(f"connect: {type(exc).__name__}")
-        runs = _runs(request)
         runs[0].warnings = tried
         return encode_runs(runs)
     if do == "cpu-hog":

@@ -107,23 +107,30 @@ def any_sleeper_left() -> bool:
 
 
 @linux_only
-def test_after_the_lock_down_nothing_is_written_outside_scratch_nothing_forks_nothing_connects(ex1, tmp_path):
+def test_after_the_lock_down_nothing_secret_is_read_nothing_written_outside_scratch_nothing_forks_or_connects(
+    ex1, tmp_path
+):
     outside = tmp_path / "outside"
     outside.mkdir()
+    other_student = tmp_path / "other.py"  # beside the submission: another student's file
+    other_student.write_text("def OB1(t):\n    t.LED = t.TLACIDLO\n", encoding="utf-8")
     listener = socket.create_server(("127.0.0.1", 0))
     port = listener.getsockname()[1]
+    secrets = [str(ex1.reference.path), str(ex1.solution("wrong-latch").path), str(other_student)]
     targets = [str(outside / "note.txt"), os.path.join(tempfile.gettempdir(), f"plcsim-escape-{os.getpid()}.txt")]
     before_tmp = set(os.listdir(tempfile.gettempdir()))
     try:
-        r = hostile(ex1, tmp_path, {"do": "escape", "write": targets, "port": port})
+        r = hostile(ex1, tmp_path, {"do": "escape", "read": secrets, "write": targets, "port": port})
     finally:
         listener.close()
     assert (r.error_kind, r.passed, r.score) == (None, True, 3.0)  # the run itself is the reference's
     tried = r.warnings
-    assert [t.split(":")[0] for t in tried] == [f"write {t}" for t in targets] + ["fork", "connect"]
-    assert all("PermissionError" in t for t in tried[:2]), tried
-    assert tried[2] in ("fork: BlockingIOError", "fork: PermissionError"), tried
-    assert tried[3].startswith("connect: "), tried
+    assert [t.split(":")[0] for t in tried] == (
+        [f"read {t}" for t in secrets] + [f"write {t}" for t in targets] + ["fork", "connect"]
+    )
+    assert all("PermissionError" in t for t in tried[:5]), tried
+    assert tried[5] in ("fork: BlockingIOError", "fork: PermissionError"), tried
+    assert tried[6].startswith("connect: "), tried
     assert list(outside.iterdir()) == []
     assert set(os.listdir(tempfile.gettempdir())) == before_tmp  # the scratch folder is gone too
 
