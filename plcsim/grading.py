@@ -328,6 +328,7 @@ def grade_sandboxed(
         )
     except Exception as exc:  # noqa: BLE001 - the grader could not run the child: its fault, not the student's
         return _finish(failure_report(report, "grader error", f"{type(exc).__name__}: {exc}", exercise), started)
+    report.warnings = list(outcome.notes)
     if outcome.kind is not None:
         return _finish(failure_report(report, outcome.kind, outcome.message, exercise), started)
     try:
@@ -335,7 +336,7 @@ def grade_sandboxed(
     except PlcError as exc:
         return _finish(failure_report(report, load_error_kind(exc), str(exc), exercise), started)
     try:
-        report.warnings = list(outcome.runs[0].warnings) if outcome.runs else []
+        report.warnings += list(outcome.runs[0].warnings) if outcome.runs else []
         evaluate(exercise, outcome.runs, analysis, report)
         export(exercise, outcome.runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir)
     except Exception as exc:  # noqa: BLE001 - our own bug: reported as the grader's, not the student's

@@ -38,6 +38,8 @@ from plcsim.sandbox_child import MEMORY_EXIT, SIGNAL_EXIT_BASE
 DEFAULT_ENTRY = "plcsim.sandbox_child"
 EXTRA_COLUMNS = 2_000
 """Columns a child may trace beyond the exercise's (the program's own tags); they are not graded."""
+POSIX = hasattr(os, "waitid") and hasattr(os, "killpg") and hasattr(os, "wait4")
+"""Process groups, waitid and wait4 (Linux, macOS); otherwise (Windows) the portable, weaker path."""
 EXIT_GRACE_S = 1.0
 """How long a child whose pipe closed without a result may take to exit and tell its exit status."""
 _PROBE_PROGRAM = "def OB1(t):\n    pass\n"
@@ -50,6 +52,8 @@ class ChildOutcome:
     runs: list[RunResult] = field(default_factory=list)
     kind: str | None = None
     message: str = ""
+    notes: list[str] = field(default_factory=list)
+    """The guards this system lacks (see :func:`gaps`)."""
 
 
 def run_child(
@@ -70,7 +74,6 @@ def run_child(
     cap = MAX_HEADER_BYTES + sum(e.max_rows * (HEAD + len(e.kinds) + EXTRA_COLUMNS) * 8 for e in expected)
     scratch = tempfile.mkdtemp(prefix="plcsim-grade-")
     cgroup = _make_cgroup()
-    read_end, write_end = os.pipe()
     request = {
         "module": module,
         "attribute": attribute,
@@ -79,16 +82,56 @@ def run_child(
         "scenarios": [s.name for s in scenarios],
         "geometry": geometry,
         "limits": {"cpu_seconds": limits.cpu_seconds, "memory_mb": limits.memory_mb},
-        "fd": write_end,
         "scratch": scratch,
         "cgroup": cgroup,
         "readable": [str(path.resolve()), *_readable(exercise, path)],
     }
     try:
+        run = _run_posix if POSIX else _run_portable
+        buffer, problem, timed_out, status, cpu_s = run(entry, request, limits, cap)
+    finally:
+        _cleanup(scratch, cgroup)
+    outcome = _interpret(buffer, problem, timed_out, status, cpu_s, expected, seed, limits)
+    outcome.notes = gaps(cgroup)
+    return outcome
+
+
+def _interpret(
+    buffer: bytes | None,
+    problem: str | None,
+    timed_out: bool,
+    status: int,
+    cpu_s: float,
+    expected: list[Expected],
+    seed: int,
+    limits: Any,
+) -> ChildOutcome:
+    if problem is not None:
+        return ChildOutcome(kind="invalid result", message=problem)
+    if buffer is None:
+        return _no_result(status, cpu_s, timed_out, limits)
+    try:
+        decoded = decode(buffer, expected, seed)
+    except InvalidResultError as exc:
+        return ChildOutcome(kind="invalid result", message=str(exc))
+    if isinstance(decoded, tuple):
+        return ChildOutcome(kind=decoded[0], message=decoded[1])
+    return ChildOutcome(runs=decoded)
+
+
+def _command(entry: str, request: dict[str, Any]) -> list[str]:
+    return [sys.executable, "-B", "-m", entry, json.dumps(request)]
+
+
+def _run_posix(entry: str, request: dict[str, Any], limits: Any, cap: int) -> tuple[Any, ...]:
+    """The child in its own session, its result on a pipe: (message, problem, out of time, status, CPU s)."""
+    read_end, write_end = os.pipe()
+    request = {**request, "fd": write_end}
+    try:
         proc = subprocess.Popen(
-            [sys.executable, "-B", "-m", entry, json.dumps(request)],
-            cwd=scratch,
-            env=_child_env(scratch),
+            _command(entry, request),
+            cwd=request["scratch"],
+            env=_child_env(request["scratch"]),
             stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL,
@@ -97,10 +140,9 @@ def run_child(
         )
     except OSError as exc:
         os.close(read_end)
-        os.close(write_end)
-        _cleanup(scratch, cgroup)
         raise ConfigurationError(f"cannot start the grading child: {exc}") from None
-    os.close(write_end)
+    finally:
+        os.close(write_end)
     try:
         buffer, problem, timed_out = _collect(proc, read_end, limits.wall_seconds, cap)
         if buffer is None and not timed_out:  # it ended by itself: let it report how, briefly
@@ -109,18 +151,34 @@ def run_child(
         os.close(read_end)
         _kill_group(proc.pid)
         status, cpu_s = _reap(proc)
-        _cleanup(scratch, cgroup)
-    if problem is not None:
-        return ChildOutcome(kind="invalid result", message=problem)
-    if buffer is not None:
-        try:
-            decoded = decode(buffer, expected, seed)
-        except InvalidResultError as exc:
-            return ChildOutcome(kind="invalid result", message=str(exc))
-        if isinstance(decoded, tuple):
-            return ChildOutcome(kind=decoded[0], message=decoded[1])
-        return ChildOutcome(runs=decoded)
-    return _no_result(status, cpu_s, timed_out, limits)
+    return buffer, problem, timed_out, status, cpu_s
+
+
+def _run_portable(entry: str, request: dict[str, Any], limits: Any, cap: int) -> tuple[Any, ...]:
+    """Windows (no process groups to kill, no select on pipes, no resource limits): the child writes its
+    result to a file in scratch and is killed at the wall-time limit; what it starts may outlive it."""
+    result = os.path.join(request["scratch"], "result.bin")
+    proc = subprocess.Popen(
+        _command(entry, {**request, "fd": None, "result_file": result}),
+        cwd=request["scratch"],
+        env=_child_env(request["scratch"]),
+        stdin=subprocess.DEVNULL,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        creationflags=getattr(subprocess, "CREATE_NEW_PROCESS_GROUP", 0),
+    )
+    try:
+        proc.wait(timeout=limits.wall_seconds)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
+        return None, None, True, proc.returncode, 0.0
+    if not os.path.exists(result):
+        return None, None, False, proc.returncode, 0.0
+    if os.path.getsize(result) > cap:
+        return None, f"the child sent more than {cap} bytes", False, proc.returncode, 0.0
+    with open(result, "rb") as f:
+        return f.read(), None, False, proc.returncode, 0.0
 
 
 def _collect(proc: subprocess.Popen, fd: int, wall_s: float, cap: int) -> tuple[bytes | None, str | None, bool]:
@@ -190,14 +248,35 @@ def _no_result(code: int, cpu_s: float, timed_out: bool, limits: Any) -> ChildOu
     signum = -code if code < 0 else code - SIGNAL_EXIT_BASE if code > SIGNAL_EXIT_BASE else 0
     if timed_out:
         return ChildOutcome(kind="time limit", message=f"no result within {limits.wall_seconds:g} s of wall time")
-    if signum == signal.SIGXCPU or (signum == signal.SIGKILL and cpu_s >= limits.cpu_seconds):
+    xcpu, kill = getattr(signal, "SIGXCPU", None), getattr(signal, "SIGKILL", None)
+    if signum and (signum == xcpu or (signum == kill and cpu_s >= limits.cpu_seconds)):
         message = f"the submission used more than {limits.cpu_seconds} s of CPU time"
         return ChildOutcome(kind="time limit", message=message)
     if code == MEMORY_EXIT:
         message = f"the submission ran out of memory (the limit is {limits.memory_mb} MB)"
         return ChildOutcome(kind="memory limit", message=message)
-    how = f"was killed by signal {signal.Signals(signum).name}" if signum > 0 else f"exited with code {code}"
+    try:
+        how = f"was killed by signal {signal.Signals(signum).name}" if signum > 0 else f"exited with code {code}"
+    except ValueError:
+        how = f"exited with code {code}"
     return ChildOutcome(kind="crash", message=f"the grading process {how} without sending a result")
+
+
+def gaps(cgroup: str | None) -> list[str]:
+    """The guards this system lacks, as warnings for the report (none on Linux with Landlock)."""
+    if not POSIX:
+        return [
+            "sandbox: on this system the child runs without resource limits, process group or file "
+            "confinement; only the wall-time limit applies (grade on Linux for untrusted submissions)"
+        ]
+    if not sys.platform.startswith("linux"):
+        return [
+            "sandbox: on this system the child has resource limits and is killed with its process group, "
+            "but no namespaces or Landlock: it may read and write wherever the grading user may"
+        ]
+    if os.geteuid() == 0 and cgroup is None:
+        return ["sandbox: running as root without a writable pids cgroup, the number of processes is not limited"]
+    return []
 
 
 def _expected(exercise: Exercise, scenario: Any, seed: int) -> Expected:

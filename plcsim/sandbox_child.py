@@ -28,19 +28,24 @@ def main(argv: list[str], work: Callable[[dict[str, Any]], bytes] | None = None)
     from plcsim import confine
 
     request = json.loads(argv[1])
-    fd = int(request["fd"])
+    fd = request["fd"]
     limits = request["limits"]
     confine.set_limits(limits["cpu_seconds"], limits["memory_mb"])
     if confine.enter_namespaces()[0]:
         pid = os.fork()
         if pid:
-            os.close(fd)
+            if fd is not None:
+                os.close(fd)
             return _exit_code(os.waitpid(pid, 0)[1])
         confine.die_with_parent()
     try:
         message = (work or grade_request)(request)
     except MemoryError:
         return MEMORY_EXIT
+    if fd is None:  # the portable path (Windows): a file in scratch
+        with open(request["result_file"], "wb") as f:
+            f.write(message)
+        return 0
     _write_all(fd, message)
     os.close(fd)
     return 0

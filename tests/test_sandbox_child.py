@@ -37,8 +37,13 @@ def hostile(ex1, tmp_path, order, limits=None):
     return grade_sandboxed(ex1, path, child_entry=HOSTILE, limits=limits)
 
 
-def scratch_folders() -> set[str]:
-    return {p for p in os.listdir(tempfile.gettempdir()) if p.startswith("plcsim-grade-")}
+@pytest.fixture
+def private_tmp(tmp_path, monkeypatch):
+    """A temporary folder of this test's own, for the grader's scratch folders (the machine's /tmp is shared)."""
+    folder = tmp_path / "tmp"
+    folder.mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(folder))
+    return folder
 
 
 def test_the_control_an_honest_trace_of_the_reference_gets_full_marks(ex1, tmp_path):
@@ -108,7 +113,7 @@ def any_sleeper_left() -> bool:
 
 @linux_only
 def test_after_the_lock_down_nothing_secret_is_read_nothing_written_outside_scratch_nothing_forks_or_connects(
-    ex1, tmp_path
+    ex1, tmp_path, private_tmp
 ):
     outside = tmp_path / "outside"
     outside.mkdir()
@@ -117,8 +122,7 @@ def test_after_the_lock_down_nothing_secret_is_read_nothing_written_outside_scra
     listener = socket.create_server(("127.0.0.1", 0))
     port = listener.getsockname()[1]
     secrets = [str(ex1.reference.path), str(ex1.solution("wrong-latch").path), str(other_student)]
-    targets = [str(outside / "note.txt"), os.path.join(tempfile.gettempdir(), f"plcsim-escape-{os.getpid()}.txt")]
-    before_tmp = set(os.listdir(tempfile.gettempdir()))
+    targets = [str(outside / "note.txt"), str(private_tmp / "escape.txt")]
     try:
         r = hostile(ex1, tmp_path, {"do": "escape", "read": secrets, "write": targets, "port": port})
     finally:
@@ -132,14 +136,13 @@ def test_after_the_lock_down_nothing_secret_is_read_nothing_written_outside_scra
     assert tried[5] in ("fork: BlockingIOError", "fork: PermissionError"), tried
     assert tried[6].startswith("connect: "), tried
     assert list(outside.iterdir()) == []
-    assert set(os.listdir(tempfile.gettempdir())) == before_tmp  # the scratch folder is gone too
+    assert list(private_tmp.iterdir()) == []  # nothing in the temporary folder, the scratch folder is gone too
 
 
-def test_an_exit_without_result_is_a_crash_with_its_exit_code_and_leaves_no_scratch(ex1, tmp_path):
-    before = scratch_folders()
+def test_an_exit_without_result_is_a_crash_with_its_exit_code_and_leaves_no_scratch(ex1, tmp_path, private_tmp):
     r = hostile(ex1, tmp_path, {"do": "exit", "code": 5})
     assert (r.error_kind, r.error) == ("crash", "the grading process exited with code 5 without sending a result")
-    assert scratch_folders() == before
+    assert list(private_tmp.iterdir()) == []
 
 
 def test_a_cpu_hog_is_stopped_by_the_cpu_limit_and_named_so(ex1, tmp_path):
@@ -170,3 +173,15 @@ def test_a_memory_hog_is_a_memory_limit(ex1, tmp_path):
 def test_limits_cannot_be_switched_off(options, word):
     with pytest.raises(ConfigurationError, match=word):
         Limits(**options)
+
+
+def test_the_portable_path_without_process_groups_grades_and_stops_at_the_wall_limit(ex1, tmp_path, monkeypatch):
+    """Windows' path (a result file, a kill at the wall-time limit), forced here on a POSIX system."""
+    import plcsim.sandbox
+
+    monkeypatch.setattr(plcsim.sandbox, "POSIX", False)
+    r = grade_sandboxed(ex1, ex1.reference.path)
+    assert (r.error_kind, r.passed, r.score) == (None, True, 3.0)
+    assert r.warnings[0].startswith("sandbox: on this system the child runs without resource limits")
+    r = hostile(ex1, tmp_path, {"do": "cpu-hog"}, Limits(cpu_seconds=30, wall_seconds=1.5))
+    assert (r.error_kind, r.error) == ("time limit", "no result within 1.5 s of wall time")
