@@ -80,8 +80,11 @@ class Limits:
 
 
 def load_error_kind(exc: PlcError) -> str:
-    """The outcome kind of a program that could not be loaded."""
-    return "subset violation" if isinstance(exc, SubsetError) else "program error"
+    """The outcome kind of a program that could not be loaded: a configuration error (an exercise's
+    scenario, wiring or CPU option; an instructor's mistake) is the grader's, not the student's."""
+    if isinstance(exc, SubsetError):
+        return "subset violation"
+    return "grader error" if isinstance(exc, ConfigurationError) else "program error"
 
 
 def chosen_scenarios(exercise: Exercise, scenarios: Sequence[str] | None) -> list[Any]:

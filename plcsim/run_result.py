@@ -37,6 +37,8 @@ CPU_MODES = frozenset({"RUN", "STOP"})
 SIGNAL_TYPES = frozenset({"bool", "int", "real"})
 SIGNAL_KINDS = frozenset({"input", "output", "memory", "db", "timer", "counter", "analog"})
 DRAWABLE_KINDS = frozenset({"polygon", "line", "circle", "label"})
+EXTRA_COLUMNS = 2_000
+"""Columns a child may trace beyond the exercise's (the program's own tags); they are not graded."""
 
 
 class InvalidResultError(PlcError):
@@ -235,6 +237,8 @@ def _run(entry: dict[str, Any], table: np.ndarray, exp: Expected, seed: int) -> 
     names, kinds, types = entry.get("names"), entry.get("kinds"), entry.get("types")
     if not (isinstance(names, list) and all(isinstance(n, str) and 0 < len(n) <= 200 for n in names)):
         raise InvalidResultError(f"{where}: the signal names are not a list of short strings")
+    if len(names) > len(exp.kinds) + EXTRA_COLUMNS:
+        raise InvalidResultError(f"{where}: {len(names)} traced signals; the exercise has {len(exp.kinds)}")
     if len(set(names)) != len(names) or not isinstance(kinds, dict) or not isinstance(types, dict):
         raise InvalidResultError(f"{where}: the signal names repeat, or kinds and types are missing")
     if set(kinds) != set(names) or set(types) != set(names):

@@ -32,12 +32,19 @@ from typing import Any
 from plcsim.errors import ConfigurationError
 from plcsim.exercise import Exercise
 from plcsim.program import Program
-from plcsim.run_result import HEAD, MAX_HEADER_BYTES, Expected, InvalidResultError, RunResult, decode, message_length
+from plcsim.run_result import (
+    EXTRA_COLUMNS,
+    HEAD,
+    MAX_HEADER_BYTES,
+    Expected,
+    InvalidResultError,
+    RunResult,
+    decode,
+    message_length,
+)
 from plcsim.sandbox_child import MEMORY_EXIT, SIGNAL_EXIT_BASE
 
 DEFAULT_ENTRY = "plcsim.sandbox_child"
-EXTRA_COLUMNS = 2_000
-"""Columns a child may trace beyond the exercise's (the program's own tags); they are not graded."""
 POSIX = hasattr(os, "waitid") and hasattr(os, "killpg") and hasattr(os, "wait4")
 """Process groups, waitid and wait4 (Linux, macOS); otherwise (Windows) the portable, weaker path."""
 EXIT_GRACE_S = 1.0
@@ -69,8 +76,8 @@ def run_child(
     """Run ``path`` on the scenarios in a confined child; its results, validated, or what went wrong."""
     if not path.is_file():
         return ChildOutcome(kind="program error", message=f"cannot read program {path}: no such file")
+    expected = [_expected(exercise, s, seed) for s in scenarios]  # an exercise's mistake shows here
     module, attribute = _locate(exercise)
-    expected = [_expected(exercise, s, seed) for s in scenarios]
     cap = MAX_HEADER_BYTES + sum(e.max_rows * (HEAD + len(e.kinds) + EXTRA_COLUMNS) * 8 for e in expected)
     scratch = tempfile.mkdtemp(prefix="plcsim-grade-")
     cgroup = _make_cgroup()

@@ -74,8 +74,9 @@ def grade_request(request: dict[str, Any]) -> bytes:
         program = Program.from_file(request["path"])
         runs, _ = run_scenarios(exercise, program, seed=request["seed"], scenarios=request["scenarios"])
         return encode_runs(runs, geometry=request["geometry"])
-    except PlcError as exc:
-        return encode_failure(load_error_kind(exc), str(exc))
+    except PlcError as exc:  # the grader ran the exercise with a probe program: the fault is this program's
+        kind = load_error_kind(exc)
+        return encode_failure("program error" if kind == "grader error" else kind, str(exc))
     except MemoryError:
         limit = request["limits"]["memory_mb"]
         return encode_failure("memory limit", f"the submission ran out of memory (the limit is {limit} MB)")

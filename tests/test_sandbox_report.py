@@ -198,3 +198,17 @@ def test_exporters_change_no_grade_and_name_each_students_files(ex1, tmp_path):
     assert len(diagrams) == 2 * len(plain.failed()) > 0
     assert {n.split("-")[2] for n in diagrams} == {"alice", "bob"}
     assert exported[0].runs[0].rrd == str(out / "led-1-alice-presses.rrd")
+
+
+def test_an_exercise_that_cannot_be_set_up_is_a_grader_error_in_both_paths(ex1, monkeypatch):
+    """An instructor's mistake the simulation reveals (a scenario naming an unknown station) is not the
+    student's: grade() and grade_sandboxed() report a grader error, before any submission code runs."""
+    from plcsim.errors import ConfigurationError
+
+    def broken(*args, **kwargs):
+        raise ConfigurationError("scenario 'presses' places a part at an unknown station 'S9'")
+
+    monkeypatch.setattr(ex1, "simulation", broken)
+    for r in (grade(ex1, ex1.reference.path), grade_sandboxed(ex1, ex1.reference.path)):
+        assert (r.error_kind, r.passed, r.grader_failed) == ("grader error", False, True)
+        assert "unknown station 'S9'" in r.error
