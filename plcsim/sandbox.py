@@ -349,8 +349,16 @@ def _readable(exercise: Exercise, path: Path) -> list[str]:
 
     for root in sorted(roots):
         grant(root.resolve())
-    granted = sorted(set(out))
-    return [g for g in granted if not any(Path(g) != Path(o) and within(Path(g), Path(o)) for o in granted)]
+    granted = set(out)
+    return sorted(g for g in granted if not _ancestors(g) & granted)  # one rule per granted tree
+
+
+def _ancestors(path: str) -> set[str]:
+    out, parent = set(), os.path.dirname(path)
+    while parent and parent not in out and parent != path:
+        out.add(parent)
+        path, parent = parent, os.path.dirname(parent)
+    return out
 
 
 def _package_root(module: Any) -> Path | None:
