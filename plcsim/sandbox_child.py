@@ -40,8 +40,10 @@ def main(argv: list[str], work: Callable[[dict[str, Any]], bytes] | None = None)
         confine.die_with_parent()
     try:
         message = (work or grade_request)(request)
-    except MemoryError:
-        return MEMORY_EXIT
+    except MemoryError as exc:
+        if not exc.args:  # the allocator's: out of memory, perhaps too far to build even a message
+            return MEMORY_EXIT
+        message = _raised_memory_error(exc)
     if fd is None:  # the portable path (Windows): a file in scratch
         with open(request["result_file"], "wb") as f:
             f.write(message)
@@ -77,13 +79,22 @@ def grade_request(request: dict[str, Any]) -> bytes:
     except PlcError as exc:  # the grader ran the exercise with a probe program: the fault is this program's
         kind = load_error_kind(exc)
         return encode_failure("program error" if kind == "grader error" else kind, str(exc))
-    except MemoryError:
+    except MemoryError as exc:
+        if exc.args:
+            return _raised_memory_error(exc)
         limit = request["limits"]["memory_mb"]
         return encode_failure("memory limit", f"the submission ran out of memory (the limit is {limit} MB)")
     except RecursionError as exc:
         return encode_failure("program error", f"{request['path']}: the program nests too deeply ({exc})")
     except Exception as exc:  # noqa: BLE001 - the grader reports it as a crash of the child
         return encode_failure("crash", f"the grading child failed: {type(exc).__name__}: {exc}")
+
+
+def _raised_memory_error(exc: MemoryError) -> bytes:
+    """A MemoryError with a message was raised by code, not by the allocator: not a memory limit."""
+    from plcsim.run_result import encode_failure
+
+    return encode_failure("program error", f"the program raised MemoryError({str(exc)[:200]!r}); memory was not short")
 
 
 def _exit_code(status: int) -> int:

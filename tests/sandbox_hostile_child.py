@@ -107,6 +107,8 @@ def work(request: dict[str, Any]) -> bytes:
         chunks = []
         while True:
             chunks.append(bytearray(64 << 20))
+    if do == "raise-memory-error":
+        raise MemoryError("pretend to be out of memory")
     if do == "exit":
         os._exit(order["code"])
     raise ValueError(f"unknown behaviour {do!r}")

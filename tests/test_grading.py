@@ -289,7 +289,7 @@ def test_a_memory_bomb_hits_the_memory_limit(ex1, tmp_path):
     assert not r.passed
     if r.error_kind is not None:  # the grader itself ran out of memory
         assert r.error_kind == "memory limit"
-        assert r.error == f"the submission used more than {limits.memory_mb} MB"
+        assert r.error == f"the submission ran out of memory (the limit is {limits.memory_mb} MB)"
     else:  # the network's allocation failed: the CPU stopped with a MemoryError
         (run,) = r.runs
         assert run.cpu_mode == "STOP"

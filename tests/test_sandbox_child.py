@@ -156,9 +156,14 @@ def test_a_wall_clock_hog_is_stopped_by_the_wall_limit_and_named_so(ex1, tmp_pat
     assert r.elapsed_s < 5
 
 
-def test_a_memory_hog_is_a_memory_limit(ex1, tmp_path):
+def test_a_memory_hog_is_a_memory_limit_a_raised_memory_error_is_not(ex1, tmp_path):
     r = hostile(ex1, tmp_path, {"do": "memory-hog"}, Limits(memory_mb=600, wall_seconds=30))
     assert (r.error_kind, r.error) == ("memory limit", "the submission ran out of memory (the limit is 600 MB)")
+    r = hostile(ex1, tmp_path, {"do": "raise-memory-error"})
+    assert (r.error_kind, r.error) == (
+        "program error",
+        "the program raised MemoryError('pretend to be out of memory'); memory was not short",
+    )
 
 
 @pytest.mark.parametrize(
