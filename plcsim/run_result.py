@@ -138,7 +138,7 @@ def _drawable(d: Drawable) -> dict[str, Any]:
 # -- decoding (in the grader) ------------------------------------------------------------------------
 
 
-def message_length(buffer: bytes) -> int | None:
+def message_length(buffer: bytes | bytearray) -> int | None:
     """The total length of the message that starts ``buffer`` (None while the header is incomplete).
 
     Raises InvalidResultError at once for a buffer that does not start like a message, so that a
@@ -176,7 +176,7 @@ def message_length(buffer: bytes) -> int | None:
     return total
 
 
-def _header(buffer: bytes, start: int, length: int) -> dict[str, Any]:
+def _header(buffer: bytes | bytearray, start: int, length: int) -> dict[str, Any]:
     try:
         header = json.loads(buffer[start : start + length].decode("utf-8"), parse_constant=_no_constant)
     except (UnicodeDecodeError, ValueError) as exc:

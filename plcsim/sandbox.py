@@ -213,7 +213,7 @@ def _collect(proc: subprocess.Popen, fd: int, wall_s: float, cap: int) -> tuple[
         buffer += data
         if data and total is None:
             try:
-                total = message_length(bytes(buffer))
+                total = message_length(buffer)
             except InvalidResultError as exc:
                 return None, str(exc), False
             if total is not None and total > cap:
