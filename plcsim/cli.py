@@ -5,7 +5,10 @@ plcsim show 4.3.7
 plcsim run 4.3.7 --reference --rrd out/run.rrd
 plcsim run CONV1 --program my_conveyor.py --seconds 20 --plot out/conveyor.png
 plcsim grade 4.3.7 my_alarm.py --json out/report.json --junit out/report.xml
-plcsim grade 4.3.7 submissions/ --jobs 2 --gradebook out/grades.csv
+plcsim grade 4.3.7 submissions/ --jobs 2 --gradebook out/grades.csv --junit out/grades.xml
+
+Exit codes: 0 every check passed, 1 a submission failed (or did not run), 2 a usage error,
+3 a grade is void because of the grader or the exercise (a check that raised).
 """
 
 from __future__ import annotations
@@ -20,6 +23,8 @@ from plcsim.errors import PlcError
 
 EXIT_FAILED = 1
 EXIT_USAGE = 2
+EXIT_GRADER = 3
+"""A grade is void because of the grader or the exercise (a check that raised), not the submission."""
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -83,8 +88,8 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("--plots", metavar="DIR", help="write a timing diagram per failed check into DIR")
     grade.add_argument("--jobs", type=int, default=1, metavar="N", help="grade N submissions at a time (batch)")
     grade.add_argument("--gradebook", metavar="OUT.csv", help="write one CSV row per submission (batch)")
-    grade.add_argument("--cpu-seconds", type=int, default=60, help="CPU-time limit per submission (default 60)")
-    grade.add_argument("--memory-mb", type=int, default=2048, help="memory limit per submission (default 2048)")
+    grade.add_argument("--cpu-seconds", type=int, default=60, help="CPU-time limit per submission, > 0 (default 60)")
+    grade.add_argument("--memory-mb", type=int, default=2048, help="memory limit per submission, >= 64 (default 2048)")
     grade.add_argument("--no-sandbox", action="store_true", help="grade in this process (trusted code only)")
     grade.add_argument("-v", "--verbose", action="store_true", help="also show why passed checks passed")
     return p
@@ -99,8 +104,9 @@ def main(argv: list[str] | None = None) -> int:
         return {"list": _list, "show": _show, "run": _run, "grade": _grade}[args.command](args)
     except PlcError as exc:
         from rich.console import Console
+        from rich.text import Text
 
-        Console(stderr=True).print(f"[bold red]error:[/] {exc}", highlight=False)
+        Console(stderr=True).print(Text.assemble(("error:", "bold red"), f" {exc}"), highlight=False)
         return EXIT_USAGE
 
 
@@ -134,6 +140,7 @@ def _is_rig(name: str) -> bool:
 def _run(args: argparse.Namespace) -> int:
     from rich.console import Console
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+    from rich.text import Text
 
     from plcsim.check import evaluate_all
     from plcsim.program import Program
@@ -187,7 +194,7 @@ def _run(args: argparse.Namespace) -> int:
     wall = time.perf_counter() - wall0
     print_run_summary(sim, wall, console)
     if error is not None:
-        console.print(f"[bold red]the run stopped:[/] {error}")
+        console.print(Text.assemble(("the run stopped:", "bold red"), f" {error}"))
     if args.rrd:
         path = Path(args.rrd)
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -289,13 +296,13 @@ def _grade(args: argparse.Namespace) -> int:
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
     from exercises import get
-    from plcsim.grading import Limits, grade, grade_batch, grade_sandboxed, write_gradebook
-    from plcsim.report import print_report
+    from plcsim.grading import Limits, grade, grade_batch, grade_sandboxed, write_gradebook, write_junit
+    from plcsim.report import print_batch_line, print_report
 
     console = Console()
+    limits = Limits(cpu_seconds=args.cpu_seconds, memory_mb=args.memory_mb)  # refused here if not positive
     exercise = get(args.exercise)
     options = {"rrd_dir": args.rrd, "plots_dir": args.plots}
-    limits = Limits(cpu_seconds=args.cpu_seconds, memory_mb=args.memory_mb)
     if args.reference or args.solution:
         chosen = exercise.solution(args.solution) if args.solution else exercise.reference
         target = chosen.path
@@ -317,23 +324,23 @@ def _grade(args: argparse.Namespace) -> int:
                 jobs=args.jobs,
                 seed=args.seed,
                 limits=limits,
-                progress=lambda done, total, r: progress.update(
-                    task, completed=done, description=Path(r.submission).name
-                ),
+                progress=lambda done, total, r: progress.update(task, completed=done),
                 **options,
             )
         for r in reports:
-            mark = "[green]✓[/]" if r.passed else "[red]✗[/]"
-            why = f"  {r.error_kind}: {r.error.splitlines()[0]}" if r.error else ""
-            console.print(f"{mark} {Path(r.submission).name}: {r.score:g}/{r.max_score:g}{why}", highlight=False)
+            print_batch_line(r, console)
         if args.gradebook:
-            console.print(f"gradebook: {write_gradebook(reports, args.gradebook)}")
+            console.print(f"gradebook: {write_gradebook(reports, args.gradebook)}", markup=False)
         if args.json:
             out = Path(args.json)
             out.mkdir(parents=True, exist_ok=True)
             for r in reports:
-                r.to_json(out / f"{Path(r.submission).stem}.json")
-        return 0 if all(r.passed for r in reports) else EXIT_FAILED
+                r.to_json(out / f"{r.student}.json")
+        if args.junit:
+            Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
+            write_junit(reports, args.junit, name=f"plcsim {exercise.number}")
+            console.print(f"JUnit report: {args.junit}", markup=False)
+        return _exit_code(reports)
     if args.no_sandbox:
         report = grade(exercise, target, seed=args.seed, **options)
     else:
@@ -342,12 +349,19 @@ def _grade(args: argparse.Namespace) -> int:
     if args.json:
         Path(args.json).parent.mkdir(parents=True, exist_ok=True)
         report.to_json(args.json)
-        console.print(f"JSON report: {args.json}")
+        console.print(f"JSON report: {args.json}", markup=False)
     if args.junit:
         Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
         report.to_junit(args.junit)
-        console.print(f"JUnit report: {args.junit}")
-    return 0 if report.passed else EXIT_FAILED
+        console.print(f"JUnit report: {args.junit}", markup=False)
+    return _exit_code([report])
+
+
+def _exit_code(reports: list[Any]) -> int:
+    """0 if every submission passed, EXIT_GRADER if a grade is void through the grader's fault, else 1."""
+    if any(r.grader_failed for r in reports):
+        return EXIT_GRADER
+    return 0 if all(r.passed for r in reports) else EXIT_FAILED
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -1,146 +1,208 @@
 """Grade a submission: run it in every scenario of an exercise, evaluate the checks, report.
 
-A submission runs in a child process with CPU-time, memory and wall-time limits; the program
-compiler accepts only the PLC subset of Python. Whatever goes wrong (a syntax error, an import, an
-endless loop, an exception in a network, a crash of the child) ends up as a report, never as a
-crash of the grader.
+Grading has two halves that both paths share: :func:`run_scenarios` runs the program and returns
+raw results (traces, CPU state; no score), :func:`evaluate` runs the exercise's checks on them and
+builds the :class:`Report`. :func:`grade` does both in this process (trusted code: tests,
+notebooks). :func:`grade_sandboxed` runs the first half in a confined child process
+(:mod:`plcsim.sandbox`) and the second here, on results validated by :mod:`plcsim.run_result`: what
+the child sends can lose points, never earn them. Exporters (rerun recordings, timing diagrams,
+``.npz`` traces) run here too, from the returned traces, so a grade never depends on which files
+were asked for.
 """
 
 from __future__ import annotations
 
-import csv
-import json
-import multiprocessing
-import resource
-import signal
 import time
-import traceback
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
-from xml.etree import ElementTree as ET
 
-from plcsim.check import StaticCheck, evaluate_all
-from plcsim.errors import PlcError, SubsetError
-from plcsim.exercise import Exercise, GradedCheck
+from plcsim.check import StaticCheck
+from plcsim.check.base import Context
+from plcsim.errors import ConfigurationError, PlcError, SubsetError
+from plcsim.exercise import Exercise
+from plcsim.grade_report import CheckResult, Report, ScenarioRun, write_gradebook, write_junit
+from plcsim.literals import format_ns
 from plcsim.program import Program
+from plcsim.run_result import RunResult
 
-
-@dataclass
-class CheckResult:
-    """One check in one scenario."""
-
-    scenario: str
-    check: str
-    passed: bool
-    message: str
-    points: float
-    max_points: float
-    at_ns: int | None = None
-    signals: list[str] = field(default_factory=list)
-    window: tuple[int, int] | None = None
-    diagram: str | None = None
-
-
-@dataclass
-class ScenarioRun:
-    """How one scenario ran."""
-
-    scenario: str
-    seed: int
-    simulated_ns: int
-    scans: int
-    cpu_mode: str
-    cpu_error: str | None = None
-    rrd: str | None = None
-    trace_npz: str | None = None
-
-
-@dataclass
-class Report:
-    """The grade of one submission for one exercise."""
-
-    exercise: str
-    title: str
-    submission: str
-    passed: bool = False
-    score: float = 0.0
-    max_score: float = 0.0
-    checks: list[CheckResult] = field(default_factory=list)
-    runs: list[ScenarioRun] = field(default_factory=list)
-    error: str | None = None
-    error_kind: str | None = None
-    warnings: list[str] = field(default_factory=list)
-    elapsed_s: float = 0.0
-
-    def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
-
-    @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> Report:
-        data = dict(data)
-        data["checks"] = [
-            CheckResult(**{**c, "window": tuple(c["window"]) if c.get("window") is not None else None})
-            for c in data.get("checks", [])
-        ]  # JSON has no tuples: a window comes back as a list
-        data["runs"] = [ScenarioRun(**r) for r in data.get("runs", [])]
-        return cls(**data)
-
-    def to_json(self, path: str | Path | None = None) -> str:
-        text = json.dumps(self.to_dict(), indent=2)
-        if path is not None:
-            Path(path).write_text(text, encoding="utf-8")
-        return text
-
-    def failed(self) -> list[CheckResult]:
-        return [c for c in self.checks if not c.passed]
-
-    def result(self, check: str, scenario: str | None = None) -> CheckResult:
-        """The result of one check (in one scenario, or the first failing/any scenario)."""
-        found = [c for c in self.checks if c.check == check and (scenario is None or c.scenario == scenario)]
-        if not found:
-            raise KeyError(f"no result for check {check!r}; checks: {sorted({c.check for c in self.checks})}")
-        failing = [c for c in found if not c.passed]
-        return failing[0] if failing else found[0]
-
-    def to_junit(self, path: str | Path | None = None) -> str:
-        suites = ET.Element(
-            "testsuites", name=f"plcsim {self.exercise}", tests=str(len(self.checks)), failures=str(len(self.failed()))
-        )
-        by_scenario: dict[str, list[CheckResult]] = {}
-        for c in self.checks:
-            by_scenario.setdefault(c.scenario, []).append(c)
-        if self.error and not self.checks:
-            suite = ET.SubElement(suites, "testsuite", name=self.exercise, tests="1", failures="1")
-            case = ET.SubElement(suite, "testcase", name="load", classname=self.exercise)
-            ET.SubElement(case, "failure", message=self.error, type=self.error_kind or "error")
-        for scenario, results in by_scenario.items():
-            suite = ET.SubElement(
-                suites,
-                "testsuite",
-                name=f"{self.exercise}.{scenario}",
-                tests=str(len(results)),
-                failures=str(sum(not r.passed for r in results)),
-            )
-            for r in results:
-                case = ET.SubElement(suite, "testcase", name=r.check, classname=f"{self.exercise}.{scenario}")
-                if not r.passed:
-                    failure = ET.SubElement(case, "failure", message=r.message, type="check failed")
-                    failure.text = r.message + (f"\ntiming diagram: {r.diagram}" if r.diagram else "")
-        text = ET.tostring(suites, encoding="unicode")
-        if path is not None:
-            Path(path).write_text('<?xml version="1.0" encoding="utf-8"?>\n' + text, encoding="utf-8")
-        return text
+__all__ = [
+    "CheckResult",
+    "Limits",
+    "Report",
+    "ScenarioRun",
+    "evaluate",
+    "grade",
+    "grade_batch",
+    "grade_sandboxed",
+    "load_error_kind",
+    "max_score",
+    "run_scenarios",
+    "write_gradebook",
+    "write_junit",
+]
 
 
 @dataclass
 class Limits:
-    """Resource limits of the child process that runs a submission."""
+    """Resource limits of the child process that runs a submission; each must be positive.
+
+    >>> Limits(cpu_seconds=-1)
+    Traceback (most recent call last):
+    ...
+    plcsim.errors.ConfigurationError: the CPU-time limit must be a positive whole number of seconds, got -1 ...
+    """
 
     cpu_seconds: int = 60
     memory_mb: int = 2048
     wall_seconds: float = 120.0
+
+    def __post_init__(self) -> None:
+        if isinstance(self.cpu_seconds, bool) or not isinstance(self.cpu_seconds, int) or self.cpu_seconds < 1:
+            raise ConfigurationError(
+                f"the CPU-time limit must be a positive whole number of seconds, got {self.cpu_seconds!r} "
+                f"(--cpu-seconds 60); a limit cannot be switched off"
+            )
+        if isinstance(self.memory_mb, bool) or not isinstance(self.memory_mb, int) or self.memory_mb < 64:
+            raise ConfigurationError(
+                f"the memory limit must be a whole number of at least 64 MB, got {self.memory_mb!r} (--memory-mb 2048)"
+            )
+        if not isinstance(self.wall_seconds, int | float) or not self.wall_seconds > 0:
+            raise ConfigurationError(
+                f"the wall-time limit must be a positive number of seconds, got {self.wall_seconds!r}"
+            )
+
+
+# --------------------------------------------------------------------------------------------
+# The two halves: running and evaluating
+# --------------------------------------------------------------------------------------------
+
+
+def load_error_kind(exc: PlcError) -> str:
+    """The outcome kind of a program that could not be loaded: a configuration error (an exercise's
+    scenario, wiring or CPU option; an instructor's mistake) is the grader's, not the student's."""
+    if isinstance(exc, SubsetError):
+        return "subset violation"
+    return "grader error" if isinstance(exc, ConfigurationError) else "program error"
+
+
+def chosen_scenarios(exercise: Exercise, scenarios: Sequence[str] | None) -> list[Any]:
+    """The exercise's scenarios to grade (all, or those named), in the exercise's order."""
+    return [s for s in exercise.scenarios if scenarios is None or s.name in scenarios]
+
+
+def run_scenarios(
+    exercise: Exercise, program: Program, *, seed: int, scenarios: Sequence[str] | None = None
+) -> tuple[list[RunResult], Any]:
+    """Run ``program`` in each chosen scenario: the raw results and the program's static analysis.
+
+    Raises PlcError if the program cannot be loaded on the exercise's CPU."""
+    results, analysis = [], None
+    for scenario in chosen_scenarios(exercise, scenarios):
+        sim = exercise.simulation(program, scenario, seed=seed)
+        if analysis is None and sim.cpu.compiled is not None:
+            analysis = sim.cpu.compiled.analysis
+        plant_error = None
+        try:
+            sim.run()
+        except PlcError as exc:  # a plant failure: the run ends early (see :func:`evaluate`)
+            plant_error = str(exc)
+        cpu = sim.cpu
+        results.append(
+            RunResult(
+                scenario.name,
+                seed,
+                sim.trace,
+                sim.now,
+                cpu.scan_count,
+                cpu.mode,
+                str(cpu.error) if cpu.error else None,
+                plant_error,
+                list(cpu.warnings),
+            )
+        )
+    return results, analysis
+
+
+class GraderError(Exception):
+    """A check of the exercise failed to evaluate: the instructor's or the grader's bug."""
+
+
+def evaluate(exercise: Exercise, runs: Sequence[RunResult], analysis: Any, report: Report) -> Report:
+    """Evaluate the exercise's checks on the runs (static checks once, on ``analysis``) into ``report``.
+
+    A run that ended before its scenario did fails its run-time checks: a partial trace proves nothing.
+    A check that raises is a grader error (its own outcome), never a point lost by the student.
+    """
+    durations = {s.name: s.duration_ns for s in exercise.scenarios}
+    static_done = False
+    try:
+        for run in runs:
+            report.runs.append(
+                ScenarioRun(
+                    run.scenario, run.seed, run.simulated_ns, run.scans, run.cpu_mode, run.cpu_error or run.plant_error
+                )
+            )
+            ctx = Context.of(run.trace, analysis)
+            cut_short = run.simulated_ns < durations[run.scenario]
+            for gc in exercise.checks_for(run.scenario):
+                static = isinstance(gc.check, StaticCheck)
+                if static and static_done:
+                    continue
+                report.checks.append(_check(gc, ctx, run, static, cut_short, durations[run.scenario]))
+            static_done = True
+    except GraderError as exc:
+        report.error, report.error_kind = str(exc), "grader error"
+    report.max_score = max_score(exercise) if report.error else sum(c.max_points for c in report.checks)
+    report.score = 0.0 if report.error else sum(c.points for c in report.checks)
+    report.passed = bool(report.checks) and all(c.passed for c in report.checks) and report.error is None
+    return report
+
+
+def _check(gc: Any, ctx: Context, run: RunResult, static: bool, cut_short: bool, duration_ns: int) -> CheckResult:
+    weight = gc.check.weight
+    if cut_short and not static:
+        why = run.plant_error or run.cpu_error or "no reason given"
+        message = f"the run ended at {format_ns(run.simulated_ns)} of {format_ns(duration_ns)} ({why}); not checked"
+        return CheckResult(run.scenario, gc.name, False, message, 0.0, weight)
+    try:
+        verdict = gc.check.evaluate(ctx)
+    except Exception as exc:  # the exercise's bug, reported as such
+        raise GraderError(
+            f"the check {gc.name!r} of exercise scenario {run.scenario!r} raised {type(exc).__name__}: {exc}; "
+            f"this is a fault of the exercise or the grader, not of the submission"
+        ) from exc
+    signals = list(verdict.signals) + [s for s in gc.check.extra_signals if s not in verdict.signals]
+    message = verdict.message
+    if not verdict.passed and run.cpu_error and not static:
+        message += f" [the CPU stopped: {run.cpu_error}]"
+    return CheckResult(
+        "static" if static else run.scenario,
+        gc.name,
+        bool(verdict.passed),
+        message,
+        weight if verdict.passed else 0.0,
+        weight,
+        verdict.at_ns,
+        signals,
+        verdict.window,
+    )
+
+
+def max_score(exercise: Exercise) -> float:
+    """The points of an exercise: each check's weight once per scenario it applies to (static checks once)."""
+    return sum(
+        c.check.weight * (1 if isinstance(c.check, StaticCheck) else len(c.scenarios or exercise.scenarios))
+        for c in exercise.checks
+    )
+
+
+def failure_report(report: Report, kind: str, message: str, exercise: Exercise) -> Report:
+    """``report`` as the outcome ``kind`` of a submission that earned nothing."""
+    report.error, report.error_kind = message, kind
+    report.max_score = max_score(exercise)
+    return report
 
 
 # --------------------------------------------------------------------------------------------
@@ -162,104 +224,62 @@ def grade(
     """Grade a program in this process (trusted code, tests, notebooks). See :func:`grade_sandboxed`."""
     started = time.perf_counter()
     label = name or (submission.filename if isinstance(submission, Program) else str(submission))
-    report = Report(exercise.number, exercise.title, label)
+    report = Report(exercise.number, exercise.title, label, seed=seed)
     try:
         program = submission if isinstance(submission, Program) else Program.from_file(submission)
+        runs, analysis = run_scenarios(exercise, program, seed=seed, scenarios=scenarios)
     except PlcError as exc:
-        return _load_failure(report, exc, exercise, started)
-    chosen = [s for s in exercise.scenarios if scenarios is None or s.name in scenarios]
-    static_done = False
-    for scenario in chosen:
-        try:
-            sim = exercise.simulation(program, scenario, seed=seed)
-        except PlcError as exc:
-            return _load_failure(report, exc, exercise, started)
-        if not report.warnings:
-            report.warnings = list(sim.cpu.warnings)
-        error = None
-        try:
-            sim.run()
-        except PlcError as exc:  # a plant failure: the trace so far is graded
-            error = str(exc)
-        cpu_error = sim.cpu.error
-        run = ScenarioRun(
-            scenario.name, seed, sim.now, sim.cpu.scan_count, sim.cpu.mode, str(cpu_error) if cpu_error else error
-        )
-        stem = f"{exercise.slug}-{scenario.name.replace(' ', '_')}"
+        failure_report(report, load_error_kind(exc), str(exc), exercise)
+    else:
+        report.warnings = list(runs[0].warnings) if runs else []
+        evaluate(exercise, runs, analysis, report)
+        export(exercise, runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir)
+    return _finish(report, started)
+
+
+# --------------------------------------------------------------------------------------------
+# Exporting, from the traces, in the grader
+# --------------------------------------------------------------------------------------------
+
+
+def export(
+    exercise: Exercise,
+    runs: Sequence[RunResult],
+    report: Report,
+    *,
+    rrd_dir: str | Path | None = None,
+    plots_dir: str | Path | None = None,
+    traces_dir: str | Path | None = None,
+) -> None:
+    """Write the recordings, traces and failure diagrams asked for; file names carry the exercise, the
+    submission and the scenario, so that the students of a batch never overwrite each other's files."""
+    by_name = {run.scenario: run for run in runs}
+    for scenario_run in report.runs:
+        run = by_name[scenario_run.scenario]
+        stem = f"{exercise.slug}-{_slug(report.student)}-{_slug(run.scenario)}"
         if rrd_dir is not None:
-            run.rrd = str(_save_rrd(sim, Path(rrd_dir) / f"{stem}.rrd"))
+            Path(rrd_dir).mkdir(parents=True, exist_ok=True)
+            scenario_run.rrd = str(run.trace.to_rrd(Path(rrd_dir) / f"{stem}.rrd"))
         if traces_dir is not None:
-            run.trace_npz = str(sim.trace.save(Path(traces_dir) / f"{stem}.npz"))
-        report.runs.append(run)
-        graded: list[GradedCheck] = []
-        for gc in exercise.checks_for(scenario.name):
-            if isinstance(gc.check, StaticCheck):
-                if static_done:
-                    continue
-                graded.append(gc)
-            else:
-                graded.append(gc)
-        analysis = sim.cpu.compiled.analysis if sim.cpu.compiled else None
-        for gc, (_, verdict) in zip(graded, evaluate_all([g.check for g in graded], sim.trace, analysis)):
-            where = "static" if isinstance(gc.check, StaticCheck) else scenario.name
-            weight = gc.check.weight
-            message = verdict.message
-            if not verdict.passed and run.cpu_error and where != "static":
-                message += f" [the CPU stopped: {run.cpu_error}]"
-            result = CheckResult(
-                where,
-                gc.name,
-                verdict.passed,
-                message,
-                weight if verdict.passed else 0.0,
-                weight,
-                verdict.at_ns,
-                verdict.signals,
-                verdict.window,
-            )
-            if not verdict.passed and plots_dir is not None and where != "static":
-                result.diagram = _diagram(sim, result, Path(plots_dir) / f"{stem}-{_slug(gc.name)}.png")
-            report.checks.append(result)
-        static_done = True
-    report.score = sum(c.points for c in report.checks)
-    report.max_score = sum(c.max_points for c in report.checks)
-    report.passed = bool(report.checks) and all(c.passed for c in report.checks) and report.error is None
-    report.elapsed_s = time.perf_counter() - started
-    return report
-
-
-def max_score(exercise: Exercise) -> float:
-    """The points of an exercise: each check's weight once per scenario it applies to (static checks once)."""
-    return sum(
-        c.check.weight * (1 if isinstance(c.check, StaticCheck) else len(c.scenarios or exercise.scenarios))
-        for c in exercise.checks
-    )
-
-
-def _load_failure(report: Report, exc: PlcError, exercise: Exercise, started: float) -> Report:
-    report.error = str(exc)
-    report.error_kind = "subset violation" if isinstance(exc, SubsetError) else "program error"
-    report.max_score = max_score(exercise)
-    report.elapsed_s = time.perf_counter() - started
-    return report
+            Path(traces_dir).mkdir(parents=True, exist_ok=True)
+            scenario_run.trace_npz = str(run.trace.save(Path(traces_dir) / f"{stem}.npz"))
+        if plots_dir is not None:
+            for result in report.checks:
+                if not result.passed and result.scenario == run.scenario and len(run.trace):
+                    result.diagram = _diagram(run, result, Path(plots_dir) / f"{stem}-{_slug(result.check)}.png")
 
 
 def _slug(text: str) -> str:
     return "".join(ch if ch.isalnum() else "_" for ch in text)[:60].strip("_")
 
 
-def _save_rrd(sim: Any, path: Path) -> Path:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    return sim.trace.to_rrd(path)
-
-
-def _diagram(sim: Any, result: CheckResult, path: Path) -> str | None:
+def _diagram(run: RunResult, result: CheckResult, path: Path) -> str | None:
     try:
         from plcsim.trace_plot import save_timing_diagram
     except ImportError:
         return None
     path.parent.mkdir(parents=True, exist_ok=True)
-    signals = [s for s in result.signals if s in sim.trace] or None
+    signals = [s for s in result.signals if s in run.trace] or None
     start = end = None
     if result.window is not None:
         first = min(result.window[0], result.at_ns if result.at_ns is not None else result.window[0])
@@ -268,7 +288,7 @@ def _diagram(sim: Any, result: CheckResult, path: Path) -> str | None:
         end = result.window[1] + margin
     highlight = (result.window[0], result.window[1], result.check) if result.window else None
     save_timing_diagram(
-        sim.trace, path, signals, start=start, end=end, highlight=highlight, title=f"{result.scenario}: {result.check}"
+        run.trace, path, signals, start=start, end=end, highlight=highlight, title=f"{result.scenario}: {result.check}"
     )
     return str(path)
 
@@ -278,78 +298,74 @@ def _diagram(sim: Any, result: CheckResult, path: Path) -> str | None:
 # --------------------------------------------------------------------------------------------
 
 
-def _child(conn: Any, exercise: Exercise, path: str, seed: int, limits: Limits, options: dict[str, Any]) -> None:
-    try:
-        resource.setrlimit(resource.RLIMIT_CPU, (limits.cpu_seconds, limits.cpu_seconds + 5))
-        mem = limits.memory_mb * 1024 * 1024
-        resource.setrlimit(resource.RLIMIT_AS, (mem, mem))
-    except (ValueError, OSError):  # pragma: no cover - some systems refuse; grading still runs
-        pass
-    try:
-        report = grade(exercise, path, seed=seed, **options)
-        conn.send(report.to_dict())
-    except MemoryError:
-        conn.send({"__error__": "memory limit", "message": f"the submission used more than {limits.memory_mb} MB"})
-    except BaseException as exc:  # noqa: BLE001 - everything is reported to the parent
-        conn.send(
-            {
-                "__error__": "grader error",
-                "message": f"{type(exc).__name__}: {exc}",
-                "trace": traceback.format_exc(limit=5),
-            }
-        )
-    finally:
-        conn.close()
-
-
 def grade_sandboxed(
-    exercise: Exercise, path: str | Path, *, seed: int = 1, limits: Limits | None = None, **options: Any
+    exercise: Exercise,
+    path: str | Path,
+    *,
+    seed: int = 1,
+    limits: Limits | None = None,
+    scenarios: Sequence[str] | None = None,
+    rrd_dir: str | Path | None = None,
+    plots_dir: str | Path | None = None,
+    traces_dir: str | Path | None = None,
+    child_entry: str | None = None,
 ) -> Report:
-    """Grade an untrusted submission file in a child process with CPU, memory and wall-time limits."""
+    """Grade an untrusted submission file: run it in a confined child (:mod:`plcsim.sandbox`), check here.
+
+    ``child_entry`` (tests only) names another child module to start, to prove what the grader does
+    with a hostile child's output."""
+    from plcsim.sandbox import DEFAULT_ENTRY, run_child
+
     limits = limits or Limits()
     started = time.perf_counter()
-    ctx = multiprocessing.get_context("fork")  # the child inherits the exercise; nothing is pickled
-    parent, child = ctx.Pipe(duplex=False)
-    proc = ctx.Process(target=_child, args=(child, exercise, str(path), seed, limits, options), daemon=True)
-    proc.start()
-    child.close()
-    data = None
-    out_of_time = False
-    if parent.poll(limits.wall_seconds):
-        try:
-            data = parent.recv()
-        except EOFError:
-            data = None
-    elif proc.is_alive():  # the wall-time limit: stop the child now, not after another wait
-        out_of_time = True
-        proc.kill()
-    proc.join(timeout=5)
-    if proc.is_alive():
-        proc.kill()
-        proc.join()
-    report = Report(exercise.number, exercise.title, str(path))
-    if isinstance(data, dict) and "__error__" not in data:
-        report = Report.from_dict(data)
-    elif isinstance(data, dict):
-        report.error, report.error_kind = data["message"], data["__error__"]
-    elif out_of_time:
-        report.error_kind = "time limit"
-        report.error = f"no result within {limits.wall_seconds:.0f} s of wall time"
-    elif proc.exitcode is not None and proc.exitcode < 0:
-        sig = -proc.exitcode
-        if sig == signal.SIGXCPU:
-            report.error_kind = "time limit"
-            report.error = f"the submission used more than {limits.cpu_seconds} s of CPU time"
-        else:
-            report.error_kind = "crash"
-            report.error = f"the grading process was killed by signal {signal.Signals(sig).name}"
-    else:
-        report.error_kind = "time limit"
-        report.error = f"no result within {limits.wall_seconds:.0f} s of wall time"
-    if report.error and not report.max_score:
-        report.max_score = max_score(exercise)
+    report = Report(exercise.number, exercise.title, str(path), seed=seed)
+    try:
+        outcome = run_child(
+            exercise,
+            Path(path),
+            seed,
+            chosen_scenarios(exercise, scenarios),
+            limits,
+            geometry=rrd_dir is not None,
+            entry=child_entry or DEFAULT_ENTRY,
+        )
+    except Exception as exc:  # noqa: BLE001 - the grader could not run the child: its fault, not the student's
+        return _finish(failure_report(report, "grader error", f"{type(exc).__name__}: {exc}", exercise), started)
+    report.warnings = list(outcome.notes)
+    if outcome.kind is not None:
+        return _finish(failure_report(report, outcome.kind, outcome.message, exercise), started)
+    try:
+        analysis = parent_analysis(exercise, Path(path)) if _has_static_checks(exercise) else None
+    except PlcError as exc:
+        return _finish(failure_report(report, load_error_kind(exc), str(exc), exercise), started)
+    try:
+        report.warnings += list(outcome.runs[0].warnings) if outcome.runs else []
+        evaluate(exercise, outcome.runs, analysis, report)
+        export(exercise, outcome.runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir)
+    except Exception as exc:  # noqa: BLE001 - our own bug: reported as the grader's, not the student's
+        report.checks, report.runs = [], []
+        failure_report(report, "grader error", f"{type(exc).__name__}: {exc}", exercise)
+    return _finish(report, started)
+
+
+def _finish(report: Report, started: float) -> Report:
     report.elapsed_s = time.perf_counter() - started
     return report
+
+
+def _has_static_checks(exercise: Exercise) -> bool:
+    return any(isinstance(c.check, StaticCheck) for c in exercise.checks)
+
+
+def parent_analysis(exercise: Exercise, path: Path) -> Any:
+    """The program's static analysis, computed here from its text (never taken from the child).
+
+    This loads the program (parse, subset check, declarations) and compiles it against the exercise's
+    tag table without running any network; it relies on the program loader evaluating module-level
+    declarations without running submission code."""
+    program = Program.from_file(path)
+    table = program.declare_into(exercise.tag_table())
+    return program.compile(table).analysis
 
 
 def grade_batch(
@@ -379,32 +395,3 @@ def grade_batch(
             if progress is not None:
                 progress(done, len(paths), report)
     return [r for r in reports if r is not None]
-
-
-def write_gradebook(reports: Sequence[Report], path: str | Path) -> Path:
-    """A CSV with one row per submission: score, max, passed, error, and each check's result."""
-    checks: list[str] = []
-    for r in reports:
-        for c in r.checks:
-            key = f"{c.scenario}: {c.check}"
-            if key not in checks:
-                checks.append(key)
-    path = Path(path)
-    with path.open("w", newline="", encoding="utf-8") as f:
-        writer = csv.writer(f)
-        writer.writerow(["submission", "score", "max_score", "percent", "passed", "error", *checks])
-        for r in reports:
-            results = {f"{c.scenario}: {c.check}": ("pass" if c.passed else "FAIL") for c in r.checks}
-            percent = f"{100 * r.score / r.max_score:.1f}" if r.max_score else "0.0"
-            writer.writerow(
-                [
-                    Path(r.submission).name,
-                    f"{r.score:g}",
-                    f"{r.max_score:g}",
-                    percent,
-                    "yes" if r.passed else "no",
-                    r.error or "",
-                    *(results.get(c, "-") for c in checks),
-                ]
-            )
-    return path

@@ -14,41 +14,59 @@ from plcsim.literals import format_ns
 
 
 def print_report(report: Any, console: Console | None = None, *, verbose: bool = False) -> None:
-    """A grade report: one line per scenario and check, the reasons of the failures, the score."""
+    """A grade report: one line per scenario and check, the reasons of the failures, the score.
+
+    Every text that may come from a submission (its file name, error messages, check messages,
+    CPU diagnostics, warnings) is printed as plain text, never read as Rich markup."""
     console = console or Console()
     title = f"{report.exercise} {report.title} — {report.submission}"
     if report.error:
-        console.print(
-            Panel(Text(report.error), title=f"[bold red]{report.error_kind or 'error'}[/]: {title}", border_style="red")
-        )
-        console.print(f"score [bold]0[/] / {report.max_score:g}")
+        heading = Text.assemble((report.error_kind or "error", "bold red"), ": ", title)
+        console.print(Panel(Text(report.error), title=heading, border_style="red"))
+        console.print(Text.assemble("score ", ("0", "bold"), f" / {report.max_score:g}"))
+        if report.grader_failed:
+            console.print(Text("this is a fault of the grader or the exercise, not of the submission", "yellow"))
         return
-    table = Table(title=title, show_lines=False, expand=False)
+    table = Table(title=Text(title), show_lines=False, expand=False)
     table.add_column("scenario")
     table.add_column("check")
     table.add_column("", justify="center")
     table.add_column("points", justify="right")
     for c in report.checks:
-        mark = "[green]✓[/]" if c.passed else "[red]✗[/]"
-        table.add_row(c.scenario, c.check, mark, f"{c.points:g}/{c.max_points:g}")
+        mark = Text("✓", "green") if c.passed else Text("✗", "red")
+        table.add_row(Text(c.scenario), Text(c.check), mark, f"{c.points:g}/{c.max_points:g}")
     console.print(table)
     for c in report.failed():
-        console.print(f"[red]✗[/] [bold]{c.scenario}: {c.check}[/]\n    {c.message}")
+        console.print(Text.assemble(("✗", "red"), " ", (f"{c.scenario}: {c.check}", "bold"), f"\n    {c.message}"))
         if c.diagram:
-            console.print(f"    timing diagram: {c.diagram}")
+            console.print(Text(f"    timing diagram: {c.diagram}"))
     if verbose:
         for c in report.checks:
             if c.passed:
-                console.print(f"[green]✓[/] {c.scenario}: {c.check}: {c.message}", style="dim")
+                console.print(Text.assemble(("✓", "green"), f" {c.scenario}: {c.check}: {c.message}", style="dim"))
     for run in report.runs:
         if run.cpu_error:
-            console.print(f"[yellow]![/] {run.scenario}: the CPU stopped: {run.cpu_error}")
+            console.print(Text.assemble(("!", "yellow"), f" {run.scenario}: the CPU stopped: {run.cpu_error}"))
         if run.rrd:
-            console.print(f"  trace of {run.scenario}: {run.rrd} (open with: rerun {run.rrd})", style="dim")
+            console.print(Text(f"  trace of {run.scenario}: {run.rrd} (open with: rerun {run.rrd})", "dim"))
     for w in report.warnings:
-        console.print(f"[yellow]warning:[/] {w}")
-    verdict = "[bold green]PASSED[/]" if report.passed else "[bold red]FAILED[/]"
-    console.print(f"{verdict}  score [bold]{report.score:g}[/] / {report.max_score:g}  ({report.elapsed_s:.2f} s)")
+        console.print(Text.assemble(("warning:", "yellow"), f" {w}"))
+    verdict = Text("PASSED", "bold green") if report.passed else Text("FAILED", "bold red")
+    console.print(
+        Text.assemble(
+            verdict, "  score ", (f"{report.score:g}", "bold"), f" / {report.max_score:g}  ({report.elapsed_s:.2f} s)"
+        )
+    )
+
+
+def print_batch_line(report: Any, console: Console) -> None:
+    """One line of a batch: the mark, the file name, the score and the first line of the error."""
+    from pathlib import Path
+
+    mark = Text("✓", "green") if report.passed else Text("✗", "red")
+    first = (report.error or "").strip().splitlines()[:1]
+    why = f"  {report.error_kind}: {first[0] if first else ''}" if report.error else ""
+    console.print(Text.assemble(mark, f" {Path(report.submission).name}: {report.score:g}/{report.max_score:g}{why}"))
 
 
 def print_exercise_list(exercises: Sequence[Any], console: Console | None = None) -> None:
@@ -118,6 +136,6 @@ def print_run_summary(sim: Any, wall_s: float, console: Console | None = None, *
         for e in shown[:events]:
             console.print(f"  {e}", highlight=False)
     if cpu.error:
-        console.print(f"[red]the CPU stopped:[/] {cpu.error}")
+        console.print(Text.assemble(("the CPU stopped:", "red"), f" {cpu.error}"))
     for w in cpu.warnings:
-        console.print(f"[yellow]warning:[/] {w}")
+        console.print(Text.assemble(("warning:", "yellow"), f" {w}"))

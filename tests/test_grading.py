@@ -159,7 +159,7 @@ def test_junit_xml_structure(wrong_report, tmp_path):
     ]
     cases = suites[0].findall("testcase")
     assert [c.get("name") for c in cases] == CHECKS_5[:6]
-    assert all(c.get("classname") == "4.3.5.three objects" for c in cases)
+    assert all(c.get("classname") == "wrong-coil.4.3.5.three objects" for c in cases)  # the student first
     failures = {c.get("name"): c.find("failure") for c in cases if c.find("failure") is not None}
     assert set(failures) == WRONG_COIL_FAILS
     f = failures["the belt starts once per object"]
@@ -175,10 +175,12 @@ def test_junit_of_a_submission_that_did_not_load(ex1, tmp_path):
     root = ET.fromstring(report.to_junit())
     (suite,) = root.findall("testsuite")
     (case,) = suite.findall("testcase")
-    assert (suite.get("tests"), suite.get("failures"), case.get("name")) == ("1", "1", "load")
-    failure = case.find("failure")
-    assert failure.get("type") == "subset violation"
-    assert "imports are not part of PLC programs" in failure.get("message")
+    assert (suite.get("tests"), suite.get("failures"), suite.get("errors"), case.get("name")) == ("1", "0", "1", "load")
+    assert case.get("classname") == "bad.4.3.1" and case.find("failure") is None
+    error = case.find("error")  # a submission that did not load is an error, not a failed check
+    assert error.get("type") == "subset violation"
+    assert "imports are not part of PLC programs" in error.get("message")
+    assert (root.get("tests"), root.get("failures"), root.get("errors")) == ("1", "0", "1")
 
 
 def test_gradebook_rows(reference_report, wrong_report, ex1, tmp_path):
@@ -287,7 +289,7 @@ def test_a_memory_bomb_hits_the_memory_limit(ex1, tmp_path):
     assert not r.passed
     if r.error_kind is not None:  # the grader itself ran out of memory
         assert r.error_kind == "memory limit"
-        assert r.error == f"the submission used more than {limits.memory_mb} MB"
+        assert r.error == f"the submission ran out of memory (the limit is {limits.memory_mb} MB)"
     else:  # the network's allocation failed: the CPU stopped with a MemoryError
         (run,) = r.runs
         assert run.cpu_mode == "STOP"

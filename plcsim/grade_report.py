@@ -1,0 +1,234 @@
+"""The grade of a submission as data, and its files: JSON, JUnit XML, the gradebook CSV.
+
+A report is built by the grader (:mod:`plcsim.grading`) from checks it ran itself; nothing in it
+comes from a submission except texts (messages, file names), which every writer here treats as
+data: JUnit escapes them as XML, the CSV neutralises cells a spreadsheet would run as a formula.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+from xml.etree import ElementTree as ET
+
+SCHEMA_VERSION = 2
+"""Version of the JSON report's layout (2: ``schema_version``, ``plcsim_version`` and ``seed`` at the top)."""
+
+ERROR_KINDS_OF_THE_GRADER = frozenset({"grader error"})
+"""Outcomes that are the grader's or the instructor's fault, never the student's."""
+
+
+@dataclass
+class CheckResult:
+    """One check in one scenario."""
+
+    scenario: str
+    check: str
+    passed: bool
+    message: str
+    points: float
+    max_points: float
+    at_ns: int | None = None
+    signals: list[str] = field(default_factory=list)
+    window: tuple[int, int] | None = None
+    diagram: str | None = None
+
+
+@dataclass
+class ScenarioRun:
+    """How one scenario ran."""
+
+    scenario: str
+    seed: int
+    simulated_ns: int
+    scans: int
+    cpu_mode: str
+    cpu_error: str | None = None
+    rrd: str | None = None
+    trace_npz: str | None = None
+
+
+@dataclass
+class Report:
+    """The grade of one submission for one exercise."""
+
+    exercise: str
+    title: str
+    submission: str
+    passed: bool = False
+    score: float = 0.0
+    max_score: float = 0.0
+    checks: list[CheckResult] = field(default_factory=list)
+    runs: list[ScenarioRun] = field(default_factory=list)
+    error: str | None = None
+    error_kind: str | None = None
+    warnings: list[str] = field(default_factory=list)
+    elapsed_s: float = 0.0
+    seed: int | None = None
+
+    @property
+    def student(self) -> str:
+        """The submission's file name without its folder and suffix (a JUnit class name, a file stem)."""
+        return Path(self.submission).stem or self.submission
+
+    @property
+    def grader_failed(self) -> bool:
+        """True if the grade is void because of the grader or the exercise, not the submission."""
+        return self.error_kind in ERROR_KINDS_OF_THE_GRADER
+
+    def to_dict(self) -> dict[str, Any]:
+        from plcsim import __version__
+
+        return {"schema_version": SCHEMA_VERSION, "plcsim_version": __version__, "seed": self.seed, **asdict(self)}
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Report:
+        data = {k: v for k, v in data.items() if k not in ("schema_version", "plcsim_version")}
+        data["checks"] = [
+            CheckResult(**{**c, "window": tuple(c["window"]) if c.get("window") is not None else None})
+            for c in data.get("checks", [])
+        ]  # JSON has no tuples: a window comes back as a list
+        data["runs"] = [ScenarioRun(**r) for r in data.get("runs", [])]
+        return cls(**data)
+
+    def to_json(self, path: str | Path | None = None) -> str:
+        text = json.dumps(self.to_dict(), indent=2)
+        if path is not None:
+            Path(path).write_text(text, encoding="utf-8")
+        return text
+
+    def failed(self) -> list[CheckResult]:
+        return [c for c in self.checks if not c.passed]
+
+    def result(self, check: str, scenario: str | None = None) -> CheckResult:
+        """The result of one check (in one scenario, or the first failing/any scenario)."""
+        found = [c for c in self.checks if c.check == check and (scenario is None or c.scenario == scenario)]
+        if not found:
+            raise KeyError(f"no result for check {check!r}; checks: {sorted({c.check for c in self.checks})}")
+        failing = [c for c in found if not c.passed]
+        return failing[0] if failing else found[0]
+
+    def to_junit(self, path: str | Path | None = None) -> str:
+        """JUnit XML: one test suite per scenario, one test case per check; a submission that did not
+        run, a CPU STOP and a grader error are ``<error>``s, a failed check a ``<failure>``."""
+        return write_junit([self], path, name=f"plcsim {self.exercise}")
+
+
+# -- JUnit ------------------------------------------------------------------------------------------
+
+
+def write_junit(reports: Sequence[Report], path: str | Path | None = None, *, name: str | None = None) -> str:
+    """JUnit XML of one or many reports (a batch); written to ``path`` if given."""
+    suites = [s for r in reports for s in _suites(r)]
+    root = ET.Element("testsuites", name=name or f"plcsim {reports[0].exercise if reports else ''}".strip())
+    root.extend(suites)
+    _count(root, suites, sum(r.elapsed_s for r in reports))
+    text = ET.tostring(root, encoding="unicode")
+    if path is not None:
+        Path(path).write_text('<?xml version="1.0" encoding="utf-8"?>\n' + text, encoding="utf-8")
+    return text
+
+
+def _suites(report: Report) -> list[ET.Element]:
+    suites: list[ET.Element] = []
+    per_run = report.elapsed_s / max(1, len(report.runs))
+    if report.error and not report.checks:
+        suite = ET.Element("testsuite", name=report.exercise)
+        case = _case(suite, "load", f"{report.student}.{report.exercise}", report.elapsed_s)
+        _error(case, report.error_kind or "error", report.error)
+        suites.append(suite)
+    by_scenario: dict[str, list[CheckResult]] = {}
+    for c in report.checks:
+        by_scenario.setdefault(c.scenario, []).append(c)
+    stopped = {run.scenario: run.cpu_error for run in report.runs if run.cpu_error}
+    for scenario, results in by_scenario.items():
+        suite = ET.Element("testsuite", name=f"{report.exercise}.{scenario}")
+        classname = f"{report.student}.{report.exercise}.{scenario}"
+        if scenario in stopped:
+            _error(_case(suite, "CPU run", classname, 0.0), "CPU STOP", stopped[scenario])
+        for r in results:
+            case = _case(suite, r.check, classname, per_run / max(1, len(results)) if scenario != "static" else 0.0)
+            if not r.passed:
+                failure = ET.SubElement(case, "failure", message=r.message, type="check failed")
+                failure.text = r.message + (f"\ntiming diagram: {r.diagram}" if r.diagram else "")
+        suites.append(suite)
+    if report.error and report.checks:  # a grader error after the checks ran
+        suite = ET.Element("testsuite", name=f"{report.exercise}.grader")
+        case = _case(suite, "grading", f"{report.student}.{report.exercise}", 0.0)
+        _error(case, report.error_kind or "error", report.error)
+        suites.append(suite)
+    for suite in suites:
+        cases = suite.findall("testcase")
+        _count(suite, cases, sum(float(c.get("time", "0")) for c in cases))
+    return suites
+
+
+def _case(suite: ET.Element, name: str, classname: str, seconds: float) -> ET.Element:
+    return ET.SubElement(suite, "testcase", name=name, classname=classname, time=f"{seconds:.3f}")
+
+
+def _error(case: ET.Element, kind: str, message: str) -> None:
+    ET.SubElement(case, "error", message=message, type=kind).text = message
+
+
+def _count(element: ET.Element, children: Sequence[ET.Element], seconds: float) -> None:
+    """Set tests/failures/errors/time of a suite (children: test cases) or of the root (children: suites)."""
+    if element.tag == "testsuite":
+        tests = len(children)
+        failures = sum(c.find("failure") is not None for c in children)
+        errors = sum(c.find("error") is not None for c in children)
+    else:
+        tests = sum(int(s.get("tests", "0")) for s in children)
+        failures = sum(int(s.get("failures", "0")) for s in children)
+        errors = sum(int(s.get("errors", "0")) for s in children)
+    element.set("tests", str(tests))
+    element.set("failures", str(failures))
+    element.set("errors", str(errors))
+    element.set("time", f"{seconds:.3f}")
+
+
+# -- gradebook ----------------------------------------------------------------------------------------
+
+_FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
+
+
+def spreadsheet_safe(cell: str) -> str:
+    """A CSV cell a spreadsheet shows as text: one starting like a formula gets a leading quote (OWASP).
+
+    >>> spreadsheet_safe("=1+1.py"), spreadsheet_safe("alice.py")
+    ("'=1+1.py", 'alice.py')
+    """
+    return "'" + cell if cell.startswith(_FORMULA_STARTS) else cell
+
+
+def write_gradebook(reports: Sequence[Report], path: str | Path) -> Path:
+    """A CSV with one row per submission: score, max, passed, error, and each check's result."""
+    checks: list[str] = []
+    for r in reports:
+        for c in r.checks:
+            key = f"{c.scenario}: {c.check}"
+            if key not in checks:
+                checks.append(key)
+    path = Path(path)
+    with path.open("w", newline="", encoding="utf-8") as f:
+        writer = csv.writer(f)
+        header = ["submission", "score", "max_score", "percent", "passed", "error", *checks]
+        writer.writerow([spreadsheet_safe(h) for h in header])
+        for r in reports:
+            results = {f"{c.scenario}: {c.check}": ("pass" if c.passed else "FAIL") for c in r.checks}
+            percent = f"{100 * r.score / r.max_score:.1f}" if r.max_score else "0.0"
+            row = [
+                spreadsheet_safe(Path(r.submission).name),
+                f"{r.score:g}",
+                f"{r.max_score:g}",
+                percent,
+                "yes" if r.passed else "no",
+                spreadsheet_safe(r.error or ""),
+                *(results.get(c, "-") for c in checks),
+            ]
+            writer.writerow(row)
+    return path
