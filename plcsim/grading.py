@@ -106,6 +106,8 @@ def run_scenarios(
         plant_error = None
         try:
             sim.run()
+        except ConfigurationError:  # the exercise's mistake (ExerciseError): the grader's, not a plant failure
+            raise
         except PlcError as exc:  # a plant failure: the run ends early (see :func:`evaluate`)
             plant_error = str(exc)
         cpu = sim.cpu

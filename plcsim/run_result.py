@@ -201,7 +201,7 @@ def decode(buffer: bytes, expected: Sequence[Expected], seed: int) -> list[RunRe
     header = _header(buffer, start, head_len)
     if header.get("kind") == "failure":
         kind, message = header.get("error_kind"), header.get("message")
-        if kind not in ("subset violation", "program error", "memory limit", "crash"):
+        if kind not in ("subset violation", "program error", "memory limit", "crash", "grader error"):
             raise InvalidResultError(f"the child reports an unknown failure kind {_short(kind)}")
         return kind, _text(message, "failure message")
     runs = header["runs"]

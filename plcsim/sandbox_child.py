@@ -65,7 +65,7 @@ def lock_down(request: dict[str, Any]) -> list[str]:
 
 def grade_request(request: dict[str, Any]) -> bytes:
     """Load the exercise, lock down, run the submission in every scenario: the message for the grader."""
-    from plcsim.errors import PlcError
+    from plcsim.errors import ExerciseError, PlcError
     from plcsim.grading import load_error_kind, run_scenarios
     from plcsim.program import Program
     from plcsim.run_result import encode_failure, encode_runs
@@ -76,6 +76,8 @@ def grade_request(request: dict[str, Any]) -> bytes:
         program = Program.from_file(request["path"])
         runs, _ = run_scenarios(exercise, program, seed=request["seed"], scenarios=request["scenarios"])
         return encode_runs(runs, geometry=request["geometry"])
+    except ExerciseError as exc:  # a scenario the exercise cannot run: the instructor's mistake, voids the grade
+        return encode_failure("grader error", str(exc))
     except PlcError as exc:  # the grader ran the exercise with a probe program: the fault is this program's
         kind = load_error_kind(exc)
         return encode_failure("program error" if kind == "grader error" else kind, str(exc))

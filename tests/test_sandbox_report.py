@@ -213,3 +213,18 @@ def test_an_exercise_that_cannot_be_set_up_is_a_grader_error_in_both_paths(ex1, 
     for r in (grade(ex1, ex1.reference.path), grade_sandboxed(ex1, ex1.reference.path)):
         assert (r.error_kind, r.passed, r.grader_failed) == ("grader error", False, True)
         assert "unknown station 'S9'" in r.error
+
+
+def test_an_exercise_error_raised_while_a_scenario_runs_is_a_grader_error_not_a_cut_short_run(ex1, monkeypatch):
+    """A scenario action the exercise cannot perform (ExerciseError in the middle of the run) voids the grade as
+    the grader's fault; it is not a plant failure that would fail every run-time check of the student."""
+    from plcsim.errors import ExerciseError
+    from plcsim.sim import Simulation
+
+    def broken(self, *args, **kwargs):
+        raise ExerciseError("ex.py:12: shift sensor TL by 5.0 mm at 1 s: the plant PANEL does not support it")
+
+    monkeypatch.setattr(Simulation, "run", broken)
+    r = grade(ex1, ex1.reference.path)
+    assert (r.error_kind, r.passed, r.grader_failed, r.checks) == ("grader error", False, True, [])
+    assert "does not support it" in r.error
