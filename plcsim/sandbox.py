@@ -23,6 +23,7 @@ import subprocess
 import sys
 import sysconfig
 import tempfile
+import threading
 import time
 import uuid
 from dataclasses import dataclass, field
@@ -63,6 +64,12 @@ class ChildOutcome:
     """The guards this system lacks (see :func:`gaps`)."""
 
 
+_PREPARING = threading.Lock()
+_PYTHON_PATHS = tuple(sysconfig.get_paths().values())
+"""Computed once at import: sysconfig fills its caches lazily and not thread-safely, and a batch grades
+from several threads (two threads in the first grade of a batch met "dictionary changed size")."""
+
+
 def run_child(
     exercise: Exercise,
     path: Path,
@@ -76,8 +83,10 @@ def run_child(
     """Run ``path`` on the scenarios in a confined child; its results, validated, or what went wrong."""
     if not path.is_file():
         return ChildOutcome(kind="program error", message=f"cannot read program {path}: no such file")
-    expected = [_expected(exercise, s, seed) for s in scenarios]  # an exercise's mistake shows here
-    module, attribute = _locate(exercise)
+    with _PREPARING:  # process-wide state (sys.modules, sysconfig's lazy caches): one batch thread at a time
+        expected = [_expected(exercise, s, seed) for s in scenarios]  # an exercise's mistake shows here
+        module, attribute = _locate(exercise)
+        readable = [str(path.resolve()), *_readable(exercise, path)]
     cap = MAX_HEADER_BYTES + sum(e.max_rows * (HEAD + len(e.kinds) + EXTRA_COLUMNS) * 8 for e in expected)
     scratch = tempfile.mkdtemp(prefix="plcsim-grade-")
     cgroup = _make_cgroup()
@@ -91,7 +100,7 @@ def run_child(
         "limits": {"cpu_seconds": limits.cpu_seconds, "memory_mb": limits.memory_mb},
         "scratch": scratch,
         "cgroup": cgroup,
-        "readable": [str(path.resolve()), *_readable(exercise, path)],
+        "readable": readable,
     }
     try:
         run = _run_posix if POSIX else _run_portable
@@ -327,7 +336,7 @@ def _readable(exercise: Exercise, path: Path) -> list[str]:
     hidden.add(Path(tempfile.gettempdir()).resolve())
     folder = path.resolve().parent  # its sub-folders may hold packages; its files are other submissions
     roots = {Path(p) for p in _SYSTEM_READABLE}
-    roots |= {Path(p) for p in sysconfig.get_paths().values()}
+    roots |= {Path(p) for p in _PYTHON_PATHS}
     roots |= {_package_root(m) for m in list(sys.modules.values())} - {None}  # type: ignore[arg-type]
     out: list[str] = []
 
