@@ -20,6 +20,7 @@ GROUPS: dict[str, str] = {  # group name -> module with run(settings)
     "equivalence": "benchmarks.equivalence",
     "cosim": "benchmarks.cosim",
     "grading": "benchmarks.grading",
+    "mutation": "benchmarks.mutation",
 }
 
 

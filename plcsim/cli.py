@@ -6,6 +6,7 @@ plcsim run 4.3.7 --reference --rrd out/run.rrd
 plcsim run CONV1 --program my_conveyor.py --seconds 20 --plot out/conveyor.png
 plcsim grade 4.3.7 my_alarm.py --json out/report.json --junit out/report.xml
 plcsim grade 4.3.7 submissions/ --jobs 2 --gradebook out/grades.csv
+plcsim mutate 4.3.7 --seeds 3 --jobs 2 --json out/mutants.json
 """
 
 from __future__ import annotations
@@ -87,7 +88,21 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("--memory-mb", type=int, default=2048, help="memory limit per submission (default 2048)")
     grade.add_argument("--no-sandbox", action="store_true", help="grade in this process (trusted code only)")
     grade.add_argument("-v", "--verbose", action="store_true", help="also show why passed checks passed")
+    _add_mutate_parser(sub)
     return p
+
+
+def _add_mutate_parser(sub: Any) -> None:
+    mutate = sub.add_parser(
+        "mutate",
+        help="mutation-test an exercise's checks: which slips in the reference do they miss?",
+        description="Derive mutants from the exercise's reference solution (negated contacts, swapped timers, "
+        "removed edges, presets off by a step, swapped or dropped networks ...), grade each, list the survivors.",
+    )
+    mutate.add_argument("exercise", help="textbook number (4.3.6) or slug")
+    mutate.add_argument("--seeds", type=int, default=3, metavar="N", help="grade each mutant on seeds 1..N (default 3)")
+    mutate.add_argument("--jobs", type=int, default=1, metavar="J", help="grade J mutants at a time")
+    mutate.add_argument("--json", metavar="OUT", help="write every mutant and its outcome as JSON")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -96,7 +111,8 @@ def main(argv: list[str] | None = None) -> int:
         _parser().print_help()
         return EXIT_USAGE
     try:
-        return {"list": _list, "show": _show, "run": _run, "grade": _grade}[args.command](args)
+        commands = {"list": _list, "show": _show, "run": _run, "grade": _grade, "mutate": _mutate}
+        return commands[args.command](args)
     except PlcError as exc:
         from rich.console import Console
 
@@ -343,6 +359,25 @@ def _grade(args: argparse.Namespace) -> int:
         report.to_junit(args.junit)
         console.print(f"JUnit report: {args.junit}")
     return 0 if report.passed else EXIT_FAILED
+
+
+def _mutate(args: argparse.Namespace) -> int:
+    from rich.console import Console
+
+    from exercises import get
+    from plcsim.mutate import mutate_exercise, print_mutation_report
+
+    if args.seeds < 1 or args.jobs < 1:
+        raise PlcError("--seeds and --jobs must be at least 1")
+    console = Console()
+    with console.status("grading mutants"):
+        report = mutate_exercise(get(args.exercise), seeds=args.seeds, jobs=args.jobs)
+    print_mutation_report(report, console)
+    if args.json:
+        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+        report.to_json(args.json)
+        console.print(f"JSON report: {args.json}", highlight=False)
+    return 0
 
 
 if __name__ == "__main__":  # pragma: no cover
