@@ -45,6 +45,15 @@ EXERCISE = Exercise(
             duration="4s",
             description="an object put straight at S2 on the idle belt: the belt stays off",
         ),
+        Scenario(
+            "new object while one waits at S2",
+            place("p1", at="S2", t="0.3s..0.8s"),
+            place("p2", at="S1", t="1.5s..2s"),
+            remove("p1", t="3s..3.5s"),
+            duration="6s",
+            description="the operator loads a second object while the first still waits at S2: RESET wins, "
+            "the belt stays off until S2 is free",
+        ),
     ],
     checks=[
         only(
@@ -59,6 +68,7 @@ EXERCISE = Exercise(
             always(implies("S2", off("D1"))).named("the belt never runs while S2 sees an object"),
             "three objects",
             "placed at S2",
+            "new object while one waits at S2",
         ),
         never(event("part fell off")).named("no object falls off the belt"),
         only(never("D1").named("the belt stays off without a new object at S1"), "placed mid-belt", "placed at S2"),

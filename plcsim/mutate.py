@@ -28,10 +28,11 @@ the trusted reference) on seeds 1..N. It is **killed** if some check fails on so
 reference passes on that seed, **stillborn** if it does not load (counted apart, not as killed).
 A surviving mutant is **equivalent** if its behaviour equals the reference's in every scenario and
 seed: the same changes of every tag of the exercise's I/O table and data blocks at the same times
-and the same events (the program's own tags, such as edge memory or a timer's ET, are the
-student's choice and no check reads them; the CPU's clock and system bits do not depend on the
-program). Equivalent means "no scenario tells it apart": read those too, a scenario may be
-missing. Score = killed / (killed + survived).
+and the same events (the program's own tags, such as a timer's ET, and the edge memory bits the
+reference names are the edge and timer instructions' bookkeeping, which no check reads; the CPU's
+clock and system bits do not depend on the program). A survivor's report names the tags that
+differ. Equivalent means "no scenario tells it apart": read those too, a scenario may be missing.
+Score = killed / (killed + survived).
 
 >>> from plcsim.tags import Tag, TagTable
 >>> table = TagTable()
@@ -521,8 +522,10 @@ class _Job:
     def __init__(self, exercise: Exercise, seeds: list[int]):
         self.exercise = exercise
         self.seeds = seeds
-        self._failed = {s: _failures(grade(exercise, exercise.reference.path, seed=s)) for s in seeds}
-        self._digests: dict[int, list[str]] = {}
+        self.reference = exercise.reference.program()
+        self.ignore = edge_memories(self.reference)
+        self._failed = {s: _failures(grade(exercise, self.reference, seed=s)) for s in seeds}
+        self._behaviour: dict[tuple[int, str], dict[str, str]] = {}
 
     def reference_failures(self) -> list[str]:
         return [f"seed {s}: {f}" for s in self.seeds for f in sorted(self._failed[s])]
@@ -539,44 +542,67 @@ class _Job:
             new = sorted(_failures(report) - self._failed[seed])
             if new:
                 return Outcome(mutant, KILLED, f"seed {seed}: {new[0]}")
-        if all(self._digest(program, s) == self._reference_digest(s) for s in self.seeds):
-            return Outcome(mutant, EQUIVALENT, "the same behaviour as the reference in every scenario and seed")
-        return Outcome(mutant, SURVIVED, "behaves differently, but every check passes")
+        for seed in self.seeds:
+            for scenario in self.exercise.scenarios:
+                key = (seed, scenario.name)
+                if key not in self._behaviour:
+                    self._behaviour[key] = self._run(self.reference, scenario.name, seed)
+                mine = self._run(program, scenario.name, seed)
+                differ = sorted(
+                    k for k in mine.keys() | self._behaviour[key].keys() if mine.get(k) != self._behaviour[key].get(k)
+                )
+                if differ:
+                    shown = ", ".join(differ[:4]) + (" ..." if len(differ) > 4 else "")
+                    return Outcome(
+                        mutant,
+                        SURVIVED,
+                        f"every check passes, but {shown} differ (seed {seed}, scenario {scenario.name!r})",
+                    )
+        return Outcome(mutant, EQUIVALENT, "the same behaviour as the reference in every scenario and seed")
 
-    def _reference_digest(self, seed: int) -> list[str]:
-        if seed not in self._digests:
-            self._digests[seed] = self._digest(self.exercise.reference.program(), seed)
-        return self._digests[seed]
-
-    def _digest(self, program: Program, seed: int) -> list[str]:
-        out = []
-        for scenario in self.exercise.scenarios:
-            sim = self.exercise.simulation(program, scenario, seed=seed)
-            error = ""
-            try:
-                sim.run()
-            except PlcError as exc:
-                error = str(exc)
-            out.append(behaviour_digest(self.exercise, sim.trace, error))
-        return out
+    def _run(self, program: Program, scenario: str, seed: int) -> dict[str, str]:
+        sim = self.exercise.simulation(program, scenario, seed=seed)
+        error = ""
+        try:
+            sim.run()
+        except PlcError as exc:
+            error = str(exc)
+        return behaviour(self.exercise, sim.trace, error, self.ignore)
 
 
 def _failures(report: Report) -> set[str]:
     return {f"scenario {c.scenario!r}: {c.check}" for c in report.failed()}
 
 
-def behaviour_digest(exercise: Exercise, trace: Any, error: str = "") -> str:
-    """A hash of what a check can see of a run: when each exercise tag changed, to what, and the events."""
+def edge_memories(program: Program) -> set[str]:
+    """The tags a program names as edge memory (``P(x, "SB1")``): the edge instruction's bookkeeping."""
+    out = set()
+    for node in ast.walk(program.tree):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
+            k = {"P": 1, "N": 1, "P_TRIG": 1, "N_TRIG": 1, "P_COIL": 2, "N_COIL": 2}.get(node.func.id)
+            if k is not None and len(node.args) > k and isinstance(node.args[k], ast.Constant):
+                out.add(str(node.args[k].value))
+    return out
+
+
+def behaviour(exercise: Exercise, trace: Any, error: str = "", ignore: Iterable[str] = ()) -> dict[str, str]:
+    """What a check can see of a run, hashed per signal: when each exercise tag changed and to what,
+    the events and the CPU's error (tags in ``ignore``, the CPU's clock and system bits left out)."""
     heads = {row.tag for row in exercise.io} | set(exercise.dbs)
-    names = sorted(n for n in trace.names if n.split(".")[0] in heads and n not in _CPU_BITS)
-    h = hashlib.sha256(error.encode())
-    for name in names:
-        col = trace.column(name).astype(np.float64)
-        changed = np.concatenate(([True], col[1:] != col[:-1])) if len(col) else np.zeros(0, dtype=bool)
-        h.update(name.encode())
-        h.update(trace.signal_times(name)[changed].tobytes())
-        h.update(col[changed].tobytes())
-    h.update(json.dumps([asdict(e) for e in trace.events]).encode())
+    skip = _CPU_BITS | set(ignore)
+    out = {"events": _hash(json.dumps([asdict(e) for e in trace.events]).encode()), "CPU error": error}
+    for name in trace.names:
+        if name.split(".")[0] in heads and name not in skip:
+            col = trace.column(name).astype(np.float64)
+            changed = np.concatenate(([True], col[1:] != col[:-1])) if len(col) else np.zeros(0, dtype=bool)
+            out[name] = _hash(trace.signal_times(name)[changed].tobytes(), col[changed].tobytes())
+    return out
+
+
+def _hash(*chunks: bytes) -> str:
+    h = hashlib.sha256()
+    for chunk in chunks:
+        h.update(chunk)
     return h.hexdigest()
 
 
@@ -657,7 +683,8 @@ __all__ = [
     "derive_mutants",
     "exercise_mutants",
     "mutate_exercise",
-    "behaviour_digest",
+    "behaviour",
+    "edge_memories",
     "print_mutation_report",
     "KILLED",
     "SURVIVED",
