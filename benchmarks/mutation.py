@@ -45,7 +45,7 @@ def run(settings: Settings) -> Iterator[dict[str, Any]]:
             stillborn=report.count(STILLBORN),
             seconds=round(report.elapsed_s, 2),
             seeds=seeds,
-            survivors=[str(o.mutant) for o in report.of(SURVIVED)],
+            survivors=[f"{o.mutant} ({o.detail})" for o in report.of(SURVIVED)],
             reference_failures=report.reference_failures,
         )
     wall = time.perf_counter() - t0
