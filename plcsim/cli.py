@@ -101,7 +101,7 @@ def _add_mutate_parser(sub: Any) -> None:
     )
     mutate.add_argument("exercise", help="textbook number (4.3.6) or slug")
     mutate.add_argument("--seeds", type=int, default=3, metavar="N", help="grade each mutant on seeds 1..N (default 3)")
-    mutate.add_argument("--jobs", type=int, default=1, metavar="J", help="grade J mutants at a time")
+    mutate.add_argument("--jobs", type=int, default=1, metavar="J", help="grade J mutants at a time (forked workers)")
     mutate.add_argument("--json", metavar="OUT", help="write every mutant and its outcome as JSON")
 
 
@@ -363,6 +363,7 @@ def _grade(args: argparse.Namespace) -> int:
 
 def _mutate(args: argparse.Namespace) -> int:
     from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
     from exercises import get
     from plcsim.mutate import mutate_exercise, print_mutation_report
@@ -370,8 +371,15 @@ def _mutate(args: argparse.Namespace) -> int:
     if args.seeds < 1 or args.jobs < 1:
         raise PlcError("--seeds and --jobs must be at least 1")
     console = Console()
-    with console.status("grading mutants"):
-        report = mutate_exercise(get(args.exercise), seeds=args.seeds, jobs=args.jobs)
+    columns = (TextColumn("grading mutants"), BarColumn(), MofNCompleteColumn())
+    with Progress(*columns, console=console, transient=True, auto_refresh=False) as bar:  # no thread: workers fork
+        task = bar.add_task("", total=None)
+
+        def step(done: int, total: int, _: Any) -> None:
+            bar.update(task, completed=done, total=total)
+            bar.refresh()
+
+        report = mutate_exercise(get(args.exercise), seeds=args.seeds, jobs=args.jobs, progress=step)
     print_mutation_report(report, console)
     if args.json:
         Path(args.json).parent.mkdir(parents=True, exist_ok=True)

@@ -17,6 +17,7 @@ and-or     a series connection for a parallel one: ``and`` <-> ``or``
 swap       two adjacent networks of an OB, or two adjacent if-blocks of a network, exchanged
 drop       a network of an OB, or one statement of a block, dropped
 move       a network moved to the end of its OB
+task       a cyclic interrupt's networks (OB30) run in OB1 instead, every scan
 ========== ==================================================================================
 
 A preset step is one unit in the decimal place below the value's leading digit, at least one
@@ -330,11 +331,22 @@ def _block_sites(owner: ast.AST, field_name: str, block: list[ast.stmt], index: 
 
 
 def _network_sites(tree: ast.Module, index: dict[int, int]) -> Iterator[Site]:
-    """Networks of an OB (``OB1 = [a, b]``, ``CyclicInterrupt([a, b], ...)``) swapped, dropped, moved."""
+    """Networks of an OB (``OB1 = [a, b]``, ``CyclicInterrupt([a, b], ...)``) swapped, dropped, moved;
+    a cyclic interrupt's networks run in OB1 instead (when the program has no OB1)."""
+    has_ob1 = any(
+        (isinstance(s, ast.FunctionDef) and s.name == "OB1")
+        or (isinstance(s, ast.Assign) and any(isinstance(t, ast.Name) and t.id == "OB1" for t in s.targets))
+        for s in tree.body
+    )
     for stmt in tree.body:
         if not (isinstance(stmt, ast.Assign) and len(stmt.targets) == 1 and isinstance(stmt.targets[0], ast.Name)):
             continue
         ob = stmt.targets[0].id
+        value = stmt.value
+        if not has_ob1 and isinstance(value, ast.Call) and _is_name(value.func, "CyclicInterrupt") and value.args:
+            every = next((_text(kw.value) for kw in value.keywords if kw.arg == "period"), "period")
+            what = f"{ob}: its networks run in OB1, every scan, instead of every {every}"
+            yield "task", stmt.lineno, what, _to_ob1(index[id(stmt)])
         networks = _network_list(stmt.value)
         if networks is None or len(networks.elts) < 2:
             continue
@@ -353,10 +365,14 @@ def _network_sites(tree: ast.Module, index: dict[int, int]) -> Iterator[Site]:
 def _network_list(value: ast.expr) -> ast.List | None:
     if isinstance(value, ast.List):
         return value
-    if isinstance(value, ast.Call) and isinstance(value.func, ast.Name) and value.func.id == "CyclicInterrupt":
+    if isinstance(value, ast.Call) and _is_name(value.func, "CyclicInterrupt"):
         first = value.args[0] if value.args else next((kw.value for kw in value.keywords if kw.arg == "networks"), None)
         return first if isinstance(first, ast.List) else None
     return None
+
+
+def _is_name(node: ast.expr, name: str) -> bool:
+    return isinstance(node, ast.Name) and node.id == name
 
 
 def _is_docstring(stmt: ast.stmt) -> bool:
@@ -417,6 +433,15 @@ def _swap_block(k: int, field_name: str, i: int) -> Edit:
 
 def _drop_block(k: int, field_name: str, i: int) -> Edit:
     return lambda nodes: getattr(nodes[k], field_name).pop(i)
+
+
+def _to_ob1(k_assign: int) -> Edit:
+    def edit(nodes: list[ast.AST]) -> None:
+        stmt = nodes[k_assign]
+        stmt.targets[0].id = "OB1"  # type: ignore[attr-defined]
+        stmt.value = stmt.value.args[0]  # type: ignore[attr-defined]
+
+    return edit
 
 
 def _move_last(k: int, i: int) -> Edit:

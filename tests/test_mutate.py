@@ -162,7 +162,7 @@ def test_parallel_grading_gives_the_same_outcomes():
     assert [(o.mutant, o.status, o.detail) for o in one.outcomes] == [
         (o.mutant, o.status, o.detail) for o in two.outcomes
     ]
-    assert len(one.outcomes) == 6
+    assert len(one.outcomes) == 7
 
 
 def test_the_cli_prints_the_score_and_writes_json(tmp_path, capsys):
@@ -179,3 +179,16 @@ def test_the_cli_lists_survivors(capsys):
     assert main(["mutate", "4.3.11", "--seeds", "1"]) == 0
     text = capsys.readouterr().out
     assert "surviving mutants" in text and "N(t.Clock_1Hz, 'AUX')" in text and "mutation score: 50 %" in text
+
+
+def test_the_cli_refuses_zero_seeds(capsys):
+    assert main(["mutate", "4.3.1", "--seeds", "0"]) == 2
+    assert "--seeds and --jobs must be at least 1" in capsys.readouterr().err
+
+
+def test_a_cyclic_interrupt_run_in_ob1_instead():
+    source = "def blink(t):\n    t.D1 = not t.D1\n\n\nOB30 = CyclicInterrupt(blink, period='1s')\n"
+    mutants = {m.operator: m for m in derive_mutants(source, small_table())}
+    assert str(mutants["task"]) == "line 5: OB30: its networks run in OB1, every scan, instead of every '1s'"
+    assert mutants["task"].source.rstrip().endswith("OB1 = blink")
+    assert set(Program(mutants["task"].source).tasks) == {"OB1"}
