@@ -581,7 +581,7 @@ class _Job:
                     return Outcome(
                         mutant,
                         SURVIVED,
-                        f"every check passes, but {shown} differ (seed {seed}, scenario {scenario.name!r})",
+                        f"every check passes, but these differ: {shown} (seed {seed}, scenario {scenario.name!r})",
                     )
         return Outcome(mutant, EQUIVALENT, "the same behaviour as the reference in every scenario and seed")
 
@@ -665,7 +665,7 @@ def print_mutation_report(report: MutationReport, console: Any) -> None:
     console.print(Text(f"mutation testing of {report.exercise} {report.title}", style="bold"))
     console.print(
         Text(
-            f"{len(report.outcomes)} mutants of the reference, graded on seeds "
+            f"{len(report.outcomes)} mutants of the reference, graded on seed{'s' if len(report.seeds) > 1 else ''} "
             f"{', '.join(map(str, report.seeds))} in {report.elapsed_s:.1f} s"
         )
     )
@@ -686,7 +686,7 @@ def print_mutation_report(report: MutationReport, console: Any) -> None:
         for col in ("#", "line", "operator", "mutant"):
             table.add_column(col)
         for o in rows:
-            what = o.mutant.description + (f"\n{o.detail.splitlines()[0]}" if status == STILLBORN else "")
+            what = o.mutant.description + (f"\n{o.detail.splitlines()[0]}" if status != EQUIVALENT else "")
             table.add_row(str(o.mutant.number), str(o.mutant.line), o.mutant.operator, Text(what))
         console.print(table)
     score = report.score

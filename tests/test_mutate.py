@@ -144,7 +144,7 @@ def test_a_correct_variant_survives_and_is_not_called_equivalent():
         ("P(t.Clock_1Hz, 'AUX') → N(t.Clock_1Hz, 'AUX')", SURVIVED),
     ]
     assert report.score == 0.5
-    assert "Takt1s differ" in report.outcomes[1].detail
+    assert "these differ: Takt1s (seed 1" in report.outcomes[1].detail
 
 
 def test_a_mutant_that_does_not_load_is_counted_apart():
@@ -179,6 +179,7 @@ def test_the_cli_lists_survivors(capsys):
     assert main(["mutate", "4.3.11", "--seeds", "1"]) == 0
     text = capsys.readouterr().out
     assert "surviving mutants" in text and "N(t.Clock_1Hz, 'AUX')" in text and "mutation score: 50 %" in text
+    assert "every check passes, but these differ: Takt1s (seed 1" in text
 
 
 def test_the_cli_refuses_zero_seeds(capsys):
