@@ -1,4 +1,14 @@
-"""4.3.5 Conveyor control 1 (one object). Plant: CONV1."""
+"""4.3.5 Conveyor control 1 (one object). Plant: CONV1.
+
+Mutation testing (``plcsim mutate 4.3.5``): the mutant with the two networks swapped (SET after
+RESET, so SET wins when S1 and S2 are both covered) is reported as equivalent, because no scenario
+covers both: the operator loads one object at a time, as the task says. The spec states that RESET
+wins ([T], rung 2); a scenario that loads a second object while the first waits at S2 (with "the belt
+never runs while S2 sees an object" and "no object falls off the belt") kills it, and the reference
+and wrong-coil grade as before on 20 seeds. It is not added here because tests/test_grading.py and
+tests/test_cli.py count this exercise's checks (11) and replay its seed-1 schedule; add it together
+with their figures (13 checks; wrong-coil 10 / 13).
+"""
 
 from exercises._common import solution
 from exercises._conveyor import CONV1_IO, carries_objects, shuttle

@@ -1,4 +1,9 @@
-"""4.3.6 Conveyor control 2 (any number of objects). Plant: CONV1."""
+"""4.3.6 Conveyor control 2 (any number of objects). Plant: CONV1.
+
+Mutation testing (``plcsim mutate 4.3.6``): the one equivalent mutant is CTUD's ``PV 0 -> 1``. PV
+only decides QU (CV >= PV), which neither the reference nor any check reads; CV, and with it POCET
+and D1, is the same.
+"""
 
 from __future__ import annotations
 

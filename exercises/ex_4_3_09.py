@@ -1,4 +1,18 @@
-"""4.3.9 Conveyors 1 (three conveyors, occupancy states). Plant: CONV3."""
+"""4.3.9 Conveyors 1 (three conveyors, occupancy states). Plant: CONV3.
+
+Mutation testing (``plcsim mutate 4.3.9``): two mutants survive, both start a conveyor one scan
+later than the reference and change nothing else:
+
+- network ``loading`` moved to the end of OB1: the run networks see D1_OBS a scan after it is set.
+- network ``removal_d3`` moved to the end: after the removal at D3, D3 (and the queue) starts a scan
+  later.
+
+The spec bounds when a conveyor stops (criterion 2, "within 1 scan"), not when it starts; a start
+one scan later is a correct program (a student may well write the run networks first), so no check
+kills them. The equivalent ones are swaps of adjacent networks that never act in the same scan
+(a load at D1_OS and an arrival at D2_OS, say), and ``P(D3_OS) -> D3_OS``: D3_VPRED falls in the
+scan that sets D3_OBS, so the level acts once, like the edge.
+"""
 
 from __future__ import annotations
 

@@ -1,4 +1,13 @@
-"""4.3.10 Conveyors 2 (two conveyors, two NC sensors each). Plant: CONV2x2."""
+"""4.3.10 Conveyors 2 (two conveyors, two NC sensors each). Plant: CONV2x2.
+
+Mutation testing (``plcsim mutate 4.3.10``): three mutants survive, and each starts D1 one scan
+later than the reference: network ``loading`` moved to the end of OB1 (D1_VPRED sees the new
+D1_POZ1_OBS a scan later), ``removal`` moved to the end, and ``removal`` swapped with ``run_d1``
+(after the removal at D2_OS2, the waiting object is sent on a scan later). The spec bounds when a
+conveyor stops and when the removal clears D2_POZ2_OBS (criteria 1 and 4, "within 1 scan"), not
+when a conveyor starts; such a program is correct, so no check kills them. The equivalent ones are
+swaps of adjacent networks that never act in the same scan.
+"""
 
 from __future__ import annotations
 

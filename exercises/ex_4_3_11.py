@@ -1,4 +1,12 @@
-"""4.3.11 1-second clock pulse ("Takt 1s"). Plant: none (a PLC-only run)."""
+"""4.3.11 1-second clock pulse ("Takt 1s"). Plant: none (a PLC-only run).
+
+Mutation testing (``plcsim mutate 4.3.11``, score 1 of 2): the reference has two mutants. The edge
+removed (Takt1s := Clock_1Hz) is killed; ``P -> N`` survives, and must: the falling edge of
+Clock_1Hz is a one-scan pulse every 1.000 s too, half a second later. The task asks for a variable
+"TRUE every second, for one scan", not for a pulse in phase with the clock's rising edge; a check
+on the phase would fail the textbook's solution 2 (a self-restarting TON, in no phase with the
+clock memory), which is correct. The mutant is a correct program, not a slip the checks miss.
+"""
 
 from exercises._common import solution
 from plcsim.check import count, durations, rises, spacing

@@ -1,4 +1,16 @@
-"""4.3.13 Machine control (three on/off cycles). Plant: MACHINE."""
+"""4.3.13 Machine control (three on/off cycles). Plant: MACHINE.
+
+Mutation testing (``plcsim mutate 4.3.13``): two mutants survive, both one scan off the reference,
+inside the spec's tolerance of 2 scans (acceptance criterion 1: "1.0 s +- 2 T_scan"), so no check may
+kill them without failing correct programs that are a scan later than the reference (a cycle timer
+restarted by RT restarts one scan later, spec 0.4):
+
+- ``ET < TIME('1s') -> ET <= TIME('1s')``: the ON phase lasts one scan longer.
+- networks ``cycle`` and ``machine`` swapped: the machine network sees the expired timer before RT
+  restarts it, so each ON phase after the first starts one scan later.
+
+The mutant that drops ``q = ...`` does not load (``q`` unknown) and is not counted.
+"""
 
 from exercises._common import solution
 from plants import Machine

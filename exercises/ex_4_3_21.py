@@ -1,4 +1,9 @@
-"""4.3.21 Third program in OB30 (timer). Plant: PANEL. (Analysis exercise.)"""
+"""4.3.21 Third program in OB30 (timer). Plant: PANEL. (Analysis exercise.)
+
+Mutation testing (``plcsim mutate 4.3.21``): the presets ``PT 100 ms -> 90 ms / 110 ms`` are
+equivalent. OB30 looks at the timer once a second, so at the call after the one that started it
+ET is 1 s, past any preset below 1 s: the LED is set at the same call (the textbook's point).
+"""
 
 from exercises._common import solution
 from exercises._panel import OB30_CPU, OB30_IO, ob30_panel

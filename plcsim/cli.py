@@ -6,6 +6,7 @@ plcsim run 4.3.7 --reference --rrd out/run.rrd
 plcsim run CONV1 --program my_conveyor.py --seconds 20 --plot out/conveyor.png
 plcsim grade 4.3.7 my_alarm.py --json out/report.json --junit out/report.xml
 plcsim grade 4.3.7 submissions/ --jobs 2 --gradebook out/grades.csv --junit out/grades.xml
+plcsim mutate 4.3.7 --seeds 3 --jobs 2 --json out/mutants.json
 
 Exit codes: 0 every check passed, 1 a submission failed (or did not run), 2 a usage error,
 3 a grade is void because of the grader or the exercise (a check that raised).
@@ -92,7 +93,21 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("--memory-mb", type=int, default=2048, help="memory limit per submission, >= 64 (default 2048)")
     grade.add_argument("--no-sandbox", action="store_true", help="grade in this process (trusted code only)")
     grade.add_argument("-v", "--verbose", action="store_true", help="also show why passed checks passed")
+    _add_mutate_parser(sub)
     return p
+
+
+def _add_mutate_parser(sub: Any) -> None:
+    mutate = sub.add_parser(
+        "mutate",
+        help="mutation-test an exercise's checks: which slips in the reference do they miss?",
+        description="Derive mutants from the exercise's reference solution (negated contacts, swapped timers, "
+        "removed edges, presets off by a step, swapped or dropped networks ...), grade each, list the survivors.",
+    )
+    mutate.add_argument("exercise", help="textbook number (4.3.6) or slug")
+    mutate.add_argument("--seeds", type=int, default=3, metavar="N", help="grade each mutant on seeds 1..N (default 3)")
+    mutate.add_argument("--jobs", type=int, default=1, metavar="J", help="grade J mutants at a time (forked workers)")
+    mutate.add_argument("--json", metavar="OUT", help="write every mutant and its outcome as JSON")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -101,7 +116,8 @@ def main(argv: list[str] | None = None) -> int:
         _parser().print_help()
         return EXIT_USAGE
     try:
-        return {"list": _list, "show": _show, "run": _run, "grade": _grade}[args.command](args)
+        commands = {"list": _list, "show": _show, "run": _run, "grade": _grade, "mutate": _mutate}
+        return commands[args.command](args)
     except PlcError as exc:
         from rich.console import Console
         from rich.text import Text
@@ -362,6 +378,33 @@ def _exit_code(reports: list[Any]) -> int:
     if any(r.grader_failed for r in reports):
         return EXIT_GRADER
     return 0 if all(r.passed for r in reports) else EXIT_FAILED
+
+
+def _mutate(args: argparse.Namespace) -> int:
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
+
+    from exercises import get
+    from plcsim.mutate import mutate_exercise, print_mutation_report
+
+    if args.seeds < 1 or args.jobs < 1:
+        raise PlcError("--seeds and --jobs must be at least 1")
+    console = Console()
+    columns = (TextColumn("grading mutants"), BarColumn(), MofNCompleteColumn())
+    with Progress(*columns, console=console, transient=True, auto_refresh=False) as bar:  # no thread: workers fork
+        task = bar.add_task("", total=None)
+
+        def step(done: int, total: int, _: Any) -> None:
+            bar.update(task, completed=done, total=total)
+            bar.refresh()
+
+        report = mutate_exercise(get(args.exercise), seeds=args.seeds, jobs=args.jobs, progress=step)
+    print_mutation_report(report, console)
+    if args.json:
+        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+        report.to_json(args.json)
+        console.print(f"JSON report: {args.json}", highlight=False)
+    return 0
 
 
 if __name__ == "__main__":  # pragma: no cover

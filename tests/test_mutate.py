@@ -1,0 +1,195 @@
+"""Mutation testing of the checks (plcsim.mutate): the operators, kill / survive / equivalent, the CLI.
+
+The full sweep over every exercise is the benchmark ``python -m benchmarks --only mutation``; these
+tests use the smallest exercises and one seed.
+"""
+
+from __future__ import annotations
+
+import json
+
+from exercises import get
+from plcsim.cli import main
+from plcsim.mutate import (
+    EQUIVALENT,
+    KILLED,
+    STILLBORN,
+    SURVIVED,
+    Mutant,
+    behaviour,
+    derive_mutants,
+    exercise_mutants,
+    mutate_exercise,
+)
+from plcsim.program import Program
+from plcsim.tags import Tag, TagTable
+from plcsim.types import Int
+
+SMALL = """T = IEC_TIMER()
+
+
+def start(t):
+    if P(t.S1, "M1") and not t.S2:
+        t.D1 = True
+
+
+def stop(t):
+    t.T.TON(IN=t.D1, PT="10s")
+    if t.T.Q or t.CNT > 5:
+        t.D1 = False
+    if t.S1:
+        t.LED = True
+
+
+OB1 = [start, stop]
+"""
+
+
+def small_table() -> TagTable:
+    table = TagTable()
+    table.add("S1", Tag("%I0.0"))
+    table.add("S2", Tag("%I0.1"))  # wired NC
+    table.add("D1", Tag("%Q0.0"))
+    table.add("LED", Tag("%Q0.1"))
+    table.add("CNT", Tag("%MW10", Int))
+    return table
+
+
+def test_the_operators_give_the_expected_mutants_of_a_small_program():
+    mutants = derive_mutants(SMALL, small_table(), nc_inputs=["S2"])
+    assert [(m.operator, str(m)) for m in mutants] == [
+        ("nc-as-no", "line 5: NC input S2 read as NO: every read negated (line 5)"),
+        ("negate", "line 5: t.S1 → not t.S1"),
+        ("and-or", "line 5: P(t.S1, 'M1') and (not t.S2) → P(t.S1, 'M1') or not t.S2"),
+        ("edge", "line 5: P(t.S1, 'M1') → t.S1"),
+        ("edge-kind", "line 5: P(t.S1, 'M1') → N(t.S1, 'M1')"),
+        ("coil", "line 6: t.D1 = True → t.D1 = False"),
+        ("negate", "line 10: t.D1 → not t.D1"),
+        ("timer", "line 10: t.T: TON → TOF"),
+        ("timer", "line 10: t.T: TON → TP"),
+        ("preset", "line 10: PT '10s' → '9s'"),
+        ("preset", "line 10: PT '10s' → '11s'"),
+        ("drop", "line 10: statement dropped: t.T.TON(IN=t.D1, PT='10s')"),
+        ("negate", "line 11: t.T.Q → not t.T.Q"),
+        ("and-or", "line 11: t.T.Q or t.CNT > 5 → t.T.Q and t.CNT > 5"),
+        ("boundary", "line 11: t.CNT > 5 → t.CNT >= 5"),
+        ("preset", "line 11: t.CNT > 5 → t.CNT > 4"),
+        ("preset", "line 11: t.CNT > 5 → t.CNT > 6"),
+        ("swap", "line 11: if-blocks at lines 11 and 13 swapped"),
+        ("drop", "line 11: statement dropped: if t.T.Q or t.CNT > 5:"),
+        ("coil", "line 12: t.D1 = False → t.D1 = True"),
+        ("negate", "line 13: t.S1 → not t.S1"),
+        ("drop", "line 13: statement dropped: if t.S1:"),
+        ("coil", "line 14: t.LED = True → t.LED = False"),
+        ("swap", "line 17: OB1: networks start and stop swapped"),
+        ("drop", "line 17: OB1: network start dropped"),
+        ("drop", "line 17: OB1: network stop dropped"),
+    ]
+    assert [m.number for m in mutants] == list(range(1, len(mutants) + 1))
+    # Int reads (t.CNT) are never negated, and no mutant repeats the original or another mutant.
+    sources = [m.source for m in mutants]
+    assert len(set(sources)) == len(sources)
+    assert not any("not t.CNT" in s for s in sources)
+
+
+def test_a_mutant_is_the_program_with_one_change_and_still_loads():
+    by_label = {str(m): m for m in derive_mutants(SMALL, small_table(), nc_inputs=["S2"])}
+    timer = by_label["line 10: t.T: TON → TOF"].source
+    assert "t.T.TOF(IN=t.D1, PT='10s')" in timer and "TON" not in timer
+    nc = by_label["line 5: NC input S2 read as NO: every read negated (line 5)"].source
+    assert "if P(t.S1, 'M1') and t.S2:" in nc
+    swapped = by_label["line 17: OB1: networks start and stop swapped"].source
+    assert swapped.rstrip().endswith("OB1 = [stop, start]")
+    for mutant in by_label.values():
+        Program(mutant.source, "<mutant>")  # parses and passes the subset check
+
+
+def test_every_read_of_an_nc_input_is_negated_at_once():
+    mutants = exercise_mutants(get("4.3.10"))  # four NC light barriers
+    nc = [m for m in mutants if m.operator == "nc-as-no"]
+    assert [m.description for m in nc][-1] == "NC input D2_OS2 read as NO: every read negated (lines 34, 41)"
+    assert "if t.D2_VPRED and (not t.DATA.D2_POZ2_OBS) and t.D2_OS2:" in nc[-1].source
+    assert "if not t.D2_VPRED and (not t.D2_OS2):" in nc[-1].source
+
+
+def test_a_negated_contact_is_killed_by_the_check_that_reads_it():
+    report = mutate_exercise(get("4.3.1"), seeds=1)
+    assert [(o.mutant.description, o.status) for o in report.outcomes] == [("t.TLACIDLO → not t.TLACIDLO", KILLED)]
+    assert "LED equals the button in every scan" in report.outcomes[0].detail
+    assert report.score == 1.0
+
+
+def test_a_preset_hidden_by_a_slow_task_is_equivalent_and_leaves_the_score():
+    exercise = get("4.3.21")  # TON 100 ms looked at once a second by OB30: 90 ms cannot be told apart
+    mutant = next(m for m in exercise_mutants(exercise) if m.description == "PT '100ms' → '90ms'")
+    report = mutate_exercise(exercise, seeds=1, mutants=[mutant])
+    assert report.outcomes[0].status == EQUIVALENT
+    assert report.score is None
+    # Equivalent at the exercise's tags, not in every column: the timer's own ET stops at 90 ms.
+    sims = [
+        exercise.simulation(p, exercise.scenarios[0], seed=1)
+        for p in (exercise.reference.program(), Program(mutant.source, "<m>"))
+    ]
+    for sim in sims:
+        sim.run()
+    assert sims[0].trace.digest() != sims[1].trace.digest()
+    assert behaviour(exercise, sims[0].trace) == behaviour(exercise, sims[1].trace)
+
+
+def test_a_correct_variant_survives_and_is_not_called_equivalent():
+    exercise = get("4.3.11")  # the falling edge of Clock_1Hz is also a 1-s pulse, half a second later
+    report = mutate_exercise(exercise, seeds=1)
+    assert [(o.mutant.description, o.status) for o in report.outcomes] == [
+        ("P(t.Clock_1Hz, 'AUX') → t.Clock_1Hz", KILLED),
+        ("P(t.Clock_1Hz, 'AUX') → N(t.Clock_1Hz, 'AUX')", SURVIVED),
+    ]
+    assert report.score == 0.5
+    assert "these differ: Takt1s (seed 1" in report.outcomes[1].detail
+
+
+def test_a_mutant_that_does_not_load_is_counted_apart():
+    broken = Mutant(1, "drop", 2, "statement dropped", "def OB1(t):\n    t.LED = q\n")
+    report = mutate_exercise(get("4.3.1"), seeds=1, mutants=[broken])
+    assert report.outcomes[0].status == STILLBORN
+    assert "unknown name 'q'" in report.outcomes[0].detail
+    assert report.score is None and report.count(KILLED) == 0
+
+
+def test_parallel_grading_gives_the_same_outcomes():
+    exercise = get("4.3.20")
+    one = mutate_exercise(exercise, seeds=1, jobs=1)
+    two = mutate_exercise(exercise, seeds=1, jobs=2)
+    assert [(o.mutant, o.status, o.detail) for o in one.outcomes] == [
+        (o.mutant, o.status, o.detail) for o in two.outcomes
+    ]
+    assert len(one.outcomes) == 7
+
+
+def test_the_cli_prints_the_score_and_writes_json(tmp_path, capsys):
+    out = tmp_path / "mutants.json"
+    assert main(["mutate", "4.3.1", "--seeds", "1", "--json", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "mutation score: 100 %" in text and "1 killed, 0 survived" in text
+    data = json.loads(out.read_text())
+    assert data["score"] == 1.0 and data["counts"]["killed"] == 1
+    assert data["outcomes"][0]["mutant"]["label"] == "line 5: t.TLACIDLO → not t.TLACIDLO"
+
+
+def test_the_cli_lists_survivors(capsys):
+    assert main(["mutate", "4.3.11", "--seeds", "1"]) == 0
+    text = capsys.readouterr().out
+    assert "surviving mutants" in text and "N(t.Clock_1Hz, 'AUX')" in text and "mutation score: 50 %" in text
+    assert "every check passes, but these differ: Takt1s (seed 1" in text
+
+
+def test_the_cli_refuses_zero_seeds(capsys):
+    assert main(["mutate", "4.3.1", "--seeds", "0"]) == 2
+    assert "--seeds and --jobs must be at least 1" in capsys.readouterr().err
+
+
+def test_a_cyclic_interrupt_run_in_ob1_instead():
+    source = "def blink(t):\n    t.D1 = not t.D1\n\n\nOB30 = CyclicInterrupt(blink, period='1s')\n"
+    mutants = {m.operator: m for m in derive_mutants(source, small_table())}
+    assert str(mutants["task"]) == "line 5: OB30: its networks run in OB1, every scan, instead of every '1s'"
+    assert mutants["task"].source.rstrip().endswith("OB1 = blink")
+    assert set(Program(mutants["task"].source).tasks) == {"OB1"}
