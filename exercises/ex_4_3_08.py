@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
+import numpy as np
+
 from exercises._common import solution
 from exercises._conveyor import CONV1_IO
 from plants import Conv1
-from plcsim.check import Context, Quantity, all_of, duty, falls, never, off, rises
+from plcsim.check import Condition, Context, all_of, durations, duty, falls, never, off, rises
 from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, after_event, jam, place, write
 
@@ -16,8 +20,9 @@ LONGEST = "0.5s + 1 scan + 1ms"
 TIMER_LIT, CLOCK_LIT = "ACK while the timer lamp is lit", "ACK while Clock_1Hz is TRUE"
 
 
-def phases(lit: bool) -> Quantity:
-    """Every whole lit (``lit``) or dark phase of the LED while ALARM is TRUE.
+@dataclass(frozen=True)
+class WholePhase(Condition):
+    """The rows of every whole lit (``lit``) or dark phase of the LED while ALARM is TRUE.
 
     Spec §2 4.3.8 criterion 2: "ALARM TRUE -> LED toggles with half-period 0.5 s: each ON and each OFF phase
     lasts 0.5 s +- (T_scan + 1 ms)". A phase runs from one toggle of the LED to the next, both while ALARM is
@@ -26,33 +31,26 @@ def phases(lit: bool) -> Quantity:
     cut short by the acknowledgement.
     """
 
-    def compute(ctx: Context) -> tuple[list[float], list[int]]:
+    lit: bool
+
+    def rows(self, ctx: Context) -> np.ndarray:
         led = ctx.trace.column("LED").astype(bool)
         alarm = ctx.trace.column("ALARM").astype(bool)
-        times, ends = ctx.trace.times, ctx.trace.end_times
-        inside = alarm & (led == lit)
-        before = alarm & (led != lit)  # the row of the other phase, ALARM already TRUE
-        out, at = [], []
-        k, n = 1, len(led)
-        while k < n:
-            if inside[k] and not inside[k - 1]:
-                j = k
-                while j + 1 < n and inside[j + 1]:
-                    j += 1
-                if before[k - 1] and j + 1 < n and before[j + 1]:
-                    out.append(float(ends[j] - times[k]))
-                    at.append(int(times[k]))
-                k = j + 1
-            else:
-                k += 1
-        return out, at
+        inside = alarm & (led == self.lit)
+        other = np.concatenate(([False], alarm & (led != self.lit), [False]))  # the other phase, ALARM TRUE
+        edges = np.diff(np.concatenate(([False], inside, [False])).astype(np.int8))
+        starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)  # run k..j: k, j + 1
+        whole = np.zeros(len(inside), dtype=bool)
+        for k, j1 in zip(starts, stops, strict=True):
+            if other[k] and other[j1 + 1]:  # rows k - 1 and j + 1 (shifted by the leading pad)
+                whole[k:j1] = True
+        return whole
 
-    what = "lit" if lit else "dark"
-    q = Quantity(
-        f"time a whole {what} phase of the LED lasts while ALARM is TRUE", compute, ["LED", "ALARM"], unit="ns"
-    )
-    q.every = True
-    return q
+    def describe(self) -> str:
+        return f"a whole {'lit' if self.lit else 'dark'} phase of the LED while ALARM is TRUE"
+
+    def signals(self) -> list[str]:
+        return ["LED", "ALARM"]
 
 
 def jammed(placed: str) -> list:
@@ -113,8 +111,8 @@ EXERCISE = Exercise(
         ),
     ],
     checks=[
-        phases(lit=True).between(SHORTEST, LONGEST).named("each flash lasts 0.5 s"),
-        phases(lit=False).between(SHORTEST, LONGEST).named("the LED is dark 0.5 s between flashes"),
+        durations(WholePhase(lit=True)).between(SHORTEST, LONGEST).named("each flash lasts 0.5 s"),
+        durations(WholePhase(lit=False)).between(SHORTEST, LONGEST).named("the LED is dark 0.5 s between flashes"),
         only(
             duty("LED", start="11.5s", end="21.5s").between(0.48, 0.52).named("duty cycle 50 % +- 2 % over 10 periods"),
             CLOCK_LIT,
