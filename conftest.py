@@ -1,3 +1,4 @@
-"""Collection settings: the shipped solution programs are PLC-subset files, not importable modules."""
+"""Collection settings: the shipped solutions and the corpus programs are PLC-subset files, not importable
+modules."""
 
-collect_ignore_glob = ["exercises/solutions/*", "notebooks/*", "build/*"]
+collect_ignore_glob = ["exercises/solutions/*", "tests/corpus/*", "notebooks/*", "build/*"]

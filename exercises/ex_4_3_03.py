@@ -51,6 +51,14 @@ EXERCISE = Exercise(
             duration="4s",
             description="latch, CPU to STOP and back to RUN (the LED is off again), press again",
         ),
+        Scenario(
+            "long wait",
+            *press("TLACIDLO", t="200ms..2s", hold="2ms..1.5s"),
+            *press("TLACIDLO", t="3s..6s", hold="2ms..1.5s"),
+            duration="40s",
+            description="two presses at seeded times, then more than 30 s without one: a latch that is only an "
+            "off-delay goes out",
+        ),
     ],
     checks=[
         holds(off("LED")).until(action("press", "TLACIDLO")).named("the LED stays off until the button is pressed"),
@@ -74,11 +82,20 @@ EXERCISE = Exercise(
             "a plain coil: the LED goes out when the button is released",
             fails=("once lit, the LED stays lit (until the CPU is stopped)",),
         ),
+        solution(
+            NUMBER,
+            "wrong-off-delay",
+            "wrong",
+            "an off-delay timer (TOF, 5 s) in place of the seal-in: the LED goes out 5 s after the release",
+            fails=("once lit, the LED stays lit (until the CPU is stopped)",),
+        ),
     ],
     notes=(
         "Acceptance criterion 3 (after STOP->RUN the LED is off until the next press) is the 'stop and restart' "
         "scenario: outputs and the non-retentive output image are cleared at STOP->RUN, so the seal-in branch "
         "starts FALSE. The trace keeps the output image during STOP (the physical outputs are off), so 'once lit' "
-        "is checked until the stop action rather than until the first STOP row."
+        "is checked until the stop action rather than until the first STOP row. Criterion 1's 'for the rest of the "
+        "run' is what the 'long wait' scenario watches: the last release comes by 7.5 s and the run lasts 40 s, so "
+        "an off-delay in place of the seal-in is caught on every seed unless its preset exceeds 32.5 s."
     ),
 )

@@ -77,12 +77,15 @@ EXERCISE = Exercise(
             "new object during the alarm",
             *JAMMED,
             remove("p1", t="12s..12.5s"),
-            place("p2", at="S1", t="13s..14s"),
-            *acknowledge(16, 17),
-            remove("p2", when=held("S2", "1s")),
-            duration="25s",
+            place("p2", at="S1", t="13.5s..14s"),
+            *acknowledge(14.5, 15),
+            remove("p2", t="15.6s..15.9s"),
+            place("p3", at="S1", t="16.1s..16.4s"),
+            remove("p3", when=held("S2", "1s")),
+            duration="24s",
             description="after the alarm the operator frees the belt and loads a new object before "
-            "acknowledging; the belt must wait for ACK (version 3), then carry it to S2",
+            "acknowledging; the belt must wait for ACK (version 3); after ACK the operator lifts the object and "
+            "sets it down on S1 again (a new S1 edge), and the belt carries it to S2",
         ),
     ],
     checks=[
@@ -117,6 +120,9 @@ EXERCISE = Exercise(
             always(implies("ALARM", off("D1"))).named("the belt stays off while ALARM is TRUE"),
             "new object during the alarm",
         ),
+        # Spec §2 4.3.7 criterion 4: "Version 3: D1 stays FALSE while ALARM is TRUE, restarts only after ACK and a
+        # new S1 edge." The scenario gives the new S1 edge after ACK (the object set down on S1 again), so a program
+        # whose belt starts on the edge of S1 passes, and so does one that restarts on the level of S1 at ACK.
         only(
             count(event("part entered", "S2")).equals(1).named("after ACK the waiting object is carried to S2"),
             "new object during the alarm",
@@ -178,6 +184,12 @@ EXERCISE = Exercise(
         "the trace stamps at the start of the scan that set it, while D1 (an output) is stamped at the end of its "
         "scan: hence '10s - 1 scan' as the lower bound for ALARM. In the 'new object during the alarm' scenario "
         "the new object waits at S1, so version 3's level-sensitive S1 rung restarts the belt in the scan after "
-        "ACK (criterion 4's 'new S1 edge' has then already happened while ALARM was TRUE)."
+        "ACK (criterion 4's 'new S1 edge' has then already happened while ALARM was TRUE); the operator then lifts "
+        "the object and sets it down on S1 again, the new S1 edge after ACK that a program starting the belt on "
+        "the rising edge of S1 waits for: both readings of criterion 4 carry it to S2. In version 3 the waiting "
+        "object's S1 sets D1 in every scan and the watchdog rung, between the set and the reset, sees D1 TRUE: "
+        "TON_A times from the placement of the waiting object, so the scenario acknowledges and sets the object "
+        "down again soon enough that it reaches S2 within those 10 s (by 21.5 s; the earliest placement is at "
+        "13.5 s)."
     ),
 )

@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
+import numpy as np
+
 from exercises._common import solution
 from exercises._conveyor import CONV1_IO
 from plants import Conv1
-from plcsim.check import all_of, durations, duty, falls, never, off, rises
+from plcsim.check import Condition, Context, all_of, durations, duty, falls, never, off, rises
 from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, after_event, jam, place, write
 
@@ -13,14 +17,57 @@ NUMBER = "4.3.8"
 
 SHORTEST = "0.5s - 1 scan - 1ms"  # spec §2 4.3.8 criterion 2: each phase 0.5 s +- (T_scan + 1 ms)
 LONGEST = "0.5s + 1 scan + 1ms"
+TIMER_LIT, CLOCK_LIT = "ACK while the timer lamp is lit", "ACK while Clock_1Hz is TRUE"
 
-# The object is placed at 0.499 s, so S1 is seen in the scan at 0.500 s and the 10 s watchdog of 4.3.7 raises
-# ALARM in the scan at 10.500 s: on a rising edge of Clock_1Hz, so that the clock-memory solution's first flash is
-# a whole one too. The timer solutions then light the LED in [11.001 + k * 1.001, 11.500 + k * 1.001) s.
-JAMMED = [
-    place("p1", at="S1", t="0.499s"),
-    jam("p1", when=after_event("part left", "p1"), delay="0.2s..2s"),
-]
+
+@dataclass(frozen=True)
+class WholePhase(Condition):
+    """The rows of every whole lit (``lit``) or dark phase of the LED while ALARM is TRUE.
+
+    Spec §2 4.3.8 criterion 2: "ALARM TRUE -> LED toggles with half-period 0.5 s: each ON and each OFF phase
+    lasts 0.5 s +- (T_scan + 1 ms)". A phase runs from one toggle of the LED to the next, both while ALARM is
+    TRUE: the stretch from the alarm to the first toggle is not one (a free-running Clock_1Hz ANDed with ALARM,
+    the textbook's solution 1, starts in whatever phase the clock is in when the alarm comes), nor the stretch
+    cut short by the acknowledgement.
+    """
+
+    lit: bool
+
+    def rows(self, ctx: Context) -> np.ndarray:
+        led = ctx.trace.column("LED").astype(bool)
+        alarm = ctx.trace.column("ALARM").astype(bool)
+        inside = alarm & (led == self.lit)
+        other = np.concatenate(([False], alarm & (led != self.lit), [False]))  # the other phase, ALARM TRUE
+        edges = np.diff(np.concatenate(([False], inside, [False])).astype(np.int8))
+        starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)  # run k..j: k, j + 1
+        whole = np.zeros(len(inside), dtype=bool)
+        for k, j1 in zip(starts, stops, strict=True):
+            if other[k] and other[j1 + 1]:  # rows k - 1 and j + 1 (shifted by the leading pad)
+                whole[k:j1] = True
+        return whole
+
+    def describe(self) -> str:
+        return f"a whole {'lit' if self.lit else 'dark'} phase of the LED while ALARM is TRUE"
+
+    def signals(self) -> list[str]:
+        return ["LED", "ALARM"]
+
+
+def jammed(placed: str) -> list:
+    """The object is placed at S1 at the seeded time ``placed`` and jams on its way to S2: the 10 s watchdog
+    of 4.3.7 raises ALARM about 10 s after the placement, in any phase of Clock_1Hz."""
+    return [place("p1", at="S1", t=placed), jam("p1", when=after_event("part left", "p1"), delay="0.2s..2s")]
+
+
+def acknowledge_after_placement(lo_s: float, hi_s: float) -> list:
+    """ACK pressed ``lo_s..hi_s`` after the object was placed (so at a fixed phase of the alarm), released
+    0.3..0.6 s later."""
+    placed = after_event("part placed", "p1")
+    return [
+        write("ACK", True, when=placed, delay=f"{lo_s}s..{hi_s}s"),
+        write("ACK", False, when=placed, delay=f"{hi_s + 0.3}s..{hi_s + 0.6}s"),
+    ]
+
 
 EXERCISE = Exercise(
     number=NUMBER,
@@ -45,37 +92,36 @@ EXERCISE = Exercise(
     cpu={"clock_memory_byte": 0, "system_memory_byte": 1},
     scenarios=[
         Scenario(
-            "alarm blinking",
-            *JAMMED,
-            duration="22s",
-            description="the object jams on its way to S2; ALARM is raised at 10.5 s and the LED blinks for 11.5 s",
+            TIMER_LIT,
+            *jammed("0.3s..1.3s"),
+            *acknowledge_after_placement(20.6, 20.9),
+            duration="24s",
+            description="the object jams on its way to S2; ALARM comes 10.3..11.3 s after the start, in any phase of "
+            "Clock_1Hz; the operator acknowledges 20.6..20.9 s after the placement (10.6..10.9 s after the alarm): "
+            "inside a lit phase of the timer solutions (their 11th), in either phase of Clock_1Hz",
         ),
         Scenario(
-            "alarm acknowledged",
-            *JAMMED,
-            write("ACK", True, t="21.1s..21.4s"),
-            write("ACK", False, t="21.6s..21.9s"),
-            duration="23s",
-            description="as 'alarm blinking'; the operator acknowledges about 10.6..10.9 s after the alarm, "
-            "while the timer solutions' LED is lit",
+            CLOCK_LIT,
+            *jammed("0.3s..1.3s"),
+            write("ACK", True, t="21.6s..21.9s"),
+            write("ACK", False, t="22.2s..22.5s"),
+            duration="24s",
+            description="as the other, but the operator acknowledges at 21.6..21.9 s, while Clock_1Hz is TRUE, in "
+            "either phase of the timer solutions; the LED blinks from 11.3 s at the latest to 21.6 s at the earliest",
         ),
     ],
     checks=[
-        only(durations("LED").between(SHORTEST, LONGEST).named("each flash lasts 0.5 s"), "alarm blinking"),
+        durations(WholePhase(lit=True)).between(SHORTEST, LONGEST).named("each flash lasts 0.5 s"),
+        durations(WholePhase(lit=False)).between(SHORTEST, LONGEST).named("the LED is dark 0.5 s between flashes"),
         only(
-            durations(all_of("ALARM", off("LED")))
-            .between(SHORTEST, LONGEST)
-            .named("the LED is dark 0.5 s between flashes"),
-            "alarm blinking",
-        ),
-        only(
-            duty("LED", start="10.5s", end="20.5s").between(0.48, 0.52).named("duty cycle 50 % +- 2 % over 10 periods"),
-            "alarm blinking",
+            duty("LED", start="11.5s", end="21.5s").between(0.48, 0.52).named("duty cycle 50 % +- 2 % over 10 periods"),
+            CLOCK_LIT,
         ),
         never(all_of("LED", off("ALARM"))).for_more_than("1 scan").named("the LED is dark whenever ALARM is FALSE"),
         only(
             falls("ALARM").within("1 scan").after(rises("ACK")).named("ACK clears ALARM within 1 scan"),
-            "alarm acknowledged",
+            TIMER_LIT,
+            CLOCK_LIT,
         ),
     ],
     solutions=[
@@ -96,6 +142,14 @@ EXERCISE = Exercise(
         ),
         solution(
             NUMBER,
+            "wrong-clock-latch",
+            "wrong",
+            "SET/RESET of the LED on ALARM AND Clock_1Hz / ALARM AND NOT Clock_1Hz: an acknowledgement while "
+            "Clock_1Hz is TRUE leaves the LED lit",
+            fails=("the LED is dark whenever ALARM is FALSE",),
+        ),
+        solution(
+            NUMBER,
             "wrong-period",
             "wrong",
             "(from the task's wording, not a textbook solution) 'period 0.5 s' read literally (Clock_2Hz): "
@@ -108,9 +162,12 @@ EXERCISE = Exercise(
         "(the parenthesis and the textbook's Clock_1Hz). System memory is at MB1 (the textbook says byte 0 for "
         "both, which TIA does not allow). Solution 2's figure is missing [R]: shipped with the RESET rung "
         "unconditioned by ALARM (correct); the catalogue's reading with ALARM in both rungs is wrong-set-reset. "
-        "The alarm is timed to rise on a Clock_1Hz edge so that the clock solution's first flash is a whole one "
-        "(criterion 2 speaks of every phase); the acknowledgement falls inside a lit phase of the timer solutions, "
-        "so the SET/RESET variant is caught on every seed. Criterion 4 (solution 1's LED edges coincide with "
-        "Clock_1Hz edges) holds only for the clock solution and is not graded: checks apply to every solution."
+        "The object is placed at a seeded 0.3..1.3 s, so the alarm comes in any phase of the free-running "
+        "Clock_1Hz; criterion 2's phases are measured from one toggle of the LED to the next while ALARM is TRUE, "
+        "so solution 1's first, partial phase is not one. The two acknowledgement scenarios put the ACK inside a "
+        "lit phase of the timer solutions (timed from the placement) and inside a TRUE phase of Clock_1Hz (at a "
+        "fixed time of the run): an S/R lamp latched on either is caught on every seed, and every solution is "
+        "acknowledged in both phases over the seeds. Criterion 4 (solution 1's LED edges coincide with Clock_1Hz "
+        "edges) holds only for the clock solution and is not graded: checks apply to every solution."
     ),
 )

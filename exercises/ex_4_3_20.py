@@ -2,7 +2,7 @@
 
 from exercises._common import solution
 from exercises._panel import OB30_CPU, OB30_IO, ob30_panel
-from plcsim.check import eventually, never, rises
+from plcsim.check import action, eventually, holds, never, rises
 from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, press
 
@@ -29,13 +29,13 @@ EXERCISE = Exercise(
         Scenario(
             FROM_0,
             *press("TL", t="0s", hold="1.1s..2.5s"),
-            duration="3.5s",
+            duration="4.5s",
             description="case (a): TL pressed at STOP->RUN (0 s) and held 1.1..2.5 s",
         ),
         Scenario(
             AFTER_0,
             *press("TL", t="50ms..950ms", hold="1.1s..2s"),
-            duration="3.5s",
+            duration="4.5s",
             description="case (b): TL pressed just after the 0 s call (0.05..0.95 s), held past the 1 s call",
         ),
         Scenario(
@@ -86,6 +86,11 @@ EXERCISE = Exercise(
             .named("a press held over the 3 s call lights the LED at the call at 4 s"),
             SHORT,
         ),
+        # Spec §2 4.3.20: "Rung 2: IF TL THEN S START"; "If the program runs while the button is pressed, START is
+        # set; in the next execution START = TRUE is assigned to LED." START is set, never reset: once lit, the LED
+        # stays lit. Each scenario lasts past the second call after the release, so START := TL as a coil lets the
+        # LED go out before the end of every run.
+        holds("LED").until(action("stop_cpu")).named("once lit, the LED stays lit (START is set, not assigned)"),
         rises("LED")
         .between("1s", "1s + 2ms")
         .after(rises("START"), at_least=0)
@@ -104,6 +109,14 @@ EXERCISE = Exercise(
                 "the LED follows START one call (1 s) later",
             ),
         ),
+        solution(
+            NUMBER,
+            "wrong-coil",
+            "wrong",
+            "START := TL as a plain coil instead of S START: the LED follows the button one call late and goes out "
+            "again after the release",
+            fails=("once lit, the LED stays lit (START is set, not assigned)",),
+        ),
     ],
     notes=(
         "The network order is reconstructed from the analysis ('the program runs top to bottom'). START is set "
@@ -112,6 +125,8 @@ EXERCISE = Exercise(
         "looks at every scan that starts before T. START is an %M bit, cleared at STOP->RUN. The textbook "
         "shows no wrong program; 'wrong-order' swaps the two networks. In the 'pressed from 0 s' scenario START "
         "is TRUE in the very first trace row, which has no predecessor to rise from, so 'the LED follows START' "
-        "has nothing to check there (at_least=0); that case is covered by its own checks."
+        "has nothing to check there (at_least=0); that case is covered by its own checks. The runs last 4.5 s "
+        "(5.5 s): the press ends by 2.95 s (3.8 s), so a START that follows TL is FALSE at the call at 3 s (4 s) and "
+        "the LED goes out at the call at 4 s (5 s), inside every run."
     ),
 )
