@@ -529,10 +529,8 @@ def make_blueprint(trace: Trace) -> Any:
     and the run's description in tabs."""
     import rerun.blueprint as rrb
 
-    signal_views, shares = signal_lanes(trace)
     side = rrb.Tabs(rrb.TextLogView(origin="events", name="Events"), rrb.TextDocumentView(origin="meta", name="Run"))
-    signals: Any = rrb.Vertical(*signal_views, row_shares=shares, name="Signals") if signal_views else None
-
+    signals, lanes = signal_panel(trace)
     if has_geometry(trace):
         bounds = _bounds(trace)
         view_kw: dict[str, Any] = {}
@@ -544,8 +542,8 @@ def make_blueprint(trace: Trace) -> Any:
         wide = bounds is not None and (bounds[2] - bounds[0]) > 2.0 * (bounds[3] - bounds[1])
         if wide:
             top = rrb.Horizontal(machine, side, column_shares=[3, 1])
-            parts = [top, *signal_views]
-            layout: Any = rrb.Vertical(*parts, row_shares=[max(2.0, 0.4 * sum(shares)), *shares])
+            machine_share = max(2.0, MACHINE_SHARE * lanes)
+            layout: Any = rrb.Vertical(top, signals, row_shares=[machine_share, lanes]) if signals else top
         else:
             left = rrb.Vertical(machine, side, row_shares=[3, 2])
             layout = rrb.Horizontal(left, signals, column_shares=[1, 1]) if signals else left
@@ -557,6 +555,23 @@ def make_blueprint(trace: Trace) -> Any:
         rrb.BlueprintPanel(state="collapsed"),
         rrb.SelectionPanel(state="collapsed"),
     )
+
+
+def signal_panel(trace: Trace) -> tuple[Any, float]:
+    """The signal lanes and their height in lanes: in one column, or, when more than
+    :data:`LANES_PER_COLUMN` would make each too low to read (rerun then cuts off a plot's 0 line
+    and time axis), in two: inputs and outputs beside the internal bits and the numbers.
+    (None, 0) when the trace has no signals."""
+    import rerun.blueprint as rrb
+
+    views, shares = signal_lanes(trace)
+    if not views:
+        return None, 0.0
+    if len(views) <= LANES_PER_COLUMN:
+        return rrb.Vertical(*views, row_shares=shares, name="Signals"), sum(shares)
+    io = sum(len(signal_groups(trace).get(g, [])) for g in ("inputs", "outputs")) or len(views) // 2
+    columns = [rrb.Vertical(*views[:io], row_shares=shares[:io]), rrb.Vertical(*views[io:], row_shares=shares[io:])]
+    return rrb.Horizontal(*columns, name="Signals"), max(sum(shares[:io]), sum(shares[io:]))
 
 
 def signal_lanes(trace: Trace) -> tuple[list[Any], list[float]]:
@@ -595,6 +610,10 @@ def signal_lanes(trace: Trace) -> tuple[list[Any], list[float]]:
     return views, shares
 
 
+MACHINE_SHARE = 0.4
+"""A wide machine's height above the lanes, per lane of signals (at least two lanes)."""
+LANES_PER_COLUMN = 8
+"""More signal views than this and they are laid out in two columns."""
 TITLE_SHARE = 0.45
 """Extra height of a group's first lane, for its title bar (so its plot is as high as the others)."""
 

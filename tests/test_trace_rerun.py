@@ -559,3 +559,51 @@ def test_each_label_drawn_once_on_conv1(jam_trace, tmp_path):
         for text in frame or []
     }
     assert moving == {"p1"}
+
+
+def blueprint_columns(path) -> dict[str, list[list[str]]]:
+    """Name -> the view origins in each child column, for the named containers of a file's blueprint."""
+    reader = rr.chunk.RrdReader(path)
+    (blueprint,) = reader.blueprints()
+    containers, origins = {}, {}
+    for chunk in reader.stream(store=blueprint).to_chunks():
+        batch = chunk.to_record_batch()
+        key = chunk.entity_path.lstrip("/")
+        if "ContainerBlueprint:contents" in batch.schema.names:
+            name = (
+                (batch.column("ContainerBlueprint:display_name").to_pylist()[0] or [""])[0]
+                if ("ContainerBlueprint:display_name" in batch.schema.names)
+                else ""
+            )
+            containers[key] = (name, batch.column("ContainerBlueprint:contents").to_pylist()[0])
+        if "ViewBlueprint:space_origin" in batch.schema.names:
+            origins[key] = "/" + batch.column("ViewBlueprint:space_origin").to_pylist()[0][0].lstrip("/")
+    return {
+        name: [[origins[v] for v in containers[c][1]] for c in contents if c in containers]
+        for name, contents in containers.values()
+        if name
+    }
+
+
+def test_many_lanes_go_in_two_columns(tmp_path):
+    """Nine Bool lanes would be too low to read in one column: inputs and outputs go left, the
+    internal bits right, each still its own view."""
+    names = ["I0", "I1", "I2", "Q0", "Q1", "M0", "M1", "M2", "M3"]
+    kinds = {n: {"I": "input", "Q": "output", "M": "memory"}[n[0]] for n in names}
+    tr = Trace(names, kinds=kinds, types=dict.fromkeys(names, "bool"))
+    for k in range(4):
+        tr.add_row(k * 1_000_000, k * 1_000_000 + 500_000, 1, tuple((k + j) % 2 == 0 for j in range(len(names))))
+    columns = blueprint_columns(export_rrd(tr, tmp_path / "many.rrd"))
+    left = [
+        "/signals/inputs/I0",
+        "/signals/inputs/I1",
+        "/signals/inputs/I2",
+        "/signals/outputs/Q0",
+        "/signals/outputs/Q1",
+    ]
+    right = ["/signals/internal/M0", "/signals/internal/M1", "/signals/internal/M2", "/signals/internal/M3"]
+    assert columns["Signals"] == [left, right]
+    # eight or fewer: one column
+    few = Trace(names[:8], kinds=kinds, types=dict.fromkeys(names[:8], "bool"))
+    few.add_row(0, 500_000, 1, (False,) * 8)
+    assert blueprint_columns(export_rrd(few, tmp_path / "few.rrd"))["Signals"] == []  # views, no columns
