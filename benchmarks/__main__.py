@@ -21,6 +21,7 @@ GROUPS: dict[str, str] = {  # group name -> module with run(settings)
     "cosim": "benchmarks.cosim",
     "grading": "benchmarks.grading",
     "load": "benchmarks.program_load",
+    "recording": "benchmarks.recording",
 }
 
 
