@@ -22,6 +22,7 @@ GROUPS: dict[str, str] = {  # group name -> module with run(settings)
     "grading": "benchmarks.grading",
     "load": "benchmarks.program_load",
     "mutation": "benchmarks.mutation",
+    "recording": "benchmarks.recording",
 }
 
 

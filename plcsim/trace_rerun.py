@@ -4,9 +4,10 @@ The file holds one timeline, ``sim``, in simulated time (no wall-clock time), an
 shows the machine beside or above the signals:
 
 * ``meta`` — a text document: exercise, scenario, seed, program, and the traced signals;
-* ``signals/inputs``, ``signals/outputs``, ``signals/internal`` — the Bool signals as 0/1 step series,
-  one entity per group with one series per signal; inputs at scan start, outputs at scan end
-  (when each became valid, see :meth:`Trace.signal_times`), internal tags at scan start;
+* ``signals/inputs/<name>``, ``signals/outputs/<name>``, ``signals/internal/<name>`` — each Bool as a
+  0/1 step series in its own entity, shown in its own lane (like a logic analyser: lines of one
+  shared 0/1 plot lie on top of each other); inputs at scan start, outputs at scan end (when each
+  became valid, see :meth:`Trace.signal_times`), internal tags at scan start;
 * ``signals/numbers`` (and ``signals/numbers/outputs`` for numeric outputs) — Int/Real tags,
   timer ETs and counter values as step series;
 * ``events/plant``, ``events/cpu``, ``events/scenario``, ... — the events as a text log with levels
@@ -16,12 +17,17 @@ shows the machine beside or above the signals:
 * ``plant/moving/<group>`` — the sampled geometry frames, one entity per first path segment
   (``parts``, ``beams``, ...), one batch of shapes per frame.
 
+Each text is drawn once: a plant names a sensor by its label and again as the caption of its line
+and its beam; a caption is drawn only where no label or fixed shape writes the same text.
+
 Plant coordinates are mm with y up; rerun's 2D view is y down, so y is negated.
 
 Everything is sent as columns (one ``send_columns`` per entity), never one log call per signal per
-scan. By default a group keeps only the rows where one of its values changed (plus the first and
-last row): with step interpolation the plot is the same and the file much smaller; pass
-``every_row=True`` to keep every scan.
+scan. The series are exact step functions at any zoom: at each change the held value and then the
+new value are sent at the same time (so a line joins only equal values), and the viewer's
+aggregation is off (it would average a one-scan pulse with its neighbours into a 0.5 plateau).
+By default only the first row, the changes and the last row are sent; pass ``every_row=True`` to
+keep every scan.
 
 The recording id is derived from the trace's metadata and content, so the same trace always gives
 the same recording id and the same data. The files are not byte-identical: rerun stamps every row
@@ -56,6 +62,12 @@ GROUPS: dict[str, str] = {
     "number_outputs": "signals/numbers/outputs",
 }
 """Signal group -> entity path."""
+
+BOOL_GROUPS = ("inputs", "outputs", "internal")
+"""The groups drawn one lane per signal, like a logic analyser."""
+
+LANE_COLORS: dict[str, int] = {"inputs": 0x2B8A3EFF, "outputs": 0xC92A2AFF, "internal": 0x1864ABFF}
+"""Lane colours by group, as in the PNG timing diagram (:mod:`plcsim.trace_plot`)."""
 
 GROUP_TITLES: dict[str, str] = {
     "inputs": "Inputs (I)",
@@ -122,8 +134,8 @@ def _export(
         rec.log("meta", rr.TextDocument(metadata_markdown(trace), media_type="text/markdown"), static=True)
         _send_signals(rec, trace, every_row)
         _send_events(rec, trace.events)
-        _send_static_geometry(rec, trace.static_drawables)
-        _send_frames(rec, trace)
+        written = _send_static_geometry(rec, trace.static_drawables)
+        _send_frames(rec, trace, written)
         rec.flush()
     finally:
         rec.disconnect()
@@ -196,10 +208,43 @@ def signal_groups(trace: Trace) -> dict[str, list[str]]:
     return {g: names for g, names in groups.items() if names}
 
 
+def lane_entity(group: str, name: str) -> str:
+    """The entity of one Bool signal's lane: ``signals/inputs/S1`` (the name escaped, so ``TON_A.Q``
+    and ``TON_A_Q`` stay apart)."""
+    import rerun as rr
+
+    return f"{GROUPS[group]}/{rr.escape_entity_path_part(name)}"
+
+
+def step_rows(times: np.ndarray, values: np.ndarray, every_row: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """A step function's rows, exact at any zoom: the first row, at each change the held value and
+    then the new value at the same time (so a line joins only equal values, even where the viewer
+    interpolates linearly or aggregates), and the last row; ``every_row`` keeps the rows between.
+
+    >>> t, v = step_rows(np.array([0, 1, 2, 3]), np.array([[0.0], [1.0], [0.0], [0.0]]))
+    >>> t.tolist(), v[:, 0].tolist()
+    ([0, 1, 1, 2, 2, 3], [0.0, 0.0, 1.0, 1.0, 0.0, 0.0])
+    """
+    n = len(values)
+    if n == 0:
+        return times[:0], values[:0]
+    changed = np.zeros(n, dtype=bool)
+    changed[1:] = np.any(values[1:] != values[:-1], axis=1)
+    keep = changed.copy() if not every_row else np.ones(n, dtype=bool)
+    keep[0] = keep[-1] = True
+    rows = np.flatnonzero(keep)
+    held = changed[rows]  # rows that get the value held before them, at their own time
+    order = np.repeat(rows, 1 + held)  # a changed row appears twice: held value, then its own
+    first = np.ones(len(order), dtype=bool)
+    first[1:] = order[1:] != order[:-1]
+    source = order.copy()
+    source[first & np.repeat(held, 1 + held)] -= 1  # the first copy of a changed row shows the row before
+    return times[order], values[source]
+
+
 def group_rows(trace: Trace, names: Sequence[str], every_row: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """The times (int64 ns) and values (rows, len(names)) a group sends: rows sorted by the time the
-    values became valid; unless ``every_row``, only the first row, the rows where a value changed,
-    and the last row (the same step plot)."""
+    """The times (int64 ns) and values (rows, len(names)) sent for signals that share a timestamp
+    (one group): rows sorted by the time the values became valid, as :func:`step_rows`."""
     table = trace.table
     if not len(table):
         return np.zeros(0, dtype=np.int64), np.zeros((0, len(names)))
@@ -209,12 +254,7 @@ def group_rows(trace: Trace, names: Sequence[str], every_row: bool = False) -> t
     order = np.argsort(times, kind="stable")
     if not np.all(order[1:] > order[:-1]):
         times, values = times[order], values[order]
-    if not every_row and len(values) > 2:
-        keep = np.empty(len(values), dtype=bool)
-        keep[0] = keep[-1] = True
-        keep[1:-1] = np.any(values[1:-1] != values[:-2], axis=1)
-        times, values = times[keep], values[keep]
-    return times, values
+    return step_rows(times, values, every_row)
 
 
 def _time_column(t_ns: np.ndarray) -> Any:
@@ -223,15 +263,28 @@ def _time_column(t_ns: np.ndarray) -> Any:
     return rr.TimeColumn(TIMELINE, duration=np.asarray(t_ns, dtype=np.int64).astype("timedelta64[ns]"))
 
 
+def _series_style(rr: Any, names: list[str], color: int | None = None) -> Any:
+    """Step lines, never aggregated: the viewer would otherwise average the points under one pixel,
+    turning a one-scan pulse into a plateau at 0.5 (``AggregationPolicy.Off``, rerun 0.41)."""
+    return rr.SeriesLines(
+        names=names,
+        colors=None if color is None else [color] * len(names),
+        interpolation_mode="StepAfter",
+        aggregation_policy="Off",
+    )
+
+
 def _send_signals(rec: Any, trace: Trace, every_row: bool) -> None:
     import rerun as rr
 
     for group, names in signal_groups(trace).items():
-        entity = GROUPS[group]
-        rec.log(entity, rr.SeriesLines(names=names, interpolation_mode="StepAfter"), static=True)
-        times, values = group_rows(trace, names, every_row)
-        if len(times):
-            rec.send_columns(entity, indexes=[_time_column(times)], columns=rr.Scalars.columns(scalars=values))
+        bools = group in BOOL_GROUPS  # one lane (entity) per Bool; the numbers of a group share one
+        lanes = [(lane_entity(group, n), [n]) for n in names] if bools else [(GROUPS[group], names)]
+        for entity, series in lanes:
+            rec.log(entity, _series_style(rr, series, LANE_COLORS.get(group)), static=True)
+            times, values = group_rows(trace, series, every_row)
+            if len(times):
+                rec.send_columns(entity, indexes=[_time_column(times)], columns=rr.Scalars.columns(scalars=values))
 
 
 # -- events ------------------------------------------------------------------------------------
@@ -338,7 +391,8 @@ class _Shapes:
         self._strips_done = 0
         self._points_done = 0
 
-    def add(self, d: Drawable) -> None:
+    def add(self, d: Drawable, text: str) -> None:
+        """Add a shape, drawn with ``text`` beside it ("" for none)."""
         pts = np.asarray(d.points, dtype=np.float32).reshape(-1, 2)
         if len(pts) == 0:
             return
@@ -347,12 +401,12 @@ class _Shapes:
                 pts = np.concatenate([pts, pts[:1]])
             self.strips.append(pts)
             self.strip_colors.append(d.color)
-            self.strip_labels.append(d.text)
+            self.strip_labels.append(text)
         else:
             self.points.append(pts[:1])
             self.point_radii.append(_LABEL_RADIUS if d.kind == "label" else float(d.radius))
             self.point_colors.append(d.color)
-            self.point_labels.append(d.text)
+            self.point_labels.append(text)
 
     def close_frame(self) -> None:
         """Mark the end of one frame's shapes."""
@@ -381,12 +435,33 @@ def _colors(colors: list[tuple[int, int, int]]) -> np.ndarray:
     return np.array(colors, dtype=np.uint8).reshape(-1, 3)
 
 
-def _send_static_geometry(rec: Any, drawables: Sequence[Drawable]) -> None:
+def static_texts(drawables: Sequence[Drawable]) -> tuple[list[str], set[str]]:
+    """What the fixed shapes write, so each text is drawn once: the texts per drawable ("" for none)
+    and the set of texts written.
+
+    A ``label`` drawable is a text; any other shape's text is a caption, drawn only where no label
+    and no earlier shape writes the same (a light barrier's line, its label and its beam all carry
+    ``S1``; the label alone is drawn).
+    """
+    written = {d.text for d in drawables if d.kind == "label" and d.text}
+    texts = []
+    for d in drawables:
+        if d.kind == "label" or (d.text and d.text not in written):
+            texts.append(d.text)
+            written.add(d.text)
+        else:
+            texts.append("")
+    return texts, written
+
+
+def _send_static_geometry(rec: Any, drawables: Sequence[Drawable]) -> set[str]:
+    """Log the fixed shapes; return the texts they write (moving shapes do not write them again)."""
     import rerun as rr
 
+    texts, written = static_texts(drawables)
     by_path: dict[str, _Shapes] = {}
-    for d in drawables:
-        by_path.setdefault(_entity(d.path), _Shapes()).add(d)
+    for d, text in zip(drawables, texts, strict=True):
+        by_path.setdefault(_entity(d.path), _Shapes()).add(d, text)
     for path, shapes in by_path.items():
         entity = f"plant/static/{path}"
         if shapes.strips:
@@ -397,9 +472,11 @@ def _send_static_geometry(rec: Any, drawables: Sequence[Drawable]) -> None:
             )
         if shapes.points:
             rec.log(entity, rr.Points2D(draw_order=_STATIC_POINTS, **shapes.point_fields()), static=True)
+    return written
 
 
-def _send_frames(rec: Any, trace: Trace) -> None:
+def _send_frames(rec: Any, trace: Trace, written: set[str]) -> None:
+    """Log the geometry frames; a moving shape's caption is left out when a fixed shape writes it."""
     import rerun as rr
 
     frames = trace.frames
@@ -411,7 +488,7 @@ def _send_frames(rec: Any, trace: Trace) -> None:
             groups[_group(d.path)] = _Shapes()
     for frame in frames:
         for d in frame.drawables:
-            groups[_group(d.path)].add(d)
+            groups[_group(d.path)].add(d, "" if d.text in written else d.text)
         for shapes in groups.values():
             shapes.close_frame()
     index = [_time_column(np.array([f.t_ns for f in frames], dtype=np.int64))]
@@ -452,27 +529,8 @@ def make_blueprint(trace: Trace) -> Any:
     and the run's description in tabs."""
     import rerun.blueprint as rrb
 
-    groups = signal_groups(trace)
-    signal_views = []
-    for group in ("inputs", "outputs", "internal"):
-        if group in groups:
-            signal_views.append(
-                rrb.TimeSeriesView(
-                    origin=GROUPS[group],
-                    name=GROUP_TITLES[group],
-                    axis_y=rrb.ScalarAxis(range=(-0.1, 1.1), zoom_lock=True),
-                    plot_legend=rrb.PlotLegend("LeftTop"),
-                )
-            )
-    if "numbers" in groups or "number_outputs" in groups:
-        signal_views.append(
-            rrb.TimeSeriesView(
-                origin="signals/numbers", name=GROUP_TITLES["numbers"], plot_legend=rrb.PlotLegend("LeftTop")
-            )
-        )
     side = rrb.Tabs(rrb.TextLogView(origin="events", name="Events"), rrb.TextDocumentView(origin="meta", name="Run"))
-    signals: Any = rrb.Vertical(*signal_views, name="Signals") if signal_views else None
-
+    signals, lanes = signal_panel(trace)
     if has_geometry(trace):
         bounds = _bounds(trace)
         view_kw: dict[str, Any] = {}
@@ -484,8 +542,8 @@ def make_blueprint(trace: Trace) -> Any:
         wide = bounds is not None and (bounds[2] - bounds[0]) > 2.0 * (bounds[3] - bounds[1])
         if wide:
             top = rrb.Horizontal(machine, side, column_shares=[3, 1])
-            parts = [top, *signal_views]
-            layout: Any = rrb.Vertical(*parts, row_shares=[2.0] + [1.0] * len(signal_views))
+            machine_share = max(2.0, MACHINE_SHARE * lanes)
+            layout: Any = rrb.Vertical(top, signals, row_shares=[machine_share, lanes]) if signals else top
         else:
             left = rrb.Vertical(machine, side, row_shares=[3, 2])
             layout = rrb.Horizontal(left, signals, column_shares=[1, 1]) if signals else left
@@ -493,10 +551,71 @@ def make_blueprint(trace: Trace) -> Any:
         layout = rrb.Horizontal(signals, side, column_shares=[3, 1]) if signals else side
     return rrb.Blueprint(
         layout,
-        rrb.TimePanel(timeline=TIMELINE, state="expanded"),
+        rrb.TimePanel(timeline=TIMELINE, state="collapsed"),  # the time bar only: the room goes to the lanes
         rrb.BlueprintPanel(state="collapsed"),
         rrb.SelectionPanel(state="collapsed"),
     )
+
+
+def signal_panel(trace: Trace) -> tuple[Any, float]:
+    """The signal lanes and their height in lanes: in one column, or, when more than
+    :data:`LANES_PER_COLUMN` would make each too low to read (rerun then cuts off a plot's 0 line
+    and time axis), in two: inputs and outputs beside the internal bits and the numbers.
+    (None, 0) when the trace has no signals."""
+    import rerun.blueprint as rrb
+
+    views, shares = signal_lanes(trace)
+    if not views:
+        return None, 0.0
+    if len(views) <= LANES_PER_COLUMN:
+        return rrb.Vertical(*views, row_shares=shares, name="Signals"), sum(shares)
+    io = sum(len(signal_groups(trace).get(g, [])) for g in ("inputs", "outputs")) or len(views) // 2
+    columns = [rrb.Vertical(*views[:io], row_shares=shares[:io]), rrb.Vertical(*views[io:], row_shares=shares[io:])]
+    return rrb.Horizontal(*columns, name="Signals"), max(sum(shares[:io]), sum(shares[io:]))
+
+
+def signal_lanes(trace: Trace) -> tuple[list[Any], list[float]]:
+    """The signal views, top to bottom, and their heights: one lane per Bool (inputs, outputs,
+    internal; the first lane of a group carries the group's title), then one plot of the numbers,
+    2.5 lanes high. All share one time axis, so zooming one zooms all."""
+    import rerun.blueprint as rrb
+
+    groups = signal_groups(trace)
+    linked = rrb.TimeAxis(link="LinkToGlobal")
+    views: list[Any] = []
+    shares: list[float] = []
+    for group in BOOL_GROUPS:
+        for k, name in enumerate(groups.get(group, [])):
+            views.append(
+                rrb.TimeSeriesView(
+                    origin=lane_entity(group, name),
+                    name=GROUP_TITLES[group] if k == 0 else name,
+                    titlebar=k == 0,
+                    axis_x=linked,
+                    axis_y=rrb.ScalarAxis(range=(-0.15, 1.15), zoom_lock=True),
+                    plot_legend=rrb.PlotLegend("LeftTop"),
+                )
+            )
+            shares.append(1.0 + TITLE_SHARE * (k == 0))
+    if "numbers" in groups or "number_outputs" in groups:
+        views.append(
+            rrb.TimeSeriesView(
+                origin=GROUPS["numbers"],
+                name=GROUP_TITLES["numbers"],
+                axis_x=linked,
+                plot_legend=rrb.PlotLegend("LeftTop"),
+            )
+        )
+        shares.append(2.5)
+    return views, shares
+
+
+MACHINE_SHARE = 0.4
+"""A wide machine's height above the lanes, per lane of signals (at least two lanes)."""
+LANES_PER_COLUMN = 8
+"""More signal views than this and they are laid out in two columns."""
+TITLE_SHARE = 0.45
+"""Extra height of a group's first lane, for its title bar (so its plot is as high as the others)."""
 
 
 def _plant_name(trace: Trace) -> str:

@@ -201,3 +201,38 @@ def test_unknown_signal_and_steps_helper():
     assert t.tolist() == [400_000, 3_400_000, 7_400_000, 10 * MS] and v.tolist() == [0, 1, 0, 0]
     empty = Trace(["A"], kinds={"A": "input"}, types={"A": "bool"})
     assert lanes(timing_diagram(empty)) == {}
+
+
+def test_one_scan_pulse_is_drawn_at_full_height_in_the_png():
+    """4.3.7's jam run: TON_A.Q is TRUE for one scan (10.374 s) of 16 s. Its lane goes up and down
+    one scan apart at the full TRUE height, ET drops from 10000 to 0 at the next scan, and the pulse
+    is visible in the rendered pixels (a 1 ms pulse is a 0.07-pixel-wide step at this size)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from exercises import get
+
+    ex = get("4.3.7")
+    sim = ex.simulation(ex.reference.program(), ex.scenario("jam"), seed=1)
+    sim.run()
+    fig = timing_diagram(sim.trace)
+    drawn = lanes(fig)
+    assert list(drawn) == ["S1", "S2", "D1", "ALARM", "ACK", "TON_A.Q", "TON_A.ET"]
+    x, y = drawn["TON_A.Q"]
+    base = 1 * LANE  # second lane from the bottom
+    assert edges(x, y) == [(10.374, "up"), (10.375, "down")]
+    assert y.max() == pytest.approx(base + HIGH)
+    x, y = drawn["TON_A.ET"]
+    drop = [k for k in range(1, len(y)) if y[k] < y[k - 1]]
+    assert [round(float(x[k]), 3) for k in drop] == [10.375]
+    assert y[drop[0] - 1] == pytest.approx(HIGH) and y[drop[0]] == pytest.approx(0.0)  # 10000 -> 0, lane's full range
+
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    pixels = np.asarray(canvas.buffer_rgba())[:, :, :3].astype(int)
+    ax = fig.axes[0]
+    height = pixels.shape[0]
+    px, top = ax.transData.transform((10.3745, base + 0.9 * HIGH))
+    _, low = ax.transData.transform((10.3745, base + 0.1 * HIGH))
+    col, rows = round(px), range(round(height - top), round(height - low))
+    window = pixels[list(rows), col - 1 : col + 2]
+    assert (window.sum(axis=2) < 600).any(axis=1).all()  # a dark stroke in every row of the pulse's height

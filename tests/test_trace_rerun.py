@@ -21,7 +21,10 @@ from plcsim.trace_rerun import (  # noqa: E402
     event_level,
     export_rrd,
     group_rows,
+    lane_entity,
     signal_groups,
+    static_texts,
+    step_rows,
 )
 from plcsim.wiring import NO  # noqa: E402
 
@@ -119,7 +122,7 @@ class FakeBelt:
             out.append(Drawable(f"parts/{pid}", "polygon", box, (200, 120, 0), text=pid))
         for s, x in self.BEAMS.items():
             lit = (255, 0, 0) if self.sensors[s] else (0, 200, 0)
-            out.append(Drawable(f"beams/{s}", "line", np.array([[x, 0.0], [x, 50.0]]), lit))
+            out.append(Drawable(f"beams/{s}", "line", np.array([[x, 0.0], [x, 50.0]]), lit, text=s))
         out.append(
             Drawable(
                 "lamp/H1", "circle", np.array([[280.0, 80.0]]), (255, 220, 0) if self.lamp else (90, 90, 90), radius=8.0
@@ -195,6 +198,12 @@ def series(data, entity: str) -> tuple[list[str], np.ndarray, np.ndarray]:
     return names, times, values
 
 
+def lane(data, trace: Trace, name: str) -> tuple[list[str], np.ndarray, np.ndarray]:
+    """The lane of one Bool signal read back from a file."""
+    group = next(g for g, names in signal_groups(trace).items() if name in names)
+    return series(data, "/" + lane_entity(group, name))
+
+
 def value_in_file(names, times, values, name: str, t_ns: int) -> float:
     k = int(np.searchsorted(times, t_ns, side="right")) - 1
     return float(values[max(k, 0), names.index(name)])
@@ -210,29 +219,28 @@ def test_signals_events_and_plant_read_back(belt_trace, tmp_path):
     data = read_rrd(path)
     entities = {e for e, _ in data}
 
-    # signals: one entity per group, one series per signal, only rows where the group changed
-    assert {"/signals/inputs", "/signals/outputs", "/signals/internal", "/signals/numbers"} <= entities
-    names, times, values = series(data, "/signals/inputs")
-    assert names == ["S1", "S2"]
-    expected_t, expected_v = group_rows(trace, ["S1", "S2"])
-    assert times.tolist() == expected_t.tolist()
-    assert np.array_equal(values, expected_v)
-    # first row, one row per change of S1 or S2, last row
-    changes = sum(len(trace.rises(n)) + len(trace.falls(n)) for n in ("S1", "S2"))
-    assert len(times) == changes + 2
+    # Bools: one entity (lane) per signal; the first row, both values at each change, the last row
+    assert {"/signals/inputs/S1", "/signals/inputs/S2", "/signals/outputs/D1", "/signals/numbers"} <= entities
     for name in ("S1", "S2"):
-        for t in [*trace.rises(name), *trace.falls(name)]:
+        names, times, values = lane(data, trace, name)
+        assert names == [name]
+        expected_t, expected_v = group_rows(trace, [name])
+        assert times.tolist() == expected_t.tolist()
+        assert np.array_equal(values, expected_v)
+        edges = [*trace.rises(name), *trace.falls(name)]
+        assert len(times) == 2 * len(edges) + 2
+        for t in edges:
             assert value_in_file(names, times, values, name, int(t)) == float(trace.value_at(name, int(t)))
             assert value_in_file(names, times, values, name, int(t) - 1) == float(trace.value_at(name, int(t) - 1))
 
     # outputs are stamped at scan end: D1 falls when the scan that saw S2 ends
-    names, times, values = series(data, "/signals/outputs")
-    assert names == ["D1", "H1"]
+    names, times, values = lane(data, trace, "D1")
     d1_fall = int(trace.falls("D1")[0])
     assert d1_fall in times.tolist()
     assert d1_fall in trace.end_times.tolist()
     assert value_in_file(names, times, values, "D1", d1_fall) == 0.0
     assert value_in_file(names, times, values, "D1", d1_fall - 1) == 1.0
+    names, times, values = lane(data, trace, "H1")
     h1_rise = int(trace.rises("H1")[0])
     assert 190_000_000 <= h1_rise - d1_fall <= 210_000_000
 
@@ -242,7 +250,7 @@ def test_signals_events_and_plant_read_back(belt_trace, tmp_path):
     assert value_in_file(names, times, values, "T1.ET", int(trace.times[-1])) == trace.value_at(
         "T1.ET", trace.times[-1]
     )
-    assert data[("/signals/inputs", True)]["SeriesLines:interpolation_mode"] == [[2]]  # StepAfter
+    assert data[("/signals/inputs/S1", True)]["SeriesLines:interpolation_mode"] == [[2]]  # StepAfter
 
     # events: a text log per source, with levels, at their simulated times
     plant_log = data[("/events/plant", False)]
@@ -259,10 +267,13 @@ def test_signals_events_and_plant_read_back(belt_trace, tmp_path):
     belt = data[("/plant/static/belt", True)]["LineStrips2D:strips"][0]
     assert belt[1] == [[0.0, 10.0], [300.0, 10.0]]  # y = -10 drawn at +10 (rerun's 2D view is y down)
     assert data[("/plant/static/sensors/S1", True)]["Points2D:labels"] == [["S1"]]
+    # each text once: the beams' captions S1, S2 are the sensors' labels, so they are left out
+    assert "LineStrips2D:labels" not in data[("/plant/moving/beams", False)]
     frames = trace.frames
     parts = data[("/plant/moving/parts", False)]
     assert len(parts["sim"]) == len(frames) == 63  # 25 Hz for 2.5 s (first frame at 1 ms)
     assert [len(s) for s in parts["LineStrips2D:strips"]][:3] == [0, 0, 0]  # before the part is placed
+    assert parts["LineStrips2D:labels"][-1] == ["p1"]  # a part's caption is written by nothing else
     last_box = parts["LineStrips2D:strips"][-1][0]
     assert len(last_box) == 5  # a closed polygon
     x_part = (last_box[0][0] + last_box[1][0]) / 2
@@ -305,9 +316,12 @@ def blueprint_views(path) -> dict[str, tuple[str, str]]:
 def test_blueprint_shows_machine_signals_and_events(belt_trace, tmp_path):
     views = blueprint_views(export_rrd(belt_trace, tmp_path / "bp.rrd"))
     assert views["/plant"] == ("2D", "Machine (fake_belt)")
-    assert views["/signals/inputs"] == ("TimeSeries", "Inputs (I)")
-    assert views["/signals/outputs"] == ("TimeSeries", "Outputs (Q)")
-    assert views["/signals/internal"][0] == views["/signals/numbers"][0] == "TimeSeries"
+    # one lane per Bool, the group's title on its first lane
+    assert views["/signals/inputs/S1"] == ("TimeSeries", "Inputs (I)")
+    assert views["/signals/inputs/S2"] == ("TimeSeries", "S2")
+    assert views["/signals/outputs/D1"] == ("TimeSeries", "Outputs (Q)")
+    assert views["/signals/outputs/H1"] == ("TimeSeries", "H1")
+    assert views["/signals/internal/T1.Q"][0] == views["/signals/numbers"][0] == "TimeSeries"
     assert views["/events"] == ("TextLog", "Events")
     assert views["/meta"][0] == "TextDocument"
 
@@ -329,9 +343,13 @@ def test_every_row_and_stop_events(tmp_path):
     trace = belt_run("1s", stop_at="0.5s")
     path = export_rrd(trace, tmp_path / "stop.rrd", every_row=True, title="stopped run")
     data = read_rrd(path)
-    _, times, values = series(data, "/signals/inputs")
-    assert len(times) == len(trace)  # every row, scans and STOP rows
-    assert np.array_equal(values[:, 0], trace.column("S1")[np.argsort(trace.times, kind="stable")])
+    _, times, values = lane(data, trace, "S1")
+    edges = len(trace.rises("S1")) + len(trace.falls("S1"))
+    assert len(times) == len(trace) + edges  # every row, scans and STOP rows, and the held value at each edge
+    held = np.zeros(len(times), dtype=bool)  # the old value, sent just before the new one at the same time
+    held[:-1] = times[1:] == times[:-1]
+    assert held.sum() == edges
+    assert np.array_equal(values[~held, 0], trace.column("S1")[np.argsort(trace.times, kind="stable")])
     cpu_log = data[("/events/cpu", False)]
     assert ["RUN->STOP"] in [[t.split(":")[0]] for (t,) in cpu_log["TextLog:text"]]
     levels = dict(
@@ -361,19 +379,20 @@ def test_plc_only_and_synthetic_traces(tmp_path):
     assert not any(e.startswith("/plant") for e, _ in data)
     names, times, values = series(data, "/signals/numbers")
     assert names == ["Level", "DATA.x y"]
-    assert times.tolist() == [0, 2_000_000, 4_000_000, 6_000_000, 8_000_000, 10_000_000]
-    assert values[:, 0].tolist() == [0, 10, 20, 30, 40, 50]
-    names, times, values = series(data, "/signals/outputs")
-    assert times.tolist() == [1_000_000, 7_000_000, 11_000_000] and values[:, 0].tolist() == [0, 1, 1]
-    assert ("/signals/internal", False) not in data
+    ms = 1_000_000
+    assert times.tolist() == [0, 2 * ms, 2 * ms, 4 * ms, 4 * ms, 6 * ms, 6 * ms, 8 * ms, 8 * ms, 10 * ms, 10 * ms]
+    assert values[:, 0].tolist() == [0, 0, 10, 10, 20, 20, 30, 30, 40, 40, 50]
+    names, times, values = series(data, "/signals/outputs/LED")
+    assert times.tolist() == [1 * ms, 7 * ms, 7 * ms, 11 * ms] and values[:, 0].tolist() == [0, 0, 1, 1]
+    assert not any(e.startswith("/signals/internal") for e, _ in data)
     assert data[("/events/cpu", False)]["TextLog:level"] == [["ERROR"]]
     views = blueprint_views(path)  # no machine: the signals beside the events
-    assert "/plant" not in views and "/signals/internal" not in views
-    assert set(views) == {"/signals/inputs", "/signals/outputs", "/signals/numbers", "/events", "/meta"}
+    assert "/plant" not in views
+    assert set(views) == {"/signals/inputs/TL", "/signals/outputs/LED", "/signals/numbers", "/events", "/meta"}
 
     empty = Trace(["A"], kinds={"A": "input"}, types={"A": "bool"})
     data = read_rrd(export_rrd(empty, tmp_path / "empty.rrd"))
-    assert ("/signals/inputs", True) in data and ("/signals/inputs", False) not in data
+    assert ("/signals/inputs/A", True) in data and ("/signals/inputs/A", False) not in data
     assert len(rr.chunk.RrdReader(tmp_path / "empty.rrd").blueprints()) == 1
 
 
@@ -381,7 +400,7 @@ def test_export_ignores_rerun_off(belt_trace, tmp_path, monkeypatch):
     """RERUN=off silences live logging; an explicit export still writes its file (and leaves the variable)."""
     monkeypatch.setenv("RERUN", "off")
     path = export_rrd(belt_trace, tmp_path / "off.rrd")
-    assert ("/signals/inputs", False) in read_rrd(path)
+    assert ("/signals/inputs/S1", False) in read_rrd(path)
     import os
 
     assert os.environ["RERUN"] == "off"
@@ -422,7 +441,7 @@ def test_conv1_rig_when_the_plants_package_has_it(tmp_path):
     sim.run()
     trace = sim.trace
     data = read_rrd(export_rrd(trace, tmp_path / "conv1.rrd"))
-    names, times, values = series(data, "/signals/inputs")
+    names, times, values = lane(data, trace, "S2")
     s2_rise = int(trace.rises("S2")[0])
     assert 4.7e9 < s2_rise - int(trace.rises("S1")[0]) < 5.0e9
     assert value_in_file(names, times, values, "S2", s2_rise) == 1.0
@@ -432,3 +451,159 @@ def test_conv1_rig_when_the_plants_package_has_it(tmp_path):
     moving = [cols for (e, is_static), cols in data.items() if e.startswith("/plant/moving/") and not is_static]
     assert moving and all(len(cols["sim"]) == len(trace.frames) for cols in moving)
     assert len(trace.frames) >= 130  # 25 Hz over 5.5 s
+
+
+# -- exact step functions, lanes and labels on a real exercise ---------------------------------
+
+
+@pytest.fixture(scope="module")
+def jam_trace() -> Trace:
+    """4.3.7's reference in its jam scenario: TON_A.Q is TRUE for one scan at 10.374 s, and ET resets."""
+    from exercises import get
+
+    ex = get("4.3.7")
+    sim = ex.simulation(ex.reference.program(), ex.scenario("jam"), seed=1)
+    sim.run()
+    return sim.trace
+
+
+def file_values_at(times: np.ndarray, values: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """What the file says at each time in ``at``: the last row sent at or before it."""
+    k = np.searchsorted(times, at, side="right") - 1
+    assert np.all(k >= 0)
+    return values[k]
+
+
+def test_every_signal_reads_exactly_as_the_trace(jam_trace, tmp_path):
+    """Read back every lane and the numbers: at every scan and just before every change, the file's
+    step function is the trace's value; a line in the file joins only equal values."""
+    trace = jam_trace
+    data = read_rrd(export_rrd(trace, tmp_path / "alarm.rrd"))
+    groups = signal_groups(trace)
+    entities = [("/" + lane_entity(g, n), [n]) for g in ("inputs", "outputs", "internal") for n in groups.get(g, [])]
+    entities.append(("/signals/numbers", groups["numbers"]))
+    assert [n for _, names in entities for n in names] == ["S1", "S2", "D1", "ALARM", "ACK", "TON_A.Q", "TON_A.ET"]
+    off = rr.components.AggregationPolicy.Off.value
+    for entity, names in entities:
+        style = data[(entity, True)]
+        assert style["SeriesLines:aggregation_policy"] == [[off]], entity  # the viewer never averages
+        assert style["SeriesLines:interpolation_mode"] == [[2]], entity  # StepAfter
+        got_names, times, values = series(data, entity)
+        assert got_names == names
+        # a step function: between two rows at different times the values are equal
+        moves = np.any(values[1:] != values[:-1], axis=1)
+        assert np.all(times[1:][moves] == times[:-1][moves]), entity
+        for j, name in enumerate(names):
+            when, col = trace.signal_times(name), trace.column(name).astype(float)
+            assert np.array_equal(file_values_at(times, values[:, j], when), col), name  # every scan
+            changes = np.flatnonzero(col[1:] != col[:-1]) + 1
+            before = file_values_at(times, values[:, j], when[changes] - 1)
+            assert np.array_equal(before, col[changes - 1]), name  # just before each change
+
+    # the pulse the issue found drawn as a 0.5 plateau: both edges, one scan apart, at full height
+    _, times, values = lane(data, trace, "TON_A.Q")
+    ms = 1_000_000
+    assert times.tolist() == [0, 10_374 * ms, 10_374 * ms, 10_375 * ms, 10_375 * ms, int(trace.times[-1])]
+    assert values[:, 0].tolist() == [0, 0, 1, 1, 0, 0]
+    _, times, values = series(data, "/signals/numbers")
+    at_reset = values[times == 10_375 * ms, 0].tolist()
+    assert at_reset == [10_000, 0]  # ET holds 10000 up to the reset, then 0 (never a 5000 between)
+    assert set(values[times > 10_375 * ms, 0].tolist()) == {0.0}
+
+
+def test_step_rows_edge_cases():
+    empty_t, empty_v = step_rows(np.zeros(0, dtype=np.int64), np.zeros((0, 2)))
+    assert len(empty_t) == 0 and empty_v.shape == (0, 2)
+    t, v = step_rows(np.array([5]), np.array([[1.0]]))
+    assert t.tolist() == [5] and v.tolist() == [[1.0]]
+    t, v = step_rows(np.array([0, 1, 2, 3]), np.array([[0.0, 5.0], [0.0, 5.0], [1.0, 6.0], [1.0, 6.0]]))
+    assert t.tolist() == [0, 2, 2, 3]
+    assert v.tolist() == [[0.0, 5.0], [0.0, 5.0], [1.0, 6.0], [1.0, 6.0]]
+    t, v = step_rows(np.array([0, 1, 2, 3]), np.array([[0.0], [1.0], [1.0], [0.0]]), every_row=True)
+    assert t.tolist() == [0, 1, 1, 2, 3, 3] and v[:, 0].tolist() == [0, 0, 1, 1, 1, 0]
+
+
+def test_static_texts_draws_each_text_once():
+    pt = np.array([[0.0, 0.0], [1.0, 1.0]])
+    drawables = [
+        Drawable("sensors/S1", "line", pt, text="S1"),  # caption of the sensor: its label writes S1
+        Drawable("sensors/S1/label", "label", pt[:1], text="S1"),
+        Drawable("frame/stop", "polygon", pt, text="stop"),  # a caption nothing else writes
+        Drawable("frame/stop2", "polygon", pt, text="stop"),  # the same caption again
+        Drawable("frame/base", "polygon", pt),
+    ]
+    texts, written = static_texts(drawables)
+    assert texts == ["", "S1", "stop", "", ""]
+    assert written == {"S1", "stop"}
+
+
+def test_each_label_drawn_once_on_conv1(jam_trace, tmp_path):
+    """The real CONV1: the sensors' and the belt's names once each, in the fixed layer; no moving
+    shape writes them again in any frame; the part keeps its caption."""
+    data = read_rrd(export_rrd(jam_trace, tmp_path / "labels.rrd"))
+    static = [
+        text
+        for (entity, is_static), cols in data.items()
+        if is_static and entity.startswith("/plant/static/")
+        for key in ("Points2D:labels", "LineStrips2D:labels")
+        for text in (cols.get(key) or [[]])[0]
+        if text
+    ]
+    assert sorted(static) == ["D1", "S1", "S2"]
+    moving = {
+        text
+        for (entity, is_static), cols in data.items()
+        if not is_static and entity.startswith("/plant/moving/")
+        for key in ("Points2D:labels", "LineStrips2D:labels")
+        for frame in cols.get(key, [])
+        for text in frame or []
+    }
+    assert moving == {"p1"}
+
+
+def blueprint_columns(path) -> dict[str, list[list[str]]]:
+    """Name -> the view origins in each child column, for the named containers of a file's blueprint."""
+    reader = rr.chunk.RrdReader(path)
+    (blueprint,) = reader.blueprints()
+    containers, origins = {}, {}
+    for chunk in reader.stream(store=blueprint).to_chunks():
+        batch = chunk.to_record_batch()
+        key = chunk.entity_path.lstrip("/")
+        if "ContainerBlueprint:contents" in batch.schema.names:
+            name = (
+                (batch.column("ContainerBlueprint:display_name").to_pylist()[0] or [""])[0]
+                if ("ContainerBlueprint:display_name" in batch.schema.names)
+                else ""
+            )
+            containers[key] = (name, batch.column("ContainerBlueprint:contents").to_pylist()[0])
+        if "ViewBlueprint:space_origin" in batch.schema.names:
+            origins[key] = "/" + batch.column("ViewBlueprint:space_origin").to_pylist()[0][0].lstrip("/")
+    return {
+        name: [[origins[v] for v in containers[c][1]] for c in contents if c in containers]
+        for name, contents in containers.values()
+        if name
+    }
+
+
+def test_many_lanes_go_in_two_columns(tmp_path):
+    """Nine Bool lanes would be too low to read in one column: inputs and outputs go left, the
+    internal bits right, each still its own view."""
+    names = ["I0", "I1", "I2", "Q0", "Q1", "M0", "M1", "M2", "M3"]
+    kinds = {n: {"I": "input", "Q": "output", "M": "memory"}[n[0]] for n in names}
+    tr = Trace(names, kinds=kinds, types=dict.fromkeys(names, "bool"))
+    for k in range(4):
+        tr.add_row(k * 1_000_000, k * 1_000_000 + 500_000, 1, tuple((k + j) % 2 == 0 for j in range(len(names))))
+    columns = blueprint_columns(export_rrd(tr, tmp_path / "many.rrd"))
+    left = [
+        "/signals/inputs/I0",
+        "/signals/inputs/I1",
+        "/signals/inputs/I2",
+        "/signals/outputs/Q0",
+        "/signals/outputs/Q1",
+    ]
+    right = ["/signals/internal/M0", "/signals/internal/M1", "/signals/internal/M2", "/signals/internal/M3"]
+    assert columns["Signals"] == [left, right]
+    # eight or fewer: one column
+    few = Trace(names[:8], kinds=kinds, types=dict.fromkeys(names[:8], "bool"))
+    few.add_row(0, 500_000, 1, (False,) * 8)
+    assert blueprint_columns(export_rrd(few, tmp_path / "few.rrd"))["Signals"] == []  # views, no columns
