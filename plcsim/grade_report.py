@@ -15,16 +15,22 @@ from pathlib import Path
 from typing import Any
 from xml.etree import ElementTree as ET
 
-SCHEMA_VERSION = 2
-"""Version of the JSON report's layout (2: ``schema_version``, ``plcsim_version`` and ``seed`` at the top)."""
+SCHEMA_VERSION = 3
+"""Version of the JSON report's layout (2: ``schema_version``, ``plcsim_version`` and ``seed`` at the top;
+3: each check's ``status``: passed, failed or not exercised)."""
 
 ERROR_KINDS_OF_THE_GRADER = frozenset({"grader error"})
 """Outcomes that are the grader's or the instructor's fault, never the student's."""
 
 
+PASSED, FAILED, NOT_EXERCISED = "passed", "failed", "not exercised"
+"""The statuses of a check: ``not exercised`` held only because the behaviour it guards never
+happened (see :mod:`plcsim.exercised`); it earns nothing and is not passed."""
+
+
 @dataclass
 class CheckResult:
-    """One check in one scenario."""
+    """One check in one scenario; ``status`` is passed, failed or not exercised."""
 
     scenario: str
     check: str
@@ -36,6 +42,11 @@ class CheckResult:
     signals: list[str] = field(default_factory=list)
     window: tuple[int, int] | None = None
     diagram: str | None = None
+    status: str = ""
+
+    def __post_init__(self) -> None:
+        if not self.status:
+            self.status = PASSED if self.passed else FAILED
 
 
 @dataclass
@@ -102,7 +113,11 @@ class Report:
         return text
 
     def failed(self) -> list[CheckResult]:
+        """The checks that did not pass: failed or not exercised."""
         return [c for c in self.checks if not c.passed]
+
+    def not_exercised(self) -> list[CheckResult]:
+        return [c for c in self.checks if c.status == NOT_EXERCISED]
 
     def result(self, check: str, scenario: str | None = None) -> CheckResult:
         """The result of one check (in one scenario, or the first failing/any scenario)."""
@@ -114,7 +129,8 @@ class Report:
 
     def to_junit(self, path: str | Path | None = None) -> str:
         """JUnit XML: one test suite per scenario, one test case per check; a submission that did not
-        run, a CPU STOP and a grader error are ``<error>``s, a failed check a ``<failure>``."""
+        run, a CPU STOP and a grader error are ``<error>``s, a failed check a ``<failure>``, a check
+        that was not exercised ``<skipped>``."""
         return write_junit([self], path, name=f"plcsim {self.exercise}")
 
 
@@ -152,7 +168,9 @@ def _suites(report: Report) -> list[ET.Element]:
             _error(_case(suite, "CPU run", classname, 0.0), "CPU STOP", stopped[scenario])
         for r in results:
             case = _case(suite, r.check, classname, per_run / max(1, len(results)) if scenario != "static" else 0.0)
-            if not r.passed:
+            if r.status == NOT_EXERCISED:
+                ET.SubElement(case, "skipped", message=r.message).text = r.message
+            elif not r.passed:
                 failure = ET.SubElement(case, "failure", message=r.message, type="check failed")
                 failure.text = r.message + (f"\ntiming diagram: {r.diagram}" if r.diagram else "")
         suites.append(suite)
@@ -175,19 +193,21 @@ def _error(case: ET.Element, kind: str, message: str) -> None:
     ET.SubElement(case, "error", message=message, type=kind).text = message
 
 
+_COUNTED = {"failures": "failure", "errors": "error", "skipped": "skipped"}
+"""The count attributes of a suite and the element of a test case each counts."""
+
+
 def _count(element: ET.Element, children: Sequence[ET.Element], seconds: float) -> None:
-    """Set tests/failures/errors/time of a suite (children: test cases) or of the root (children: suites)."""
-    if element.tag == "testsuite":
-        tests = len(children)
-        failures = sum(c.find("failure") is not None for c in children)
-        errors = sum(c.find("error") is not None for c in children)
-    else:
-        tests = sum(int(s.get("tests", "0")) for s in children)
-        failures = sum(int(s.get("failures", "0")) for s in children)
-        errors = sum(int(s.get("errors", "0")) for s in children)
-    element.set("tests", str(tests))
-    element.set("failures", str(failures))
-    element.set("errors", str(errors))
+    """Set tests/failures/errors/skipped/time of a suite (children: test cases) or of the root (children:
+    suites). A check that was not exercised is ``skipped``: it did not run as a test of the behaviour."""
+    suite = element.tag == "testsuite"
+    element.set("tests", str(len(children) if suite else sum(int(s.get("tests", "0")) for s in children)))
+    for key, tag in _COUNTED.items():
+        if suite:
+            number = sum(c.find(tag) is not None for c in children)
+        else:
+            number = sum(int(s.get(key, "0")) for s in children)
+        element.set(key, str(number))
     element.set("time", f"{seconds:.3f}")
 
 
@@ -205,6 +225,9 @@ def spreadsheet_safe(cell: str) -> str:
     return "'" + cell if cell.startswith(_FORMULA_STARTS) else cell
 
 
+_CELL = {PASSED: "pass", FAILED: "FAIL", NOT_EXERCISED: "not exercised"}
+
+
 def write_gradebook(reports: Sequence[Report], path: str | Path) -> Path:
     """A CSV with one row per submission: score, max, passed, error, and each check's result."""
     checks: list[str] = []
@@ -219,7 +242,7 @@ def write_gradebook(reports: Sequence[Report], path: str | Path) -> Path:
         header = ["submission", "score", "max_score", "percent", "passed", "error", *checks]
         writer.writerow([spreadsheet_safe(h) for h in header])
         for r in reports:
-            results = {f"{c.scenario}: {c.check}": ("pass" if c.passed else "FAIL") for c in r.checks}
+            results = {f"{c.scenario}: {c.check}": _CELL[c.status] for c in r.checks}
             percent = f"{100 * r.score / r.max_score:.1f}" if r.max_score else "0.0"
             row = [
                 spreadsheet_safe(Path(r.submission).name),

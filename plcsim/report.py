@@ -33,11 +33,10 @@ def print_report(report: Any, console: Console | None = None, *, verbose: bool =
     table.add_column("", justify="center")
     table.add_column("points", justify="right")
     for c in report.checks:
-        mark = Text("✓", "green") if c.passed else Text("✗", "red")
-        table.add_row(Text(c.scenario), Text(c.check), mark, f"{c.points:g}/{c.max_points:g}")
+        table.add_row(Text(c.scenario), Text(c.check), _mark(c.status), f"{c.points:g}/{c.max_points:g}")
     console.print(table)
     for c in report.failed():
-        console.print(Text.assemble(("✗", "red"), " ", (f"{c.scenario}: {c.check}", "bold"), f"\n    {c.message}"))
+        console.print(Text.assemble(_mark(c.status), " ", (f"{c.scenario}: {c.check}", "bold"), f"\n    {c.message}"))
         if c.diagram:
             console.print(Text(f"    timing diagram: {c.diagram}"))
     if verbose:
@@ -52,11 +51,25 @@ def print_report(report: Any, console: Console | None = None, *, verbose: bool =
     for w in report.warnings:
         console.print(Text.assemble(("warning:", "yellow"), f" {w}"))
     verdict = Text("PASSED", "bold green") if report.passed else Text("FAILED", "bold red")
+    idle = len(report.not_exercised())
     console.print(
         Text.assemble(
-            verdict, "  score ", (f"{report.score:g}", "bold"), f" / {report.max_score:g}  ({report.elapsed_s:.2f} s)"
+            verdict,
+            "  score ",
+            (f"{report.score:g}", "bold"),
+            f" / {report.max_score:g}",
+            (f"  ({idle} not exercised)", "yellow") if idle else "",
+            f"  ({report.elapsed_s:.2f} s)",
         )
     )
+
+
+_MARKS = {"passed": ("✓", "green"), "failed": ("✗", "red"), "not exercised": ("–", "yellow")}
+"""The mark of each check status; a check that was not exercised earned nothing but did not fail."""
+
+
+def _mark(status: str) -> Text:
+    return Text(*_MARKS[status])
 
 
 def print_batch_line(report: Any, console: Console) -> None:

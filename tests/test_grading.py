@@ -118,9 +118,14 @@ def test_wrong_solution_of_4_3_5_fails_the_checks_that_expose_it(wrong_report):
 
 
 def test_only_some_scenarios(ex5):
-    r = grade(ex5, ex5.reference.path, scenarios=["placed at S2"])
-    assert [c.scenario for c in r.checks] == ["placed at S2"] * 3
-    assert (r.score, r.max_score, r.passed) == (3.0, 3.0, True)
+    r = grade(ex5, ex5.reference.path, scenarios=["placed at S2", "three objects"])
+    assert [c.scenario for c in r.checks].count("placed at S2") == 3
+    assert (r.score, r.max_score, r.passed) == (9.0, 9.0, True)
+    # alone, "placed at S2" (the belt must stay off) cannot tell the reference from a program that does
+    # nothing: its checks are not exercised (plcsim.exercised)
+    alone = grade(ex5, ex5.reference.path, scenarios=["placed at S2"])
+    assert [c.status for c in alone.checks] == ["not exercised"] * 3
+    assert (alone.score, alone.max_score, alone.passed) == (0.0, 3.0, False)
 
 
 # -- report formats ---------------------------------------------------------------------------------
