@@ -33,6 +33,7 @@ def _parser() -> argparse.ArgumentParser:
         description="A teaching simulator of an S7-1200 PLC driving virtual training rigs, with graded exercises.",
         epilog="Exercises are named by textbook number (4.3.6) or slug (conveyor-2); `plcsim list` shows them.",
     )
+    p.add_argument("--version", action="version", version=f"plcsim {_version()}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
 
     sub.add_parser("list", help="list the exercises with their titles", description="List the exercises.")
@@ -84,8 +85,23 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("--seed", type=int, default=1, help="scenario seed (instructors: use a secret one)")
     grade.add_argument("--json", metavar="OUT", help="write the report as JSON (a folder for a batch)")
     grade.add_argument("--junit", metavar="OUT", help="write the report as JUnit XML")
-    grade.add_argument("--rrd", metavar="DIR", help="write a rerun recording per scenario into DIR")
-    grade.add_argument("--plots", metavar="DIR", help="write a timing diagram per failed check into DIR")
+    grade.add_argument(
+        "--gradescope",
+        metavar="OUT",
+        help="write Gradescope's results.json (a folder for a batch: OUT/<student>/results.json)",
+    )
+    grade.add_argument(
+        "--gradescope-visibility",
+        default="visible",
+        choices=("hidden", "after_due_date", "after_published", "visible"),
+        help="when students see the Gradescope tests (default visible)",
+    )
+    grade.add_argument(
+        "--rrd", metavar="DIR", help="write a rerun recording per scenario into DIR (a batch: DIR/<student>/)"
+    )
+    grade.add_argument(
+        "--plots", metavar="DIR", help="write a timing diagram per failed check into DIR (a batch: DIR/<student>/)"
+    )
     grade.add_argument("--jobs", type=int, default=1, metavar="N", help="grade N submissions at a time (batch)")
     grade.add_argument("--gradebook", metavar="OUT.csv", help="write one CSV row per submission (batch)")
     grade.add_argument("--cpu-seconds", type=int, default=60, help="CPU-time limit per submission, > 0 (default 60)")
@@ -93,6 +109,12 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("--no-sandbox", action="store_true", help="grade in this process (trusted code only)")
     grade.add_argument("-v", "--verbose", action="store_true", help="also show why passed checks passed")
     return p
+
+
+def _version() -> str:
+    from plcsim import __version__
+
+    return __version__
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -296,6 +318,7 @@ def _grade(args: argparse.Namespace) -> int:
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
     from exercises import get
+    from plcsim.grade_report import write_gradescope
     from plcsim.grading import Limits, grade, grade_batch, grade_sandboxed, write_gradebook, write_junit
     from plcsim.report import print_batch_line, print_report
 
@@ -303,6 +326,7 @@ def _grade(args: argparse.Namespace) -> int:
     limits = Limits(cpu_seconds=args.cpu_seconds, memory_mb=args.memory_mb)  # refused here if not positive
     exercise = get(args.exercise)
     options = {"rrd_dir": args.rrd, "plots_dir": args.plots}
+    visibility = args.gradescope_visibility
     if args.reference or args.solution:
         chosen = exercise.solution(args.solution) if args.solution else exercise.reference
         target = chosen.path
@@ -340,6 +364,10 @@ def _grade(args: argparse.Namespace) -> int:
             Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
             write_junit(reports, args.junit, name=f"plcsim {exercise.number}")
             console.print(f"JUnit report: {args.junit}", markup=False)
+        if args.gradescope:
+            for r in reports:
+                write_gradescope(r, Path(args.gradescope) / r.student / "results.json", visibility=visibility)
+            console.print(f"Gradescope results: {args.gradescope}/<student>/results.json", markup=False)
         return _exit_code(reports)
     if args.no_sandbox:
         report = grade(exercise, target, seed=args.seed, **options)
@@ -354,6 +382,9 @@ def _grade(args: argparse.Namespace) -> int:
         Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
         report.to_junit(args.junit)
         console.print(f"JUnit report: {args.junit}", markup=False)
+    if args.gradescope:
+        written = write_gradescope(report, args.gradescope, visibility=visibility)
+        console.print(f"Gradescope results: {written}", markup=False)
     return _exit_code([report])
 
 

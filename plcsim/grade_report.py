@@ -134,6 +134,72 @@ class Report:
         return write_junit([self], path, name=f"plcsim {self.exercise}")
 
 
+# -- Gradescope --------------------------------------------------------------------------------------
+
+GRADESCOPE_VISIBILITY = ("hidden", "after_due_date", "after_published", "visible")
+"""The visibility values Gradescope's autograder results (``results.json``) accept."""
+
+
+def gradescope_results(report: Report, *, visibility: str = "visible") -> dict[str, Any]:
+    """Gradescope's ``results.json`` of a report: the score, one test per scenario and check (its
+    score, max_score, status passed/failed and the reason as output), and, when the submission did not
+    run, one test saying why. A not-exercised check is a failed test tagged ``not exercised``. The
+    maximum and plcsim's version go into ``extra_data`` (Gradescope takes the maximum from the tests)."""
+    if visibility not in GRADESCOPE_VISIBILITY:
+        raise ValueError(f"Gradescope visibility is one of {', '.join(GRADESCOPE_VISIBILITY)}, not {visibility!r}")
+    tests = [
+        {
+            "name": f"{c.scenario}: {c.check}",
+            "score": c.points,
+            "max_score": c.max_points,
+            "status": PASSED if c.passed else FAILED,
+            "output": c.message + (f"\ntiming diagram: {c.diagram}" if c.diagram else ""),
+            "tags": [c.status] if c.status == NOT_EXERCISED else [],
+            "visibility": visibility,
+        }
+        for c in report.checks
+    ]
+    if report.error:
+        blame = " (a fault of the grader or the exercise, not of the submission)" if report.grader_failed else ""
+        tests.append(
+            {
+                "name": report.error_kind or "error",
+                "score": 0.0,
+                "max_score": 0.0 if report.checks else report.max_score,
+                "status": FAILED,
+                "output": report.error + blame,
+                "visibility": visibility,
+            }
+        )
+    verdict = "PASSED" if report.passed else "FAILED"
+    from plcsim import __version__
+
+    return {
+        "score": report.score,
+        "execution_time": round(report.elapsed_s, 3),
+        "output": f"{report.exercise} {report.title}: {verdict}, {report.score:g} / {report.max_score:g} points"
+        + "".join(f"\nwarning: {w}" for w in report.warnings),
+        "visibility": visibility,
+        "stdout_visibility": "hidden",
+        "tests": tests,
+        "extra_data": {
+            "max_score": report.max_score,
+            "exercise": report.exercise,
+            "seed": report.seed,
+            "error_kind": report.error_kind,
+            "plcsim_version": __version__,
+        },
+    }
+
+
+def write_gradescope(report: Report, path: str | Path, *, visibility: str = "visible") -> Path:
+    """Write :func:`gradescope_results` to ``path`` (``/autograder/results/results.json`` on Gradescope)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(gradescope_results(report, visibility=visibility), indent=2), encoding="utf-8")
+    return path
+
+
 # -- JUnit ------------------------------------------------------------------------------------------
 
 
@@ -228,8 +294,33 @@ def spreadsheet_safe(cell: str) -> str:
 _CELL = {PASSED: "pass", FAILED: "FAIL", NOT_EXERCISED: "not exercised"}
 
 
+def one_line(text: str, limit: int = 200) -> str:
+    """The first line of a message, cut to ``limit`` characters (a gradebook cell, a batch line).
+
+    >>> one_line("alice.py, line 2: syntax error\\n    t.LED = (\\n          ^")
+    'alice.py, line 2: syntax error …'
+    """
+    lines = text.strip().splitlines() or [""]
+    first = lines[0].strip()
+    cut = len(first) > limit or len(lines) > 1
+    return first[:limit] + (" …" if cut else "")
+
+
+def cpu_state(report: Report) -> str:
+    """The CPU's state over the scenarios: ``RUN``, ``STOP in <scenario>: <why>``, or ``-`` (it did not run)."""
+    if not report.runs:
+        return "-"
+    stopped = [run for run in report.runs if run.cpu_mode != "RUN" or run.cpu_error]
+    if not stopped:
+        return "RUN"
+    first = stopped[0]
+    more = f" (and {len(stopped) - 1} more)" if len(stopped) > 1 else ""
+    return f"{first.cpu_mode} in {first.scenario}{more}: {one_line(first.cpu_error or 'no reason given')}"
+
+
 def write_gradebook(reports: Sequence[Report], path: str | Path) -> Path:
-    """A CSV with one row per submission: score, max, passed, error, and each check's result."""
+    """A CSV with one row per submission: score, max, passed, the error (its kind and first line), the
+    CPU's state, and each check's result (pass, FAIL, not exercised, or - where it did not run)."""
     checks: list[str] = []
     for r in reports:
         for c in r.checks:
@@ -239,18 +330,20 @@ def write_gradebook(reports: Sequence[Report], path: str | Path) -> Path:
     path = Path(path)
     with path.open("w", newline="", encoding="utf-8") as f:
         writer = csv.writer(f)
-        header = ["submission", "score", "max_score", "percent", "passed", "error", *checks]
+        header = ["submission", "score", "max_score", "percent", "passed", "error", "cpu", *checks]
         writer.writerow([spreadsheet_safe(h) for h in header])
         for r in reports:
             results = {f"{c.scenario}: {c.check}": _CELL[c.status] for c in r.checks}
             percent = f"{100 * r.score / r.max_score:.1f}" if r.max_score else "0.0"
+            error = f"{r.error_kind or 'error'}: {one_line(r.error)}" if r.error else ""
             row = [
                 spreadsheet_safe(Path(r.submission).name),
                 f"{r.score:g}",
                 f"{r.max_score:g}",
                 percent,
                 "yes" if r.passed else "no",
-                spreadsheet_safe(r.error or ""),
+                spreadsheet_safe(error),
+                cpu_state(r),  # starts with RUN, STOP or -: never a formula
                 *(results.get(c, "-") for c in checks),
             ]
             writer.writerow(row)

@@ -398,6 +398,15 @@ def parent_analysis(exercise: Exercise, path: Path) -> Any:
     return program.compile(table).analysis
 
 
+EXPORT_DIRS = ("rrd_dir", "plots_dir", "traces_dir")
+"""The options of :func:`grade` naming folders the grader writes files into."""
+
+
+def per_student(folder: str | Path | None, submission: Path) -> Path | None:
+    """A student's own folder below ``folder`` (named like the submission's file, without ``.py``)."""
+    return None if folder is None else Path(folder) / (submission.stem or "submission")
+
+
 def grade_batch(
     exercise: Exercise,
     paths: Iterable[str | Path],
@@ -408,7 +417,10 @@ def grade_batch(
     progress: Callable[[int, int, Report], None] | None = None,
     **options: Any,
 ) -> list[Report]:
-    """Grade many submissions, ``jobs`` at a time, each in its own child process."""
+    """Grade many submissions, ``jobs`` at a time, each in its own child process.
+
+    Recordings, traces and diagrams (``rrd_dir``, ``traces_dir``, ``plots_dir``) go into one folder per
+    student below the folder given (``out/alice/led-1-alice-presses.rrd``)."""
     from concurrent.futures import ThreadPoolExecutor
 
     paths = [Path(p) for p in paths]
@@ -416,7 +428,8 @@ def grade_batch(
     done = 0
 
     def one(k: int) -> tuple[int, Report]:
-        return k, grade_sandboxed(exercise, paths[k], seed=seed, limits=limits, **options)
+        mine = {key: per_student(value, paths[k]) if key in EXPORT_DIRS else value for key, value in options.items()}
+        return k, grade_sandboxed(exercise, paths[k], seed=seed, limits=limits, **mine)
 
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
         for k, report in pool.map(one, range(len(paths))):

@@ -34,7 +34,7 @@ def test_help(capsys):
         main(["--help"])
     assert info.value.code == 0
     out = capsys.readouterr().out
-    assert out.startswith("usage: plcsim [-h] COMMAND ...")
+    assert out.startswith("usage: plcsim [-h] [--version] COMMAND ...")
     for command in ("list", "show", "run", "grade"):
         assert f"\n    {command} " in out
 

@@ -193,16 +193,17 @@ def test_gradebook_rows(reference_report, wrong_report, ex1, tmp_path):
     path = write_gradebook([reference_report, wrong_report, broken], tmp_path / "grades.csv")
     rows = list(csv.reader(path.open(encoding="utf-8")))
     header = rows[0]
-    assert header[:6] == ["submission", "score", "max_score", "percent", "passed", "error"]
-    assert len(header) == 6 + 11  # one column per scenario and check
-    assert header[6] == "three objects: D1 starts when S1 sees an object"
-    assert rows[1][:6] == ["reference.py", "11", "11", "100.0", "yes", ""]
-    assert rows[1][6:] == ["pass"] * 11
-    assert rows[2][:6] == ["wrong-coil.py", "8", "11", "72.7", "no", ""]
-    assert rows[2][6:].count("FAIL") == 3
+    assert header[:7] == ["submission", "score", "max_score", "percent", "passed", "error", "cpu"]
+    assert len(header) == 7 + 11  # one column per scenario and check
+    assert header[7] == "three objects: D1 starts when S1 sees an object"
+    assert rows[1][:7] == ["reference.py", "11", "11", "100.0", "yes", "", "RUN"]
+    assert rows[1][7:] == ["pass"] * 11
+    assert rows[2][:7] == ["wrong-coil.py", "8", "11", "72.7", "no", "", "RUN"]
+    assert rows[2][7:].count("FAIL") == 3
     assert rows[3][:5] == ["broken.py", "0", "3", "0.0", "no"]
-    assert "line 2: syntax error" in rows[3][5]
-    assert rows[3][6:] == ["-"] * 11
+    assert rows[3][5].startswith("program error: ") and "line 2: syntax error" in rows[3][5]
+    assert "\n" not in rows[3][5] and rows[3][6] == "-"  # one line; the CPU never ran
+    assert rows[3][7:] == ["-"] * 11
     assert len(rows) == 4
 
 
