@@ -36,21 +36,29 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--version", action="version", version=f"plcsim {_version()}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
 
-    sub.add_parser("list", help="list the exercises with their titles", description="List the exercises.")
+    lister = sub.add_parser("list", help="list the exercises with their titles", description="List the exercises.")
+    lister.add_argument(
+        "--exercises", metavar="PATH", help="list an instructor's exercises: a file or a folder of them"
+    )
 
     show = sub.add_parser(
         "show",
         help="show an exercise: task, I/O table, scenarios, checks",
         description="Show an exercise's task, I/O table, data blocks, scenarios and checks.",
     )
-    show.add_argument("exercise", help="textbook number (4.3.6) or slug")
+    show.add_argument("exercise", help="textbook number (4.3.6), slug, or an exercise file")
+    show.add_argument(
+        "--no-solutions", action="store_true", help="leave the shipped programs out (for a handout to students)"
+    )
 
     run = sub.add_parser(
         "run",
         help="run a program on an exercise's rig or a bare rig",
         description="Run a program against a rig and print a summary; on an exercise, also grade the run.",
     )
-    run.add_argument("target", help="an exercise (4.3.7) or a rig (PANEL, CONV1, CONV3, CONV2x2, MACHINE)")
+    run.add_argument(
+        "target", help="an exercise (4.3.7, or an exercise file) or a rig (PANEL, CONV1, CONV3, CONV2x2, MACHINE)"
+    )
     which = run.add_mutually_exclusive_group()
     which.add_argument("--program", metavar="FILE.py", help="the PLC program to run")
     which.add_argument("--reference", action="store_true", help="run the exercise's shipped reference solution")
@@ -78,7 +86,7 @@ def _parser() -> argparse.ArgumentParser:
         help="grade a submission (or a folder of them) on every scenario of an exercise",
         description="Grade PLC programs: every scenario × every check, in a sandboxed child process.",
     )
-    grade.add_argument("exercise", help="textbook number (4.3.6) or slug")
+    grade.add_argument("exercise", help="textbook number (4.3.6), slug, or an exercise file (my_course/runon.py)")
     grade.add_argument("submission", nargs="?", help="a program file or a folder of .py files")
     grade.add_argument("--reference", action="store_true", help="grade the shipped reference solution")
     grade.add_argument("--solution", metavar="NAME", help="grade a shipped solution by name")
@@ -136,20 +144,25 @@ def _list(args: argparse.Namespace) -> int:
     from rich.console import Console
     from rich.markup import escape
 
-    from exercises import all_exercises, broken_exercises
+    from exercises import all_exercises, broken_exercises, load_path
     from plcsim.report import print_exercise_list
 
-    print_exercise_list(all_exercises())
-    for bad in broken_exercises():  # the message is text, not markup: "DATA.arr[2]" must print as it is
+    if args.exercises:
+        loaded, broken = load_path(args.exercises)
+        print_exercise_list(loaded, title=f"exercises in {args.exercises}")
+    else:
+        loaded, broken = list(all_exercises()), list(broken_exercises())
+        print_exercise_list(loaded)
+    for bad in broken:  # the message is text, not markup: "DATA.arr[2]" must print as it is
         Console(stderr=True).print(f"[bold red]not loaded:[/] {escape(str(bad))}", highlight=False)
-    return EXIT_USAGE if broken_exercises() else 0
+    return EXIT_USAGE if broken else 0
 
 
 def _show(args: argparse.Namespace) -> int:
     from exercises import get
     from plcsim.report import print_exercise
 
-    print_exercise(get(args.exercise))
+    print_exercise(get(args.exercise), solutions=not args.no_solutions)
     return 0
 
 
@@ -181,9 +194,13 @@ def _run(args: argparse.Namespace) -> int:
         exercise = get(args.target)
         if args.program:
             program = Program.from_file(args.program)
+        elif args.reference or args.solution:
+            program = _shipped(exercise, args.solution).program()
         else:
-            chosen = exercise.solution(args.solution) if args.solution else exercise.reference
-            program = chosen.program()
+            raise PlcError(
+                f"which program? plcsim run {args.target} --program FILE.py runs yours; "
+                f"--reference (or --solution NAME) runs a shipped one"
+            )
         scenario = exercise.scenario(args.scenario) if args.scenario else exercise.scenarios[0]
         scenario_name = scenario.name
         options = {"cycle": args.cycle} if args.cycle else {}
@@ -328,8 +345,7 @@ def _grade(args: argparse.Namespace) -> int:
     options = {"rrd_dir": args.rrd, "plots_dir": args.plots}
     visibility = args.gradescope_visibility
     if args.reference or args.solution:
-        chosen = exercise.solution(args.solution) if args.solution else exercise.reference
-        target = chosen.path
+        target = _shipped(exercise, args.solution).path
     elif args.submission:
         target = Path(args.submission)
     else:
@@ -386,6 +402,15 @@ def _grade(args: argparse.Namespace) -> int:
         written = write_gradescope(report, args.gradescope, visibility=visibility)
         console.print(f"Gradescope results: {written}", markup=False)
     return _exit_code([report])
+
+
+def _shipped(exercise: Any, name: str | None) -> Any:
+    """A shipped solution by name, or the reference; a clear error where the exercise ships none."""
+    if name:
+        return exercise.solution(name)
+    if not any(s.kind == "reference" for s in exercise.solutions):
+        raise PlcError(f"exercise {exercise.number} ships no reference solution; run yours with --program FILE.py")
+    return exercise.reference
 
 
 def _exit_code(reports: list[Any]) -> int:

@@ -82,9 +82,12 @@ def print_batch_line(report: Any, console: Console) -> None:
     console.print(Text.assemble(mark, f" {Path(report.submission).name}: {report.score:g}/{report.max_score:g}{why}"))
 
 
-def print_exercise_list(exercises: Sequence[Any], console: Console | None = None) -> None:
+LIST_TITLE = "plcsim exercises (STU textbook, chapter 4.3)"
+
+
+def print_exercise_list(exercises: Sequence[Any], console: Console | None = None, *, title: str = LIST_TITLE) -> None:
     console = console or Console()
-    table = Table(title="plcsim exercises (STU textbook, chapter 4.3)")
+    table = Table(title=Text(title))
     for col in ("number", "slug", "title", "rig", "scenarios", "solutions"):
         table.add_column(col)
     for ex in exercises:
@@ -94,7 +97,9 @@ def print_exercise_list(exercises: Sequence[Any], console: Console | None = None
     console.print(table)
 
 
-def print_exercise(ex: Any, console: Console | None = None) -> None:
+def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool = True) -> None:
+    """An exercise's task, I/O table, data blocks, scenarios, checks and (unless ``solutions`` is False:
+    a handout for students) the programs shipped with it."""
     console = console or Console()
     console.print(
         Panel(
@@ -128,9 +133,10 @@ def print_exercise(ex: Any, console: Console | None = None) -> None:
     for c in ex.checks:
         where = f"  [dim]({', '.join(c.scenarios)})[/]" if c.scenarios else ""
         console.print(f"  • {c.name}{where}")
-    console.print(f"[bold]Shipped programs[/] (grade one with: plcsim grade {ex.number} --solution NAME)")
-    for s in ex.solutions:
-        console.print(f"  • {s.name} [{s.kind}]: {s.explanation}")
+    if solutions:
+        console.print(f"[bold]Shipped programs[/] (grade one with: plcsim grade {ex.number} --solution NAME)")
+        for s in ex.solutions:
+            console.print(Text(f"  • {s.name} [{s.kind}]: {s.explanation}"))
     if ex.notes:
         console.print(Panel(ex.notes, title="notes", expand=False, border_style="dim"))
 
