@@ -51,6 +51,13 @@ def _parser() -> argparse.ArgumentParser:
         "--no-solutions", action="store_true", help="leave the shipped programs out (for a handout to students)"
     )
 
+    reference = sub.add_parser(
+        "reference",
+        help="print the one-page reference of every instruction and name a program can use (Markdown)",
+        description="The PLC subset's instructions, declarations, types and builtins, from their docstrings.",
+    )
+    reference.add_argument("--output", metavar="OUT.md", help="write the page to a file instead of printing it")
+
     run = sub.add_parser(
         "run",
         help="run a program on an exercise's rig or a bare rig",
@@ -131,7 +138,8 @@ def main(argv: list[str] | None = None) -> int:
         _parser().print_help()
         return EXIT_USAGE
     try:
-        return {"list": _list, "show": _show, "run": _run, "grade": _grade}[args.command](args)
+        commands = {"list": _list, "show": _show, "reference": _reference, "run": _run, "grade": _grade}
+        return commands[args.command](args)
     except PlcError as exc:
         from rich.console import Console
         from rich.text import Text
@@ -163,6 +171,18 @@ def _show(args: argparse.Namespace) -> int:
     from plcsim.report import print_exercise
 
     print_exercise(get(args.exercise), solutions=not args.no_solutions)
+    return 0
+
+
+def _reference(args: argparse.Namespace) -> int:
+    from plcsim.reference import instruction_reference
+
+    page = instruction_reference()
+    if args.output:
+        Path(args.output).parent.mkdir(parents=True, exist_ok=True)
+        Path(args.output).write_text(page, encoding="utf-8")
+    else:
+        sys.stdout.write(page)
     return 0
 
 
