@@ -4,6 +4,11 @@ Each module ``exercises/ex_4_3_NN.py`` defines ``EXERCISE``; its programs (the r
 the textbook's alternatives and its deliberately wrong solutions) are PLC-subset files under
 ``exercises/solutions/4_3_NN/``.
 
+An instructor's own exercises need no change to this package: :func:`get` also takes the path of
+an exercise file (``my_course/runon.py``, defining ``EXERCISE``), and :func:`load_path` loads a
+file or every module of a folder (``plcsim grade my_course/runon.py student.py``,
+``plcsim list --exercises my_course/``).
+
 A module that cannot be loaded (a syntax error, an exercise that fails its validation) does not hide
 the others: it is left out of :func:`all_exercises`, listed by :func:`broken_exercises` with its file,
 line and error, and named when it is asked for.
@@ -12,8 +17,10 @@ line and error, and named when it is asked for.
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import pkgutil
 import re
+import sys
 import traceback
 from dataclasses import dataclass
 from functools import cache
@@ -49,14 +56,69 @@ class BrokenExercise:
 def load_package(package: str) -> tuple[list[Exercise], list[BrokenExercise]]:
     """Import every ``ex_*`` module of ``package``: the exercises that load, and the modules that do not."""
     path = importlib.import_module(package).__path__
+    modules = [
+        (f"{package}.{info.name}", str(Path(info.module_finder.path) / f"{info.name}.py"))  # type: ignore[union-attr]
+        for info in sorted(pkgutil.iter_modules(path), key=lambda i: i.name)
+        if info.name.startswith("ex_")
+    ]
+    return _load_all(modules)
+
+
+def load_path(path: str | Path) -> tuple[list[Exercise], list[BrokenExercise]]:
+    """The exercises of an instructor's file (``runon.py``) or folder (each of its modules whose name does
+    not start with ``_``; helpers go in ``_name.py``), found by path, outside this package.
+
+    The file's folder (for a package, the folder above it) is put on ``sys.path`` so that its helpers
+    import and a grading child finds the module by name. A module name that is already taken by
+    another module (``exercises``, ``plants``, ``numpy`` ...) is refused: rename the file.
+    """
+    path = Path(path).expanduser().resolve()
+    if not path.exists():
+        raise ConfigurationError(f"no exercise file or folder {path}")
+    if path.is_file() and path.suffix != ".py":
+        raise ConfigurationError(f"{path}: an exercise is a Python file (my_exercise.py) defining EXERCISE")
+    package = path if path.is_dir() and (path / "__init__.py").is_file() else None
+    if path.is_file():
+        files = [path]
+    else:
+        files = sorted(p for p in path.glob("*.py") if not p.name.startswith("_"))
+        if not files:
+            raise ConfigurationError(f"{path}: no exercise files (*.py not starting with _) in this folder")
+    prefix = f"{package.name}." if package else ""
+    modules = [(prefix + f.stem, str(f)) for f in files]
+    for name, file in [(package.name, str(package / "__init__.py"))] if package else modules:
+        _refuse_shadowing(name, Path(file))
+    root = (package.parent if package else files[0].parent).as_posix()
+    if root not in sys.path:
+        sys.path.append(root)  # last: a file of the course never shadows an installed module
+    return _load_all(modules)
+
+
+def _refuse_shadowing(name: str, file: Path) -> None:
+    """Refuse a module name that another module (loaded or installed) already answers to."""
+    loaded = sys.modules.get(name)
+    if loaded is not None:
+        where = getattr(loaded, "__file__", None)
+    else:
+        try:
+            spec = importlib.util.find_spec(name)
+        except (ImportError, ValueError):
+            spec = None
+        where = spec.origin if spec is not None else None
+        if spec is None:
+            return
+    if where is None or Path(where).resolve() != file:
+        raise ConfigurationError(
+            f"{file}: the module name {name!r} is already taken by {where or 'a built-in module'}; rename the file"
+        )
+
+
+def _load_all(modules: list[tuple[str, str]]) -> tuple[list[Exercise], list[BrokenExercise]]:
+    """Import each ``(module, file)``: the exercises that load, and the modules that do not."""
     loaded: list[Exercise] = []
     owner: dict[str, str] = {}  # number or slug -> the file that defines it
     broken: list[BrokenExercise] = []
-    for info in sorted(pkgutil.iter_modules(path), key=lambda i: i.name):
-        if not info.name.startswith("ex_"):
-            continue
-        name = f"{package}.{info.name}"
-        file = str(Path(info.module_finder.path) / f"{info.name}.py")  # type: ignore[union-attr]
+    for name, file in modules:
         try:
             exercise = _load_module(name)
         except Exception as exc:  # noqa: BLE001 - any error of one module is reported, the others load
@@ -72,6 +134,15 @@ def load_package(package: str) -> tuple[list[Exercise], list[BrokenExercise]]:
         owner[exercise.number] = owner[exercise.slug] = file
         loaded.append(exercise)
     return sorted(loaded, key=lambda e: _order(e.number)), broken
+
+
+def is_path(name: str) -> bool:
+    """True if ``name`` names an exercise file or folder rather than a number or slug.
+
+    >>> is_path("4.3.6"), is_path("conveyor-2"), is_path("my_course/runon.py"), is_path("runon.py")
+    (False, False, True, True)
+    """
+    return name.endswith(".py") or "/" in name or "\\" in name or Path(name).is_dir()
 
 
 def _load_module(name: str) -> Exercise:
@@ -113,12 +184,14 @@ def broken_exercises() -> tuple[BrokenExercise, ...]:
 
 
 def get(name: str) -> Exercise:
-    """An exercise by number (``4.3.6``) or slug (``conveyor-2``).
+    """An exercise by number (``4.3.6``), slug (``conveyor-2``) or the path of an exercise file.
 
     Raises:
         ExerciseError: the exercise's module is broken (its file, line and error are named).
         ConfigurationError: there is no such exercise.
     """
+    if is_path(name):
+        return _by_path(name)
     key = name.strip().lower()
     for exercise in all_exercises():
         if key in (exercise.number, exercise.slug):
@@ -133,4 +206,14 @@ def get(name: str) -> Exercise:
     )
 
 
-__all__ = ["BrokenExercise", "all_exercises", "broken_exercises", "get", "load_package"]
+def _by_path(name: str) -> Exercise:
+    exercises, broken = load_path(name)
+    if broken:
+        raise ExerciseError(f"the exercise {name} cannot be loaded: {broken[0]}")
+    if len(exercises) != 1:
+        numbers = ", ".join(f"{e.number} ({e.defined_at.rpartition(':')[0]})" for e in exercises)
+        raise ConfigurationError(f"{name} holds {len(exercises)} exercises ({numbers}); name the file of one")
+    return exercises[0]
+
+
+__all__ = ["BrokenExercise", "all_exercises", "broken_exercises", "get", "is_path", "load_package", "load_path"]

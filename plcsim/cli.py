@@ -34,23 +34,39 @@ def _parser() -> argparse.ArgumentParser:
         description="A teaching simulator of an S7-1200 PLC driving virtual training rigs, with graded exercises.",
         epilog="Exercises are named by textbook number (4.3.6) or slug (conveyor-2); `plcsim list` shows them.",
     )
+    p.add_argument("--version", action="version", version=f"plcsim {_version()}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
 
-    sub.add_parser("list", help="list the exercises with their titles", description="List the exercises.")
+    lister = sub.add_parser("list", help="list the exercises with their titles", description="List the exercises.")
+    lister.add_argument(
+        "--exercises", metavar="PATH", help="list an instructor's exercises: a file or a folder of them"
+    )
 
     show = sub.add_parser(
         "show",
         help="show an exercise: task, I/O table, scenarios, checks",
         description="Show an exercise's task, I/O table, data blocks, scenarios and checks.",
     )
-    show.add_argument("exercise", help="textbook number (4.3.6) or slug")
+    show.add_argument("exercise", help="textbook number (4.3.6), slug, or an exercise file")
+    show.add_argument(
+        "--no-solutions", action="store_true", help="leave the shipped programs out (for a handout to students)"
+    )
+
+    reference = sub.add_parser(
+        "reference",
+        help="print the one-page reference of every instruction and name a program can use (Markdown)",
+        description="The PLC subset's instructions, declarations, types and builtins, from their docstrings.",
+    )
+    reference.add_argument("--output", metavar="OUT.md", help="write the page to a file instead of printing it")
 
     run = sub.add_parser(
         "run",
         help="run a program on an exercise's rig or a bare rig",
         description="Run a program against a rig and print a summary; on an exercise, also grade the run.",
     )
-    run.add_argument("target", help="an exercise (4.3.7) or a rig (PANEL, CONV1, CONV3, CONV2x2, MACHINE)")
+    run.add_argument(
+        "target", help="an exercise (4.3.7, or an exercise file) or a rig (PANEL, CONV1, CONV3, CONV2x2, MACHINE)"
+    )
     which = run.add_mutually_exclusive_group()
     which.add_argument("--program", metavar="FILE.py", help="the PLC program to run")
     which.add_argument("--reference", action="store_true", help="run the exercise's shipped reference solution")
@@ -78,15 +94,30 @@ def _parser() -> argparse.ArgumentParser:
         help="grade a submission (or a folder of them) on every scenario of an exercise",
         description="Grade PLC programs: every scenario × every check, in a sandboxed child process.",
     )
-    grade.add_argument("exercise", help="textbook number (4.3.6) or slug")
+    grade.add_argument("exercise", help="textbook number (4.3.6), slug, or an exercise file (my_course/runon.py)")
     grade.add_argument("submission", nargs="?", help="a program file or a folder of .py files")
     grade.add_argument("--reference", action="store_true", help="grade the shipped reference solution")
     grade.add_argument("--solution", metavar="NAME", help="grade a shipped solution by name")
     grade.add_argument("--seed", type=int, default=1, help="scenario seed (instructors: use a secret one)")
     grade.add_argument("--json", metavar="OUT", help="write the report as JSON (a folder for a batch)")
     grade.add_argument("--junit", metavar="OUT", help="write the report as JUnit XML")
-    grade.add_argument("--rrd", metavar="DIR", help="write a rerun recording per scenario into DIR")
-    grade.add_argument("--plots", metavar="DIR", help="write a timing diagram per failed check into DIR")
+    grade.add_argument(
+        "--gradescope",
+        metavar="OUT",
+        help="write Gradescope's results.json (a folder for a batch: OUT/<student>/results.json)",
+    )
+    grade.add_argument(
+        "--gradescope-visibility",
+        default="visible",
+        choices=("hidden", "after_due_date", "after_published", "visible"),
+        help="when students see the Gradescope tests (default visible)",
+    )
+    grade.add_argument(
+        "--rrd", metavar="DIR", help="write a rerun recording per scenario into DIR (a batch: DIR/<student>/)"
+    )
+    grade.add_argument(
+        "--plots", metavar="DIR", help="write a timing diagram per failed check into DIR (a batch: DIR/<student>/)"
+    )
     grade.add_argument("--jobs", type=int, default=1, metavar="N", help="grade N submissions at a time (batch)")
     grade.add_argument("--gradebook", metavar="OUT.csv", help="write one CSV row per submission (batch)")
     grade.add_argument("--cpu-seconds", type=int, default=60, help="CPU-time limit per submission, > 0 (default 60)")
@@ -110,13 +141,26 @@ def _add_mutate_parser(sub: Any) -> None:
     mutate.add_argument("--json", metavar="OUT", help="write every mutant and its outcome as JSON")
 
 
+def _version() -> str:
+    from plcsim import __version__
+
+    return __version__
+
+
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     if args.command is None:
         _parser().print_help()
         return EXIT_USAGE
     try:
-        commands = {"list": _list, "show": _show, "run": _run, "grade": _grade, "mutate": _mutate}
+        commands = {
+            "list": _list,
+            "show": _show,
+            "reference": _reference,
+            "run": _run,
+            "grade": _grade,
+            "mutate": _mutate,
+        }
         return commands[args.command](args)
     except PlcError as exc:
         from rich.console import Console
@@ -130,20 +174,37 @@ def _list(args: argparse.Namespace) -> int:
     from rich.console import Console
     from rich.markup import escape
 
-    from exercises import all_exercises, broken_exercises
+    from exercises import all_exercises, broken_exercises, load_path
     from plcsim.report import print_exercise_list
 
-    print_exercise_list(all_exercises())
-    for bad in broken_exercises():  # the message is text, not markup: "DATA.arr[2]" must print as it is
+    if args.exercises:
+        loaded, broken = load_path(args.exercises)
+        print_exercise_list(loaded, title=f"exercises in {args.exercises}")
+    else:
+        loaded, broken = list(all_exercises()), list(broken_exercises())
+        print_exercise_list(loaded)
+    for bad in broken:  # the message is text, not markup: "DATA.arr[2]" must print as it is
         Console(stderr=True).print(f"[bold red]not loaded:[/] {escape(str(bad))}", highlight=False)
-    return EXIT_USAGE if broken_exercises() else 0
+    return EXIT_USAGE if broken else 0
 
 
 def _show(args: argparse.Namespace) -> int:
     from exercises import get
     from plcsim.report import print_exercise
 
-    print_exercise(get(args.exercise))
+    print_exercise(get(args.exercise), solutions=not args.no_solutions)
+    return 0
+
+
+def _reference(args: argparse.Namespace) -> int:
+    from plcsim.reference import instruction_reference
+
+    page = instruction_reference()
+    if args.output:
+        Path(args.output).parent.mkdir(parents=True, exist_ok=True)
+        Path(args.output).write_text(page, encoding="utf-8")
+    else:
+        sys.stdout.write(page)
     return 0
 
 
@@ -175,9 +236,13 @@ def _run(args: argparse.Namespace) -> int:
         exercise = get(args.target)
         if args.program:
             program = Program.from_file(args.program)
+        elif args.reference or args.solution:
+            program = _shipped(exercise, args.solution).program()
         else:
-            chosen = exercise.solution(args.solution) if args.solution else exercise.reference
-            program = chosen.program()
+            raise PlcError(
+                f"which program? plcsim run {args.target} --program FILE.py runs yours; "
+                f"--reference (or --solution NAME) runs a shipped one"
+            )
         scenario = exercise.scenario(args.scenario) if args.scenario else exercise.scenarios[0]
         scenario_name = scenario.name
         options = {"cycle": args.cycle} if args.cycle else {}
@@ -312,6 +377,7 @@ def _grade(args: argparse.Namespace) -> int:
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
     from exercises import get
+    from plcsim.grade_report import write_gradescope
     from plcsim.grading import Limits, grade, grade_batch, grade_sandboxed, write_gradebook, write_junit
     from plcsim.report import print_batch_line, print_report
 
@@ -319,9 +385,9 @@ def _grade(args: argparse.Namespace) -> int:
     limits = Limits(cpu_seconds=args.cpu_seconds, memory_mb=args.memory_mb)  # refused here if not positive
     exercise = get(args.exercise)
     options = {"rrd_dir": args.rrd, "plots_dir": args.plots}
+    visibility = args.gradescope_visibility
     if args.reference or args.solution:
-        chosen = exercise.solution(args.solution) if args.solution else exercise.reference
-        target = chosen.path
+        target = _shipped(exercise, args.solution).path
     elif args.submission:
         target = Path(args.submission)
     else:
@@ -356,6 +422,10 @@ def _grade(args: argparse.Namespace) -> int:
             Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
             write_junit(reports, args.junit, name=f"plcsim {exercise.number}")
             console.print(f"JUnit report: {args.junit}", markup=False)
+        if args.gradescope:
+            for r in reports:
+                write_gradescope(r, Path(args.gradescope) / r.student / "results.json", visibility=visibility)
+            console.print(f"Gradescope results: {args.gradescope}/<student>/results.json", markup=False)
         return _exit_code(reports)
     if args.no_sandbox:
         report = grade(exercise, target, seed=args.seed, **options)
@@ -370,7 +440,19 @@ def _grade(args: argparse.Namespace) -> int:
         Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
         report.to_junit(args.junit)
         console.print(f"JUnit report: {args.junit}", markup=False)
+    if args.gradescope:
+        written = write_gradescope(report, args.gradescope, visibility=visibility)
+        console.print(f"Gradescope results: {written}", markup=False)
     return _exit_code([report])
+
+
+def _shipped(exercise: Any, name: str | None) -> Any:
+    """A shipped solution by name, or the reference; a clear error where the exercise ships none."""
+    if name:
+        return exercise.solution(name)
+    if not any(s.kind == "reference" for s in exercise.solutions):
+        raise PlcError(f"exercise {exercise.number} ships no reference solution; run yours with --program FILE.py")
+    return exercise.reference
 
 
 def _exit_code(reports: list[Any]) -> int:

@@ -395,7 +395,10 @@ def _unknown_name(node: ast.Name, filename: str, visible: set[str]) -> ProgramEr
             f"{_where(filename, node)}: {node.id} is not available in PLC programs "
             f"(no file, network or interpreter access; allowed builtins: {_builtins_list()})"
         )
-    return ProgramError(f"{_where(filename, node)}: unknown name {node.id!r}{did_you_mean(node.id, visible)}")
+    return ProgramError(
+        f"{_where(filename, node)}: unknown name {node.id!r}{did_you_mean(node.id, visible)}"
+        " (every name a program can use: plcsim reference, docs/instructions.md)"
+    )
 
 
 # --------------------------------------------------------------------------------------------

@@ -15,16 +15,22 @@ from pathlib import Path
 from typing import Any
 from xml.etree import ElementTree as ET
 
-SCHEMA_VERSION = 2
-"""Version of the JSON report's layout (2: ``schema_version``, ``plcsim_version`` and ``seed`` at the top)."""
+SCHEMA_VERSION = 3
+"""Version of the JSON report's layout (2: ``schema_version``, ``plcsim_version`` and ``seed`` at the top;
+3: each check's ``status``: passed, failed or not exercised)."""
 
 ERROR_KINDS_OF_THE_GRADER = frozenset({"grader error"})
 """Outcomes that are the grader's or the instructor's fault, never the student's."""
 
 
+PASSED, FAILED, NOT_EXERCISED = "passed", "failed", "not exercised"
+"""The statuses of a check: ``not exercised`` held only because the behaviour it guards never
+happened (see :mod:`plcsim.exercised`); it earns nothing and is not passed."""
+
+
 @dataclass
 class CheckResult:
-    """One check in one scenario."""
+    """One check in one scenario; ``status`` is passed, failed or not exercised."""
 
     scenario: str
     check: str
@@ -36,6 +42,11 @@ class CheckResult:
     signals: list[str] = field(default_factory=list)
     window: tuple[int, int] | None = None
     diagram: str | None = None
+    status: str = ""
+
+    def __post_init__(self) -> None:
+        if not self.status:
+            self.status = PASSED if self.passed else FAILED
 
 
 @dataclass
@@ -102,7 +113,11 @@ class Report:
         return text
 
     def failed(self) -> list[CheckResult]:
+        """The checks that did not pass: failed or not exercised."""
         return [c for c in self.checks if not c.passed]
+
+    def not_exercised(self) -> list[CheckResult]:
+        return [c for c in self.checks if c.status == NOT_EXERCISED]
 
     def result(self, check: str, scenario: str | None = None) -> CheckResult:
         """The result of one check (in one scenario, or the first failing/any scenario)."""
@@ -114,8 +129,75 @@ class Report:
 
     def to_junit(self, path: str | Path | None = None) -> str:
         """JUnit XML: one test suite per scenario, one test case per check; a submission that did not
-        run, a CPU STOP and a grader error are ``<error>``s, a failed check a ``<failure>``."""
+        run, a CPU STOP and a grader error are ``<error>``s, a failed check a ``<failure>``, a check
+        that was not exercised ``<skipped>``."""
         return write_junit([self], path, name=f"plcsim {self.exercise}")
+
+
+# -- Gradescope --------------------------------------------------------------------------------------
+
+GRADESCOPE_VISIBILITY = ("hidden", "after_due_date", "after_published", "visible")
+"""The visibility values Gradescope's autograder results (``results.json``) accept."""
+
+
+def gradescope_results(report: Report, *, visibility: str = "visible") -> dict[str, Any]:
+    """Gradescope's ``results.json`` of a report: the score, one test per scenario and check (its
+    score, max_score, status passed/failed and the reason as output), and, when the submission did not
+    run, one test saying why. A not-exercised check is a failed test tagged ``not exercised``. The
+    maximum and plcsim's version go into ``extra_data`` (Gradescope takes the maximum from the tests)."""
+    if visibility not in GRADESCOPE_VISIBILITY:
+        raise ValueError(f"Gradescope visibility is one of {', '.join(GRADESCOPE_VISIBILITY)}, not {visibility!r}")
+    tests = [
+        {
+            "name": f"{c.scenario}: {c.check}",
+            "score": c.points,
+            "max_score": c.max_points,
+            "status": PASSED if c.passed else FAILED,
+            "output": c.message + (f"\ntiming diagram: {c.diagram}" if c.diagram else ""),
+            "tags": [c.status] if c.status == NOT_EXERCISED else [],
+            "visibility": visibility,
+        }
+        for c in report.checks
+    ]
+    if report.error:
+        blame = " (a fault of the grader or the exercise, not of the submission)" if report.grader_failed else ""
+        tests.append(
+            {
+                "name": report.error_kind or "error",
+                "score": 0.0,
+                "max_score": 0.0 if report.checks else report.max_score,
+                "status": FAILED,
+                "output": report.error + blame,
+                "visibility": visibility,
+            }
+        )
+    verdict = "PASSED" if report.passed else "FAILED"
+    from plcsim import __version__
+
+    return {
+        "score": report.score,
+        "execution_time": round(report.elapsed_s, 3),
+        "output": f"{report.exercise} {report.title}: {verdict}, {report.score:g} / {report.max_score:g} points"
+        + "".join(f"\nwarning: {w}" for w in report.warnings),
+        "visibility": visibility,
+        "stdout_visibility": "hidden",
+        "tests": tests,
+        "extra_data": {
+            "max_score": report.max_score,
+            "exercise": report.exercise,
+            "seed": report.seed,
+            "error_kind": report.error_kind,
+            "plcsim_version": __version__,
+        },
+    }
+
+
+def write_gradescope(report: Report, path: str | Path, *, visibility: str = "visible") -> Path:
+    """Write :func:`gradescope_results` to ``path`` (``/autograder/results/results.json`` on Gradescope)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(gradescope_results(report, visibility=visibility), indent=2), encoding="utf-8")
+    return path
 
 
 # -- JUnit ------------------------------------------------------------------------------------------
@@ -152,7 +234,9 @@ def _suites(report: Report) -> list[ET.Element]:
             _error(_case(suite, "CPU run", classname, 0.0), "CPU STOP", stopped[scenario])
         for r in results:
             case = _case(suite, r.check, classname, per_run / max(1, len(results)) if scenario != "static" else 0.0)
-            if not r.passed:
+            if r.status == NOT_EXERCISED:
+                ET.SubElement(case, "skipped", message=r.message).text = r.message
+            elif not r.passed:
                 failure = ET.SubElement(case, "failure", message=r.message, type="check failed")
                 failure.text = r.message + (f"\ntiming diagram: {r.diagram}" if r.diagram else "")
         suites.append(suite)
@@ -175,19 +259,21 @@ def _error(case: ET.Element, kind: str, message: str) -> None:
     ET.SubElement(case, "error", message=message, type=kind).text = message
 
 
+_COUNTED = {"failures": "failure", "errors": "error", "skipped": "skipped"}
+"""The count attributes of a suite and the element of a test case each counts."""
+
+
 def _count(element: ET.Element, children: Sequence[ET.Element], seconds: float) -> None:
-    """Set tests/failures/errors/time of a suite (children: test cases) or of the root (children: suites)."""
-    if element.tag == "testsuite":
-        tests = len(children)
-        failures = sum(c.find("failure") is not None for c in children)
-        errors = sum(c.find("error") is not None for c in children)
-    else:
-        tests = sum(int(s.get("tests", "0")) for s in children)
-        failures = sum(int(s.get("failures", "0")) for s in children)
-        errors = sum(int(s.get("errors", "0")) for s in children)
-    element.set("tests", str(tests))
-    element.set("failures", str(failures))
-    element.set("errors", str(errors))
+    """Set tests/failures/errors/skipped/time of a suite (children: test cases) or of the root (children:
+    suites). A check that was not exercised is ``skipped``: it did not run as a test of the behaviour."""
+    suite = element.tag == "testsuite"
+    element.set("tests", str(len(children) if suite else sum(int(s.get("tests", "0")) for s in children)))
+    for key, tag in _COUNTED.items():
+        if suite:
+            number = sum(c.find(tag) is not None for c in children)
+        else:
+            number = sum(int(s.get(key, "0")) for s in children)
+        element.set(key, str(number))
     element.set("time", f"{seconds:.3f}")
 
 
@@ -205,8 +291,36 @@ def spreadsheet_safe(cell: str) -> str:
     return "'" + cell if cell.startswith(_FORMULA_STARTS) else cell
 
 
+_CELL = {PASSED: "pass", FAILED: "FAIL", NOT_EXERCISED: "not exercised"}
+
+
+def one_line(text: str, limit: int = 200) -> str:
+    """The first line of a message, cut to ``limit`` characters (a gradebook cell, a batch line).
+
+    >>> one_line("alice.py, line 2: syntax error\\n    t.LED = (\\n          ^")
+    'alice.py, line 2: syntax error …'
+    """
+    lines = text.strip().splitlines() or [""]
+    first = lines[0].strip()
+    cut = len(first) > limit or len(lines) > 1
+    return first[:limit] + (" …" if cut else "")
+
+
+def cpu_state(report: Report) -> str:
+    """The CPU's state over the scenarios: ``RUN``, ``STOP in <scenario>: <why>``, or ``-`` (it did not run)."""
+    if not report.runs:
+        return "-"
+    stopped = [run for run in report.runs if run.cpu_mode != "RUN" or run.cpu_error]
+    if not stopped:
+        return "RUN"
+    first = stopped[0]
+    more = f" (and {len(stopped) - 1} more)" if len(stopped) > 1 else ""
+    return f"{first.cpu_mode} in {first.scenario}{more}: {one_line(first.cpu_error or 'no reason given')}"
+
+
 def write_gradebook(reports: Sequence[Report], path: str | Path) -> Path:
-    """A CSV with one row per submission: score, max, passed, error, and each check's result."""
+    """A CSV with one row per submission: score, max, passed, the error (its kind and first line), the
+    CPU's state, and each check's result (pass, FAIL, not exercised, or - where it did not run)."""
     checks: list[str] = []
     for r in reports:
         for c in r.checks:
@@ -216,18 +330,20 @@ def write_gradebook(reports: Sequence[Report], path: str | Path) -> Path:
     path = Path(path)
     with path.open("w", newline="", encoding="utf-8") as f:
         writer = csv.writer(f)
-        header = ["submission", "score", "max_score", "percent", "passed", "error", *checks]
+        header = ["submission", "score", "max_score", "percent", "passed", "error", "cpu", *checks]
         writer.writerow([spreadsheet_safe(h) for h in header])
         for r in reports:
-            results = {f"{c.scenario}: {c.check}": ("pass" if c.passed else "FAIL") for c in r.checks}
+            results = {f"{c.scenario}: {c.check}": _CELL[c.status] for c in r.checks}
             percent = f"{100 * r.score / r.max_score:.1f}" if r.max_score else "0.0"
+            error = f"{r.error_kind or 'error'}: {one_line(r.error)}" if r.error else ""
             row = [
                 spreadsheet_safe(Path(r.submission).name),
                 f"{r.score:g}",
                 f"{r.max_score:g}",
                 percent,
                 "yes" if r.passed else "no",
-                spreadsheet_safe(r.error or ""),
+                spreadsheet_safe(error),
+                cpu_state(r),  # starts with RUN, STOP or -: never a formula
                 *(results.get(c, "-") for c in checks),
             ]
             writer.writerow(row)

@@ -22,7 +22,8 @@ from plcsim.check import StaticCheck
 from plcsim.check.base import Context
 from plcsim.errors import ConfigurationError, PlcError, SubsetError
 from plcsim.exercise import Exercise
-from plcsim.grade_report import CheckResult, Report, ScenarioRun, write_gradebook, write_junit
+from plcsim.exercised import Activity, scenario_writes, unprovoked
+from plcsim.grade_report import NOT_EXERCISED, CheckResult, Report, ScenarioRun, write_gradebook, write_junit
 from plcsim.literals import format_ns
 from plcsim.program import Program
 from plcsim.run_result import RunResult
@@ -135,24 +136,38 @@ def evaluate(exercise: Exercise, runs: Sequence[RunResult], analysis: Any, repor
     """Evaluate the exercise's checks on the runs (static checks once, on ``analysis``) into ``report``.
 
     A run that ended before its scenario did fails its run-time checks: a partial trace proves nothing.
-    A check that raises is a grader error (its own outcome), never a point lost by the student.
+    A check that holds only because the program never drove what it guards is *not exercised*
+    (:mod:`plcsim.exercised`): 0 points. A check that raises is a grader error (its own outcome),
+    never a point lost by the student.
     """
     durations = {s.name: s.duration_ns for s in exercise.scenarios}
+    graded = [exercise.scenario(run.scenario) for run in runs]
+    activity = Activity.of((run.trace for run in runs), written_by_scenario=scenario_writes(graded))
+    if runs and not activity.driven:
+        report.warnings.append(
+            "the program drove no output or tag in any scenario (it did nothing, or its CPU stopped at once): "
+            "no check earns points"
+        )
+    contexts = [Context.of(run.trace, analysis) for run in runs]
     static_done = False
     try:
-        for run in runs:
+        for run, ctx in zip(runs, contexts, strict=True):
             report.runs.append(
                 ScenarioRun(
                     run.scenario, run.seed, run.simulated_ns, run.scans, run.cpu_mode, run.cpu_error or run.plant_error
                 )
             )
-            ctx = Context.of(run.trace, analysis)
             cut_short = run.simulated_ns < durations[run.scenario]
             for gc in exercise.checks_for(run.scenario):
                 static = isinstance(gc.check, StaticCheck)
                 if static and static_done:
                     continue
-                report.checks.append(_check(gc, ctx, run, static, cut_short, durations[run.scenario]))
+                result = _check(gc, ctx, run, static, cut_short, durations[run.scenario])
+                if result.passed:
+                    why = activity.unexercised(gc.check) or _unprovoked(gc.check, [ctx] if not static else contexts)
+                    if why:
+                        result = _not_exercised(result, why, run, static)
+                report.checks.append(result)
             static_done = True
     except GraderError as exc:
         report.error, report.error_kind = str(exc), "grader error"
@@ -160,6 +175,19 @@ def evaluate(exercise: Exercise, runs: Sequence[RunResult], analysis: Any, repor
     report.score = 0.0 if report.error else sum(c.points for c in report.checks)
     report.passed = bool(report.checks) and all(c.passed for c in report.checks) and report.error is None
     return report
+
+
+def _unprovoked(check: Any, contexts: Sequence[Context]) -> str | None:
+    """Why the check's ``exercised_by`` condition happened in none of ``contexts`` (None: it did somewhere)."""
+    reasons = [unprovoked(check, ctx) for ctx in contexts]
+    return None if any(r is None for r in reasons) else reasons[0]
+
+
+def _not_exercised(result: CheckResult, why: str, run: RunResult, static: bool) -> CheckResult:
+    stopped = f" [the CPU stopped: {run.cpu_error}]" if run.cpu_error and not static else ""
+    result.message = f"not exercised: {why}, so its pass shows nothing (the check said: {result.message}){stopped}"
+    result.passed, result.points, result.status = False, 0.0, NOT_EXERCISED
+    return result
 
 
 def _check(gc: Any, ctx: Context, run: RunResult, static: bool, cut_short: bool, duration_ns: int) -> CheckResult:
@@ -370,6 +398,15 @@ def parent_analysis(exercise: Exercise, path: Path) -> Any:
     return program.compile(table).analysis
 
 
+EXPORT_DIRS = ("rrd_dir", "plots_dir", "traces_dir")
+"""The options of :func:`grade` naming folders the grader writes files into."""
+
+
+def per_student(folder: str | Path | None, submission: Path) -> Path | None:
+    """A student's own folder below ``folder`` (named like the submission's file, without ``.py``)."""
+    return None if folder is None else Path(folder) / (submission.stem or "submission")
+
+
 def grade_batch(
     exercise: Exercise,
     paths: Iterable[str | Path],
@@ -380,7 +417,10 @@ def grade_batch(
     progress: Callable[[int, int, Report], None] | None = None,
     **options: Any,
 ) -> list[Report]:
-    """Grade many submissions, ``jobs`` at a time, each in its own child process."""
+    """Grade many submissions, ``jobs`` at a time, each in its own child process.
+
+    Recordings, traces and diagrams (``rrd_dir``, ``traces_dir``, ``plots_dir``) go into one folder per
+    student below the folder given (``out/alice/led-1-alice-presses.rrd``)."""
     from concurrent.futures import ThreadPoolExecutor
 
     paths = [Path(p) for p in paths]
@@ -388,7 +428,8 @@ def grade_batch(
     done = 0
 
     def one(k: int) -> tuple[int, Report]:
-        return k, grade_sandboxed(exercise, paths[k], seed=seed, limits=limits, **options)
+        mine = {key: per_student(value, paths[k]) if key in EXPORT_DIRS else value for key, value in options.items()}
+        return k, grade_sandboxed(exercise, paths[k], seed=seed, limits=limits, **mine)
 
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
         for k, report in pool.map(one, range(len(paths))):

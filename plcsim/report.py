@@ -33,11 +33,10 @@ def print_report(report: Any, console: Console | None = None, *, verbose: bool =
     table.add_column("", justify="center")
     table.add_column("points", justify="right")
     for c in report.checks:
-        mark = Text("✓", "green") if c.passed else Text("✗", "red")
-        table.add_row(Text(c.scenario), Text(c.check), mark, f"{c.points:g}/{c.max_points:g}")
+        table.add_row(Text(c.scenario), Text(c.check), _mark(c.status), f"{c.points:g}/{c.max_points:g}")
     console.print(table)
     for c in report.failed():
-        console.print(Text.assemble(("✗", "red"), " ", (f"{c.scenario}: {c.check}", "bold"), f"\n    {c.message}"))
+        console.print(Text.assemble(_mark(c.status), " ", (f"{c.scenario}: {c.check}", "bold"), f"\n    {c.message}"))
         if c.diagram:
             console.print(Text(f"    timing diagram: {c.diagram}"))
     if verbose:
@@ -52,11 +51,25 @@ def print_report(report: Any, console: Console | None = None, *, verbose: bool =
     for w in report.warnings:
         console.print(Text.assemble(("warning:", "yellow"), f" {w}"))
     verdict = Text("PASSED", "bold green") if report.passed else Text("FAILED", "bold red")
+    idle = len(report.not_exercised())
     console.print(
         Text.assemble(
-            verdict, "  score ", (f"{report.score:g}", "bold"), f" / {report.max_score:g}  ({report.elapsed_s:.2f} s)"
+            verdict,
+            "  score ",
+            (f"{report.score:g}", "bold"),
+            f" / {report.max_score:g}",
+            (f"  ({idle} not exercised)", "yellow") if idle else "",
+            f"  ({report.elapsed_s:.2f} s)",
         )
     )
+
+
+_MARKS = {"passed": ("✓", "green"), "failed": ("✗", "red"), "not exercised": ("–", "yellow")}
+"""The mark of each check status; a check that was not exercised earned nothing but did not fail."""
+
+
+def _mark(status: str) -> Text:
+    return Text(*_MARKS[status])
 
 
 def print_batch_line(report: Any, console: Console) -> None:
@@ -69,9 +82,12 @@ def print_batch_line(report: Any, console: Console) -> None:
     console.print(Text.assemble(mark, f" {Path(report.submission).name}: {report.score:g}/{report.max_score:g}{why}"))
 
 
-def print_exercise_list(exercises: Sequence[Any], console: Console | None = None) -> None:
+LIST_TITLE = "plcsim exercises (STU textbook, chapter 4.3)"
+
+
+def print_exercise_list(exercises: Sequence[Any], console: Console | None = None, *, title: str = LIST_TITLE) -> None:
     console = console or Console()
-    table = Table(title="plcsim exercises (STU textbook, chapter 4.3)")
+    table = Table(title=Text(title))
     for col in ("number", "slug", "title", "rig", "scenarios", "solutions"):
         table.add_column(col)
     for ex in exercises:
@@ -81,7 +97,9 @@ def print_exercise_list(exercises: Sequence[Any], console: Console | None = None
     console.print(table)
 
 
-def print_exercise(ex: Any, console: Console | None = None) -> None:
+def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool = True) -> None:
+    """An exercise's task, I/O table, data blocks, scenarios, checks and (unless ``solutions`` is False:
+    a handout for students) the programs shipped with it."""
     console = console or Console()
     console.print(
         Panel(
@@ -115,9 +133,10 @@ def print_exercise(ex: Any, console: Console | None = None) -> None:
     for c in ex.checks:
         where = f"  [dim]({', '.join(c.scenarios)})[/]" if c.scenarios else ""
         console.print(f"  • {c.name}{where}")
-    console.print(f"[bold]Shipped programs[/] (grade one with: plcsim grade {ex.number} --solution NAME)")
-    for s in ex.solutions:
-        console.print(f"  • {s.name} [{s.kind}]: {s.explanation}")
+    if solutions:
+        console.print(f"[bold]Shipped programs[/] (grade one with: plcsim grade {ex.number} --solution NAME)")
+        for s in ex.solutions:
+            console.print(Text(f"  • {s.name} [{s.kind}]: {s.explanation}"))
     if ex.notes:
         console.print(Panel(ex.notes, title="notes", expand=False, border_style="dim"))
 

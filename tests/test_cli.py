@@ -34,7 +34,7 @@ def test_help(capsys):
         main(["--help"])
     assert info.value.code == 0
     out = capsys.readouterr().out
-    assert out.startswith("usage: plcsim [-h] COMMAND ...")
+    assert out.startswith("usage: plcsim [-h] [--version] COMMAND ...")
     for command in ("list", "show", "run", "grade"):
         assert f"\n    {command} " in out
 
@@ -65,7 +65,7 @@ def test_show(capsys):
         "three objects (25 s)",
         "placed mid-belt (4 s)",
         "D1 stops when the object reaches S2  (three objects)",
-        "reference : S1 -> SET D1, S2 -> RESET D1",
+        "reference [reference]: S1 -> SET D1, S2 -> RESET D1",  # the kind is text, not Rich markup
         "wrong-coil",
     ):
         assert text in out, text

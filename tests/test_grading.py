@@ -118,9 +118,14 @@ def test_wrong_solution_of_4_3_5_fails_the_checks_that_expose_it(wrong_report):
 
 
 def test_only_some_scenarios(ex5):
-    r = grade(ex5, ex5.reference.path, scenarios=["placed at S2"])
-    assert [c.scenario for c in r.checks] == ["placed at S2"] * 3
-    assert (r.score, r.max_score, r.passed) == (3.0, 3.0, True)
+    r = grade(ex5, ex5.reference.path, scenarios=["placed at S2", "three objects"])
+    assert [c.scenario for c in r.checks].count("placed at S2") == 3
+    assert (r.score, r.max_score, r.passed) == (9.0, 9.0, True)
+    # alone, "placed at S2" (the belt must stay off) cannot tell the reference from a program that does
+    # nothing: its checks are not exercised (plcsim.exercised)
+    alone = grade(ex5, ex5.reference.path, scenarios=["placed at S2"])
+    assert [c.status for c in alone.checks] == ["not exercised"] * 3
+    assert (alone.score, alone.max_score, alone.passed) == (0.0, 3.0, False)
 
 
 # -- report formats ---------------------------------------------------------------------------------
@@ -188,16 +193,17 @@ def test_gradebook_rows(reference_report, wrong_report, ex1, tmp_path):
     path = write_gradebook([reference_report, wrong_report, broken], tmp_path / "grades.csv")
     rows = list(csv.reader(path.open(encoding="utf-8")))
     header = rows[0]
-    assert header[:6] == ["submission", "score", "max_score", "percent", "passed", "error"]
-    assert len(header) == 6 + 11  # one column per scenario and check
-    assert header[6] == "three objects: D1 starts when S1 sees an object"
-    assert rows[1][:6] == ["reference.py", "11", "11", "100.0", "yes", ""]
-    assert rows[1][6:] == ["pass"] * 11
-    assert rows[2][:6] == ["wrong-coil.py", "8", "11", "72.7", "no", ""]
-    assert rows[2][6:].count("FAIL") == 3
+    assert header[:7] == ["submission", "score", "max_score", "percent", "passed", "error", "cpu"]
+    assert len(header) == 7 + 11  # one column per scenario and check
+    assert header[7] == "three objects: D1 starts when S1 sees an object"
+    assert rows[1][:7] == ["reference.py", "11", "11", "100.0", "yes", "", "RUN"]
+    assert rows[1][7:] == ["pass"] * 11
+    assert rows[2][:7] == ["wrong-coil.py", "8", "11", "72.7", "no", "", "RUN"]
+    assert rows[2][7:].count("FAIL") == 3
     assert rows[3][:5] == ["broken.py", "0", "3", "0.0", "no"]
-    assert "line 2: syntax error" in rows[3][5]
-    assert rows[3][6:] == ["-"] * 11
+    assert rows[3][5].startswith("program error: ") and "line 2: syntax error" in rows[3][5]
+    assert "\n" not in rows[3][5] and rows[3][6] == "-"  # one line; the CPU never ran
+    assert rows[3][7:] == ["-"] * 11
     assert len(rows) == 4
 
 

@@ -94,7 +94,7 @@ def test_json_report_names_its_schema_plcsim_version_and_seed(ex1):
     r = grade(ex1, ex1.reference.path, seed=7)
     data = json.loads(r.to_json())
     assert list(data)[:3] == ["schema_version", "plcsim_version", "seed"]
-    assert (data["schema_version"], data["plcsim_version"], data["seed"]) == (2, plcsim.__version__, 7)
+    assert (data["schema_version"], data["plcsim_version"], data["seed"]) == (3, plcsim.__version__, 7)
     assert Report.from_dict(data) == r
 
 

@@ -150,6 +150,7 @@ class Check:
     name: str | None = None
     weight: float = 1.0
     extra_signals: tuple[str, ...] = ()
+    exercise_conditions: tuple[Any, ...] = ()
 
     def __post_init__(self) -> None:
         self.defined_at = defined_at()  # where the instructor wrote it, for the errors of load-time validation
@@ -162,7 +163,7 @@ class Check:
 
     def names(self) -> Names:
         """The names the check reads: its own parts' (each check adds them) and the signals it plots."""
-        return Names(tuple(self.extra_signals))
+        return Names(tuple(self.extra_signals)) + names_of(*self.exercise_conditions)
 
     def named(self, name: str) -> Check:
         """Give the check the name reports show."""
@@ -172,6 +173,16 @@ class Check:
     def plotting(self, *signals: str) -> Check:
         """Add signals to the timing diagram of a failure (for context: the button beside the LED)."""
         self.extra_signals = tuple(signals)
+        return self
+
+    def exercised_by(self, *whats: Any) -> Check:
+        """Count the check only in scenarios in which one of ``whats`` happened: an occurrence
+        (``rises("D3")``) or a condition (a tag name, ``value("N") > 1``) true in some scan. Without
+        it the generic rule of :mod:`plcsim.exercised` applies alone."""
+        from plcsim.check.conditions import as_condition
+        from plcsim.check.occurrences import Occurrences
+
+        self.exercise_conditions = tuple(w if isinstance(w, Occurrences) else as_condition(w) for w in whats)
         return self
 
     def points(self, weight: float) -> Check:

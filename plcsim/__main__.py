@@ -1,0 +1,7 @@
+"""``python -m plcsim``: the same as the ``plcsim`` command (where the script is not on PATH)."""
+
+import sys
+
+from plcsim.cli import main
+
+sys.exit(main())
