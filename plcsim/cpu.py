@@ -32,7 +32,7 @@ import ast
 import datetime as _dt
 import random
 from collections import deque
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import replace
 from typing import Any
 
@@ -47,6 +47,8 @@ from plcsim.instructions.system import make_move, make_rd_loc_t
 from plcsim.instructions.timers import IecTimer
 from plcsim.literals import datetime_literal, format_ns, to_ns
 from plcsim.memory import Address, ByteMemory, parse_address
+from plcsim.observers import Subscribers, assigned_hook
+from plcsim.profiles.s7 import DEFAULT_INTERRUPT_PERIOD
 from plcsim.program import CompiledProgram, Program, TaskSpec, runtime_namespace
 from plcsim.tags import (
     PlcStruct,
@@ -94,9 +96,16 @@ class CPU(TaskRunner, HostAccess):
         self.inputs: dict[str, Any] = {}
         self.outputs: dict[str, Any] = {}
         self.forces: dict[str, Any] = {}
-        self.on_scan_end: Callable[[CPU], None] | None = None
-        self.on_task_end: Callable[[CPU, str, int, int], None] | None = None
-        self.on_cut: Callable[[CPU, str, int], None] | None = None
+        self.scan_end = Subscribers()
+        """Called as ``(cpu)`` when an OB1 scan has written its outputs."""
+        self.task_end = Subscribers()
+        """Called as ``(cpu, task name, start ns, end ns)`` when another task's execution has ended."""
+        self.cut = Subscribers()
+        """Called as ``(cpu, task name, start ns)`` for each execution a power cut interrupts."""
+        self.task_numbers: dict[str, int] = {}
+        """Task name -> its number in the trace's task column (from the loaded program's tasks)."""
+        self.scan_task_number = 1
+        """The cyclic task's number (the rows of OB1 scans)."""
         self.scan_count = 0
         self.scan_start_ns = 0
         self.scan_end_ns = 0
@@ -121,6 +130,10 @@ class CPU(TaskRunner, HostAccess):
             self.load(program)
             if start:
                 self.start()
+
+    on_scan_end = assigned_hook("scan_end", "One :attr:`scan_end` subscriber, set by assignment.")
+    on_task_end = assigned_hook("task_end", "One :attr:`task_end` subscriber, set by assignment.")
+    on_cut = assigned_hook("cut", "One :attr:`cut` subscriber, set by assignment.")
 
     # -- tag table ----------------------------------------------------------------------------
 
@@ -211,10 +224,6 @@ class CPU(TaskRunner, HostAccess):
                 timer._inert = True
         tasks = []
         for name, spec in program.tasks.items():
-            if spec.kind == "interrupt":
-                period = self.config.periods.get(name)
-                if period is not None and not _period_given(program, name):
-                    spec.period_ns = to_ns(period, f"{name} period")
             merged = compiled.merged.get(name)
             spans = [
                 (program.functions[n.name].lineno, program.functions[n.name].end_lineno or 0) for n in spec.networks
@@ -230,15 +239,20 @@ class CPU(TaskRunner, HostAccess):
             else:
                 task.inputs = [n for n in self.input_names if n in used]
                 task.outputs = [n for n in self.output_names if n in used]
+            if spec.kind == "interrupt" and spec.period_ns is None:  # the hardware configuration's, or the default
+                period = self.config.periods.get(name, DEFAULT_INTERRUPT_PERIOD)
+                task.period_ns = to_ns(period, f"{name} period")
             if task.duration_ns is None:
                 task.duration_ns = self.config.interrupt_duration_ns if spec.kind == "interrupt" else 0
             tasks.append(task)
         self._ob1 = next((t for t in tasks if t.kind == "cyclic"), None) or RunningTask(
-            TaskSpec("OB1", "cyclic", []), []
+            TaskSpec("OB1", "cyclic", [], number=1), []
         )
         self._ob1.inputs, self._ob1.outputs = list(self.input_names), list(self.output_names)
         self._interrupts = sorted((t for t in tasks if t.kind == "interrupt"), key=lambda t: -t.priority)
         self._startup = [t for t in tasks if t.kind == "startup"]
+        self.task_numbers = {t.name: t.number for t in [self._ob1, *tasks]}
+        self.scan_task_number = self._ob1.number
         self._plan_cyclic()
         self._diag("download", f"program {program.filename} loaded: {', '.join(program.tasks) or 'no OBs'}")
         if was_running:
@@ -322,13 +336,13 @@ class CPU(TaskRunner, HostAccess):
         """Power off and on: retain tags survive, everything else restarts from its start value.
 
         An execution the power cut interrupts keeps what its networks already did (a retentive tag it
-        changed keeps the change, as on a real S7-1200); :attr:`on_cut` reports it, so that the trace
+        changed keeps the change, as on a real S7-1200); :attr:`cut` reports it, so that the trace
         has a row for it before the restart."""
         cut = [(ex.task.name, ex.t0) for ex in reversed(self._stack)]
         self.stop(reason="power off")
-        if self.on_cut is not None:
+        if self.cut.call is not None:
             for task, t0 in cut:
-                self.on_cut(self, task, t0)
+                self.cut.call(self, task, t0)
         self.start()
 
     # -- running ------------------------------------------------------------------------------
@@ -419,14 +433,6 @@ def _address_strings(program: Program) -> list[str]:
                 continue
             found.append(node.value)
     return found
-
-
-def _period_given(program: Program, name: str) -> bool:
-    for stmt in program.tree.body:
-        if isinstance(stmt, ast.Assign) and any(isinstance(t, ast.Name) and t.id == name for t in stmt.targets):
-            call = stmt.value
-            return isinstance(call, ast.Call) and any(k.arg == "period" for k in call.keywords)
-    return False
 
 
 __all__ = ["CPU", "CPUConfig", "DiagnosticEntry", "RUN", "STOP", "CLOCK_BITS", "SYSTEM_BITS", "Bool", "Int"]

@@ -33,7 +33,6 @@ from __future__ import annotations
 import ast
 import builtins
 import inspect
-import re
 import textwrap
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -61,6 +60,7 @@ from plcsim.errors import DeclarationError, NoOB1Error, PlcError, ProgramError, 
 from plcsim.instructions import BOOL_RESULTS, CPU_BOUND, FB_TYPES, PURE_INSTRUCTIONS
 from plcsim.literals import time_ms, to_ns
 from plcsim.module_level import NetworkRef, evaluate_module
+from plcsim.profiles.s7 import DEFAULT_INTERRUPT_PRIORITY, is_ob_name, ob_number, task_kind
 from plcsim.program_text import read_program_text
 from plcsim.safe_math import SAFE_FUNCTIONS, bounded_range
 from plcsim.tags import DB, DataBlock, Tag, TagTable
@@ -72,8 +72,6 @@ MAX_VALUES = 1_000_000
 MAX_MERGED_STATEMENTS = 5000
 """Above this many statements an OB's networks are not merged into one function (see merge_networks):
 the merge speeds up scans of ordinary programs and would only slow down loading a huge one."""
-DEFAULT_INTERRUPT_PERIOD = "100ms"
-DEFAULT_INTERRUPT_PRIORITY = 8
 
 
 def label(name: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
@@ -97,7 +95,8 @@ class CyclicInterrupt:
     """
 
     networks: Any
-    period: str | int = DEFAULT_INTERRUPT_PERIOD
+    period: str | int | None = None
+    """None: the hardware configuration's period (``CPUConfig.periods``), else 100 ms."""
     phase: str | int = "0ms"
     priority: int = DEFAULT_INTERRUPT_PRIORITY
     duration: str | int | None = None
@@ -167,27 +166,13 @@ class TaskSpec:
     name: str
     kind: str
     networks: list[NetworkSpec]
-    period_ns: int = 0
+    period_ns: int | None = None
+    """None: the program gives none (the CPU takes the hardware configuration's, or the default)."""
     phase_ns: int = 0
     priority: int = 1
     duration_ns: int | None = None
-
-
-_OB_RE = re.compile(r"^OB(\d+)$")
-
-
-def task_kind(name: str) -> tuple[str, int]:
-    """Kind and default priority of an OB by its number (S7-1200 numbering)."""
-    number = int(_OB_RE.match(name).group(1))  # type: ignore[union-attr]
-    if number == 1:
-        return "cyclic", 1
-    if 30 <= number <= 38:
-        return "interrupt", DEFAULT_INTERRUPT_PRIORITY
-    if number == 100:
-        return "startup", 1
-    raise ProgramError(
-        f"{name} is not supported: use OB1 (program cycle), OB30..OB38 (cyclic interrupts) or OB100 (startup)"
-    )
+    number: int = 0
+    """The task's number in the trace's task column (the OB number on an S7)."""
 
 
 @dataclass
@@ -307,7 +292,7 @@ class Program:
         self.constants = values.constants
         self._declaration_lines = values.lines
         for name in values.order:
-            if _OB_RE.match(name):
+            if is_ob_name(name):
                 continue
             value = values.declared.get(name)
             line = values.lines[name]
@@ -328,7 +313,7 @@ class Program:
         for name, value in values.bindings.items():
             self.tasks[name] = self._task(name, value, values.labels, values.lines[name])
         for name in self.functions:
-            if _OB_RE.match(name) and name not in self.tasks:
+            if is_ob_name(name) and name not in self.tasks:
                 self.tasks[name] = self._task(name, NetworkRef(name), values.labels, self.functions[name].lineno)
         if "OB1" not in self.tasks:  # a program of interrupts only is valid; one of no OB, or an ob1, is not
             message = no_ob1_message(self._filename, self._tree, bool(self.tasks))
@@ -353,24 +338,22 @@ class Program:
             kind, priority = task_kind(name)
         except ProgramError as exc:
             raise ProgramError(f"{where}: {exc}") from None
-        period, phase, duration = 0, 0, None
+        period, phase, duration = None, 0, None
         if isinstance(value, CyclicInterrupt):
             if kind != "interrupt":
                 raise ProgramError(f"{where}: {name} is not a cyclic-interrupt OB; CyclicInterrupt is for OB30..OB38")
             try:
-                period = to_ns(value.period, f"{name} period")
+                period = None if value.period is None else to_ns(value.period, f"{name} period")
                 phase = to_ns(value.phase, f"{name} phase")
                 duration = None if value.duration is None else to_ns(value.duration, f"{name} duration")
             except PlcError as exc:
                 raise type(exc)(f"{where}: {exc}") from None
-            if period <= 0:
+            if period is not None and period <= 0:
                 raise ProgramError(f"{where}: {name} needs a positive period, e.g. period='1s'")
             if not isinstance(value.priority, int) or isinstance(value.priority, bool):
                 raise ProgramError(f"{where}: {name} priority must be a whole number, e.g. priority=8")
             priority = value.priority
             value = value.networks
-        elif kind == "interrupt":
-            period = to_ns(DEFAULT_INTERRUPT_PERIOD)
         funcs = list(value) if isinstance(value, list | tuple) else [value]
         networks = []
         seen_labels: dict[str, str] = {}
@@ -395,7 +378,7 @@ class Program:
             raise ProgramError(
                 f"{where}: {name} has {len(seen_labels)} labels; an S7-1200 block allows {MAX_LABELS_S7_1200}"
             )
-        return TaskSpec(name, kind, networks, period, phase, priority, duration)
+        return TaskSpec(name, kind, networks, period, phase, priority, duration, ob_number(name))
 
     # -- phase 2: compile against a tag table -----------------------------------------------------
 
