@@ -15,7 +15,7 @@ from plcsim.clock import NEVER
 from plcsim.config import CLOCK_BITS, RUN
 from plcsim.errors import PlcError
 from plcsim.instructions.system import JumpTo, ReturnFromBlock
-from plcsim.program import TaskSpec
+from plcsim.loaded import TaskSpec
 from plcsim.tags import store
 
 

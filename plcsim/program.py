@@ -59,6 +59,8 @@ from plcsim.compiler import (
 from plcsim.errors import DeclarationError, NoOB1Error, PlcError, ProgramError, SubsetError
 from plcsim.instructions import BOOL_RESULTS, CPU_BOUND, FB_TYPES, PURE_INSTRUCTIONS
 from plcsim.literals import time_ms, to_ns
+from plcsim.loaded import LinkTarget, LoadedNetwork, LoadedProgram, LoadedTask, NetworkSpec, ProgramFacts, TaskSpec
+from plcsim.memory import parse_address
 from plcsim.module_level import NetworkRef, evaluate_module
 from plcsim.profiles.s7 import DEFAULT_INTERRUPT_PRIORITY, is_ob_name, ob_number, task_kind
 from plcsim.program_text import read_program_text
@@ -147,32 +149,6 @@ DECLARATION_NAMES: dict[str, Any] = {**TYPE_NAMES, **DECLARATION_ONLY, "TIME": T
 
 PROGRAM_NAMES = set(DECLARATION_NAMES) | set(PURE_INSTRUCTIONS) | CPU_BOUND
 """Every name a program sees besides its own and the allowed builtins."""
-
-
-@dataclass(frozen=True)
-class NetworkSpec:
-    """One network: the function that implements it, its title and label."""
-
-    name: str
-    title: str
-    label: str | None
-    lineno: int
-
-
-@dataclass
-class TaskSpec:
-    """One OB of the program: kind (``cyclic``, ``interrupt``, ``startup``), networks and timing."""
-
-    name: str
-    kind: str
-    networks: list[NetworkSpec]
-    period_ns: int | None = None
-    """None: the program gives none (the CPU takes the hardware configuration's, or the default)."""
-    phase_ns: int = 0
-    priority: int = 1
-    duration_ns: int | None = None
-    number: int = 0
-    """The task's number in the trace's task column (the OB number on an S7)."""
 
 
 @dataclass
@@ -380,6 +356,18 @@ class Program:
             )
         return TaskSpec(name, kind, networks, period, phase, priority, duration, ob_number(name))
 
+    def absolute_addresses(self) -> list[str]:
+        """The absolute addresses (``"%M10.0"``) the program's text names, declared or not."""
+        found = []
+        for node in ast.walk(self._tree):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str) and node.value.strip().startswith("%"):
+                try:
+                    parse_address(node.value)
+                except PlcError:
+                    continue
+                found.append(node.value)
+        return found
+
     # -- phase 2: compile against a tag table -----------------------------------------------------
 
     def declare_into(self, table: TagTable) -> TagTable:
@@ -457,6 +445,44 @@ class Program:
             if strict_timers:
                 inert.add(path)
         return CompiledProgram(self, code, analysis, rewriter.coercers, inert, warnings, merged)
+
+    def link(self, target: LinkTarget) -> LoadedProgram:
+        """Compile against the CPU's table and run the code once to define the networks (the front end's
+        half of a download): the loaded program the runtime runs."""
+        cfg = target.config
+        compiled = self.compile(
+            target.table,
+            target.aliased,
+            strict_timers=cfg.textbook_strict_timers,
+            family=cfg.family,
+            input_writes=cfg.input_writes,
+        )
+        namespace = runtime_namespace(compiled, target.instructions)
+        exec(compiled.code, namespace)
+        analysis = compiled.analysis
+        tasks = []
+        for spec in self.tasks.values():
+            networks = []
+            used: set[str] = set()
+            for net in spec.networks:
+                node = self.functions[net.name]
+                networks.append(LoadedNetwork(namespace[net.name], (node.lineno, node.end_lineno or 0)))
+                used |= analysis.tags_used(net.name)
+            merged = compiled.merged.get(spec.name)
+            tasks.append(LoadedTask(spec, networks, namespace[merged] if merged else None, frozenset(used)))
+        facts = analysis.functions.values()
+        return LoadedProgram(
+            self.filename,
+            tasks,
+            ProgramFacts(
+                frozenset().union(*(f.reads for f in facts)),
+                frozenset().union(*(f.writes for f in facts)),
+                frozenset().union(*(f.calls for f in facts)),
+            ),
+            compiled.warnings,
+            compiled.inert_timers,
+            compiled,
+        )
 
     def _input_stores(self, table: TagTable, root_params: Mapping[str, str]) -> list[tuple[int, str]]:
         """(line, tag) of every store into an input tag: t.IN = ..., t["IN"] = ..., MOVE(x, "IN")."""

@@ -37,9 +37,8 @@ def _type_name(dtype: Any) -> str:
 def default_signals(cpu: CPU) -> list[str]:
     """The signals traced when none are chosen."""
     used: set[str] = set()
-    if cpu.compiled is not None:
-        for facts in cpu.compiled.analysis.functions.values():
-            used |= facts.reads | facts.writes
+    if cpu.loaded is not None:
+        used = set(cpu.loaded.facts.tags_read | cpu.loaded.facts.tags_written)
     names: list[str] = []
     for entry in cpu.table:
         value = cpu.t.__dict__[entry.name]
