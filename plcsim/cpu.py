@@ -218,6 +218,7 @@ class CPU(TaskRunner, HostAccess):
             timer = self._resolve_value(path.split(".", 1)[1] if "." in path else path)
             if isinstance(timer, IecTimer):
                 timer._inert = True
+        _check_task_numbers(loaded)
         tasks = [self._running_task(task) for task in loaded.tasks]
         self._ob1 = next((t for t in tasks if t.kind == "cyclic"), None) or RunningTask(
             TaskSpec("OB1", "cyclic", [], number=1), []
@@ -412,6 +413,20 @@ class CPU(TaskRunner, HostAccess):
     def __repr__(self) -> str:
         prog = self.program.filename if self.program else "no program"
         return f"<CPU {self.config.family} {self.mode} t={format_ns(self.clock.now)} scans={self.scan_count} {prog}>"
+
+
+def _check_task_numbers(loaded: LoadedProgram) -> None:
+    """Each task has its own trace number, and none is 0 (the rows in STOP): else a front end's bug."""
+    seen: dict[int, str] = {}
+    for task in loaded.tasks:
+        number, name = task.spec.number, task.spec.name
+        if number <= 0 or number in seen:
+            why = f"the same number {number} as {seen[number]}" if number in seen else f"the number {number}"
+            raise ConfigurationError(
+                f"{loaded.filename}: the front end gave task {name} {why}; each task needs its own number > 0 "
+                f"for the trace's task column"
+            )
+        seen[number] = name
 
 
 __all__ = ["CPU", "CPUConfig", "DiagnosticEntry", "RUN", "STOP", "CLOCK_BITS", "SYSTEM_BITS", "Bool", "Int"]

@@ -19,7 +19,7 @@ import exercises
 from plants import Panel
 from plcsim import CPU, Program, Simulation, Tag
 from plcsim.compiler import STORE
-from plcsim.errors import ProgramError, UnknownTagError
+from plcsim.errors import ConfigurationError, ProgramError, UnknownTagError
 from plcsim.frontends import read_program, register, suffixes, unregister
 from plcsim.grade_report import Report
 from plcsim.grading import evaluate, run_scenarios
@@ -196,3 +196,19 @@ def test_contract_the_same_program_in_two_front_ends_gives_the_same_trace_bit_fo
     # the lamp network runs first, so it sees SLOW one scan late: off at 152 ms, on again at 202 ms
     assert ms("LED") == [(21, 51), (101, 152), (202, 241), (301, 306)]
     assert il.cpu.loaded.facts.tags_written == {"LED", "SLOW"} and il.cpu.loaded.facts.instructions == {"TON"}
+
+
+def test_a_front_end_that_numbers_two_tasks_alike_is_refused_as_its_own_bug():
+    program = TinyIL("LD TLACIDLO\nST LED\n", "twice.il")
+    link = program.link
+
+    def twice(target):
+        loaded = link(target)
+        task = loaded.tasks[0]
+        again = TaskSpec("P2", "interrupt", task.spec.networks, 10**7, number=1)
+        loaded.tasks.append(LoadedTask(again, task.networks, None, task.tags_used))
+        return loaded
+
+    program.link = twice
+    with pytest.raises(ConfigurationError, match=r"twice\.il: the front end gave task P2 the same number 1 as OB1"):
+        CPU(tags={"TLACIDLO": Tag("%I0.0"), "LED": Tag("%Q0.0")}, program=program)
