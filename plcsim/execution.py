@@ -418,6 +418,8 @@ class TaskRunner:
     def _fault(self, task: RunningTask, k: int, event: str, message: str, exc: BaseException | None) -> None:
         network = task.titles[k] if k < task.n else None
         line = program_line(exc, self.program.filename) if exc is not None and self.program else None
+        if line is None and k < len(task.spans):  # a front end whose networks run no code of the file: its span
+            line = task.spans[k][0] or None
         where = (
             f"{task.name} network {k + 1}" + (f" ({network})" if network else "") + (f", line {line}" if line else "")
         )

@@ -212,3 +212,13 @@ def test_a_front_end_that_numbers_two_tasks_alike_is_refused_as_its_own_bug():
     program.link = twice
     with pytest.raises(ConfigurationError, match=r"twice\.il: the front end gave task P2 the same number 1 as OB1"):
         CPU(tags={"TLACIDLO": Tag("%I0.0"), "LED": Tag("%Q0.0")}, program=program)
+
+
+def test_a_fault_in_a_network_of_another_front_end_names_the_network_s_line_in_its_file():
+    cpu = CPU(tags=TAGS, program=TinyIL("LD TL\nST LED\nNETWORK\nLD TL\nTON T1, soon\nST SLOW\n", "late.il"))
+    cpu.set_input("TL", True)
+    cpu.scan()
+    assert cpu.mode == "STOP"
+    assert cpu.error.line == 4 and cpu.error.message.startswith(
+        "OB1 network 2 (network_2), line 4: cannot read duration 'soon'"
+    )
