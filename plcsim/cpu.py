@@ -28,11 +28,10 @@ True
 
 from __future__ import annotations
 
-import ast
 import datetime as _dt
 import random
 from collections import deque
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import replace
 from typing import Any
 
@@ -40,14 +39,17 @@ from plcsim.access import HostAccess, store_instance_member, store_into
 from plcsim.clock import Clock
 from plcsim.compiler import FB_STORE, ROOT_GUARD, STORE, TICK
 from plcsim.config import CLOCK_BITS, RUN, STOP, SYSTEM_BITS, CPUConfig, DiagnosticEntry
-from plcsim.errors import ConfigurationError, PlcError, PlcTypeError
+from plcsim.errors import ConfigurationError, PlcTypeError
 from plcsim.execution import NEVER, CycleWatchdog, Execution, RunningTask, TaskRunner, switched_off, tuple_getter
 from plcsim.instructions.edges import bit_resolver, make_edge_instructions
 from plcsim.instructions.system import make_move, make_rd_loc_t
 from plcsim.instructions.timers import IecTimer
 from plcsim.literals import datetime_literal, format_ns, to_ns
+from plcsim.loaded import LinkTarget, LoadedProgram, LoadedTask, SourceProgram, TaskSpec
 from plcsim.memory import Address, ByteMemory, parse_address
-from plcsim.program import CompiledProgram, Program, TaskSpec, runtime_namespace
+from plcsim.observers import Subscribers, assigned_hook
+from plcsim.profiles.s7 import DEFAULT_INTERRUPT_PERIOD
+from plcsim.program import CompiledProgram, Program
 from plcsim.tags import (
     PlcStruct,
     Tag,
@@ -94,15 +96,24 @@ class CPU(TaskRunner, HostAccess):
         self.inputs: dict[str, Any] = {}
         self.outputs: dict[str, Any] = {}
         self.forces: dict[str, Any] = {}
-        self.on_scan_end: Callable[[CPU], None] | None = None
-        self.on_task_end: Callable[[CPU, str, int, int], None] | None = None
-        self.on_cut: Callable[[CPU, str, int], None] | None = None
+        self.scan_end = Subscribers()
+        """Called as ``(cpu)`` when an OB1 scan has written its outputs."""
+        self.task_end = Subscribers()
+        """Called as ``(cpu, task name, start ns, end ns)`` when another task's execution has ended."""
+        self.cut = Subscribers()
+        """Called as ``(cpu, task name, start ns)`` for each execution a power cut interrupts."""
+        self.task_numbers: dict[str, int] = {}
+        """Task name -> its number in the trace's task column (from the loaded program's tasks)."""
+        self.scan_task_number = 1
+        """The cyclic task's number (the rows of OB1 scans)."""
         self.scan_count = 0
         self.scan_start_ns = 0
         self.scan_end_ns = 0
         self.output_version = 0
-        self.program: Program | None = None
+        self.program: SourceProgram | None = None
+        self.loaded: LoadedProgram | None = None
         self.compiled: CompiledProgram | None = None
+        """The Python front end's compiled form (its analysis feeds the static checks); None for another."""
         self.warnings: list[str] = []
         self._rng = random.Random(self.config.seed)
         self._stack: list[Execution] = []
@@ -121,6 +132,10 @@ class CPU(TaskRunner, HostAccess):
             self.load(program)
             if start:
                 self.start()
+
+    on_scan_end = assigned_hook("scan_end", "One :attr:`scan_end` subscriber, set by assignment.")
+    on_task_end = assigned_hook("task_end", "One :attr:`task_end` subscriber, set by assignment.")
+    on_cut = assigned_hook("cut", "One :attr:`cut` subscriber, set by assignment.")
 
     # -- tag table ----------------------------------------------------------------------------
 
@@ -186,63 +201,54 @@ class CPU(TaskRunner, HostAccess):
 
     # -- loading ------------------------------------------------------------------------------
 
-    def load(self, program: Program | str) -> None:
-        """Download a program (the CPU goes to STOP; call :meth:`start` for RUN)."""
+    def load(self, program: SourceProgram | str) -> None:
+        """Download a program (the CPU goes to STOP; call :meth:`start` for RUN).
+
+        ``program`` is what a front end read (:func:`plcsim.frontends.read_program`), or Python subset text."""
         if isinstance(program, str):
             program = Program.from_source(program)
         was_running = self.mode == RUN
         self.stop(reason="download")
         table = program.declare_into(self.base_table)
-        self._load_table(table, _address_strings(program))
+        self._load_table(table, program.absolute_addresses())
         aliased = frozenset(c.key if c.container is self.t else f"{c.container._path}.{c.key}" for c in self.aliases)
-        compiled = program.compile(
-            self.table,
-            aliased,
-            strict_timers=self.config.textbook_strict_timers,
-            family=self.config.family,
-            input_writes=self.config.input_writes,
-        )
-        namespace = runtime_namespace(compiled, self._bound_instructions())
-        exec(compiled.code, namespace)
-        self.program, self.compiled, self.warnings = program, compiled, compiled.warnings
-        for path in compiled.inert_timers:
+        loaded = program.link(LinkTarget(self.table, aliased, self.config, self._bound_instructions()))
+        self.program, self.loaded, self.compiled, self.warnings = program, loaded, loaded.compiled, loaded.warnings
+        for path in loaded.inert_timers:
             timer = self._resolve_value(path.split(".", 1)[1] if "." in path else path)
             if isinstance(timer, IecTimer):
                 timer._inert = True
-        tasks = []
-        for name, spec in program.tasks.items():
-            if spec.kind == "interrupt":
-                period = self.config.periods.get(name)
-                if period is not None and not _period_given(program, name):
-                    spec.period_ns = to_ns(period, f"{name} period")
-            merged = compiled.merged.get(name)
-            spans = [
-                (program.functions[n.name].lineno, program.functions[n.name].end_lineno or 0) for n in spec.networks
-            ]
-            task = RunningTask(
-                spec, [namespace[n.name] for n in spec.networks], namespace[merged] if merged else None, spans
-            )
-            used: set[str] = set()
-            for net in spec.networks:
-                used |= compiled.analysis.tags_used(net.name)
-            if spec.kind == "cyclic":
-                task.inputs, task.outputs = list(self.input_names), list(self.output_names)
-            else:
-                task.inputs = [n for n in self.input_names if n in used]
-                task.outputs = [n for n in self.output_names if n in used]
-            if task.duration_ns is None:
-                task.duration_ns = self.config.interrupt_duration_ns if spec.kind == "interrupt" else 0
-            tasks.append(task)
+        _check_task_numbers(loaded)
+        tasks = [self._running_task(task) for task in loaded.tasks]
         self._ob1 = next((t for t in tasks if t.kind == "cyclic"), None) or RunningTask(
-            TaskSpec("OB1", "cyclic", []), []
+            TaskSpec("OB1", "cyclic", [], number=1), []
         )
         self._ob1.inputs, self._ob1.outputs = list(self.input_names), list(self.output_names)
         self._interrupts = sorted((t for t in tasks if t.kind == "interrupt"), key=lambda t: -t.priority)
         self._startup = [t for t in tasks if t.kind == "startup"]
+        self.task_numbers = {t.name: t.number for t in [self._ob1, *tasks]}
+        self.scan_task_number = self._ob1.number
         self._plan_cyclic()
-        self._diag("download", f"program {program.filename} loaded: {', '.join(program.tasks) or 'no OBs'}")
+        names = ", ".join(t.spec.name for t in loaded.tasks) or "no OBs"
+        self._diag("download", f"program {loaded.filename} loaded: {names}")
         if was_running:
             self.start()
+
+    def _running_task(self, loaded: LoadedTask) -> RunningTask:
+        """A loaded task on this CPU: its timing (the configured period if the program gives none) and
+        its process-image partition (OB1 all inputs and outputs; an interrupt the ones it uses)."""
+        spec = loaded.spec
+        task = RunningTask(spec, [n.run for n in loaded.networks], loaded.whole, [n.span for n in loaded.networks])
+        if spec.kind == "cyclic":
+            task.inputs, task.outputs = list(self.input_names), list(self.output_names)
+        else:
+            task.inputs = [n for n in self.input_names if n in loaded.tags_used]
+            task.outputs = [n for n in self.output_names if n in loaded.tags_used]
+        if spec.kind == "interrupt" and spec.period_ns is None:  # the hardware configuration's, or the default
+            task.period_ns = to_ns(self.config.periods.get(spec.name, DEFAULT_INTERRUPT_PERIOD), f"{spec.name} period")
+        if task.duration_ns is None:
+            task.duration_ns = self.config.interrupt_duration_ns if spec.kind == "interrupt" else 0
+        return task
 
     def _bound_instructions(self) -> dict[str, Any]:
         lookup = bit_resolver(self.t, self.resolve_path)
@@ -322,13 +328,13 @@ class CPU(TaskRunner, HostAccess):
         """Power off and on: retain tags survive, everything else restarts from its start value.
 
         An execution the power cut interrupts keeps what its networks already did (a retentive tag it
-        changed keeps the change, as on a real S7-1200); :attr:`on_cut` reports it, so that the trace
+        changed keeps the change, as on a real S7-1200); :attr:`cut` reports it, so that the trace
         has a row for it before the restart."""
         cut = [(ex.task.name, ex.t0) for ex in reversed(self._stack)]
         self.stop(reason="power off")
-        if self.on_cut is not None:
+        if self.cut.call is not None:
             for task, t0 in cut:
-                self.on_cut(self, task, t0)
+                self.cut.call(self, task, t0)
         self.start()
 
     # -- running ------------------------------------------------------------------------------
@@ -409,24 +415,18 @@ class CPU(TaskRunner, HostAccess):
         return f"<CPU {self.config.family} {self.mode} t={format_ns(self.clock.now)} scans={self.scan_count} {prog}>"
 
 
-def _address_strings(program: Program) -> list[str]:
-    found = []
-    for node in ast.walk(program.tree):
-        if isinstance(node, ast.Constant) and isinstance(node.value, str) and node.value.strip().startswith("%"):
-            try:
-                parse_address(node.value)
-            except PlcError:
-                continue
-            found.append(node.value)
-    return found
-
-
-def _period_given(program: Program, name: str) -> bool:
-    for stmt in program.tree.body:
-        if isinstance(stmt, ast.Assign) and any(isinstance(t, ast.Name) and t.id == name for t in stmt.targets):
-            call = stmt.value
-            return isinstance(call, ast.Call) and any(k.arg == "period" for k in call.keywords)
-    return False
+def _check_task_numbers(loaded: LoadedProgram) -> None:
+    """Each task has its own trace number, and none is 0 (the rows in STOP): else a front end's bug."""
+    seen: dict[int, str] = {}
+    for task in loaded.tasks:
+        number, name = task.spec.number, task.spec.name
+        if number <= 0 or number in seen:
+            why = f"the same number {number} as {seen[number]}" if number in seen else f"the number {number}"
+            raise ConfigurationError(
+                f"{loaded.filename}: the front end gave task {name} {why}; each task needs its own number > 0 "
+                f"for the trace's task column"
+            )
+        seen[number] = name
 
 
 __all__ = ["CPU", "CPUConfig", "DiagnosticEntry", "RUN", "STOP", "CLOCK_BITS", "SYSTEM_BITS", "Bool", "Int"]

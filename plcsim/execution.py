@@ -15,7 +15,7 @@ from plcsim.clock import NEVER
 from plcsim.config import CLOCK_BITS, RUN
 from plcsim.errors import PlcError
 from plcsim.instructions.system import JumpTo, ReturnFromBlock
-from plcsim.program import TaskSpec
+from plcsim.loaded import TaskSpec
 from plcsim.tags import store
 
 
@@ -45,6 +45,7 @@ class RunningTask:
         "execution",
         "merged",
         "spans",
+        "number",
     )
 
     def __init__(
@@ -61,7 +62,8 @@ class RunningTask:
         self.n = len(networks)
         self.titles = [n.name for n in spec.networks]
         self.labels = {n.label: i for i, n in enumerate(spec.networks) if n.label}
-        self.period_ns, self.phase_ns = spec.period_ns, spec.phase_ns
+        self.period_ns, self.phase_ns = spec.period_ns or 0, spec.phase_ns
+        self.number = spec.number
         self.duration_ns = spec.duration_ns
         self.next_due = 0
         self.inputs: list[str] = []
@@ -200,8 +202,8 @@ class TaskRunner:
                 self.output_version += 1
             self._ob1_next = self.scan_end_ns = end
             self.scan_count += 1
-            if self.on_scan_end is not None:
-                self.on_scan_end(self)
+            if self.scan_end.call is not None:
+                self.scan_end.call(self)
             if self._first_scan or self._diag_changed:
                 self._first_scan = self._diag_changed = False
                 self._set_system_bits()
@@ -404,18 +406,20 @@ class TaskRunner:
             self._ob1_next = end
             self.scan_end_ns = end
             self.scan_count += 1
-            if self.on_scan_end is not None:
-                self.on_scan_end(self)
+            if self.scan_end.call is not None:
+                self.scan_end.call(self)
             if self._first_scan or self._diag_changed:
                 self._first_scan = False
                 self._diag_changed = False
                 self._set_system_bits()
-        elif self.on_task_end is not None:
-            self.on_task_end(self, task.name, ex.t0, end)
+        elif self.task_end.call is not None:
+            self.task_end.call(self, task.name, ex.t0, end)
 
     def _fault(self, task: RunningTask, k: int, event: str, message: str, exc: BaseException | None) -> None:
         network = task.titles[k] if k < task.n else None
         line = program_line(exc, self.program.filename) if exc is not None and self.program else None
+        if line is None and k < len(task.spans):  # a front end whose networks run no code of the file: its span
+            line = task.spans[k][0] or None
         where = (
             f"{task.name} network {k + 1}" + (f" ({network})" if network else "") + (f", line {line}" if line else "")
         )

@@ -33,7 +33,6 @@ from __future__ import annotations
 import ast
 import builtins
 import inspect
-import re
 import textwrap
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -60,7 +59,10 @@ from plcsim.compiler import (
 from plcsim.errors import DeclarationError, NoOB1Error, PlcError, ProgramError, SubsetError
 from plcsim.instructions import BOOL_RESULTS, CPU_BOUND, FB_TYPES, PURE_INSTRUCTIONS
 from plcsim.literals import time_ms, to_ns
+from plcsim.loaded import LinkTarget, LoadedNetwork, LoadedProgram, LoadedTask, NetworkSpec, ProgramFacts, TaskSpec
+from plcsim.memory import parse_address
 from plcsim.module_level import NetworkRef, evaluate_module
+from plcsim.profiles.s7 import DEFAULT_INTERRUPT_PRIORITY, is_ob_name, ob_number, task_kind
 from plcsim.program_text import read_program_text
 from plcsim.safe_math import SAFE_FUNCTIONS, bounded_range
 from plcsim.tags import DB, DataBlock, Tag, TagTable
@@ -72,8 +74,6 @@ MAX_VALUES = 1_000_000
 MAX_MERGED_STATEMENTS = 5000
 """Above this many statements an OB's networks are not merged into one function (see merge_networks):
 the merge speeds up scans of ordinary programs and would only slow down loading a huge one."""
-DEFAULT_INTERRUPT_PERIOD = "100ms"
-DEFAULT_INTERRUPT_PRIORITY = 8
 
 
 def label(name: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
@@ -97,7 +97,8 @@ class CyclicInterrupt:
     """
 
     networks: Any
-    period: str | int = DEFAULT_INTERRUPT_PERIOD
+    period: str | int | None = None
+    """None: the hardware configuration's period (``CPUConfig.periods``), else 100 ms."""
     phase: str | int = "0ms"
     priority: int = DEFAULT_INTERRUPT_PRIORITY
     duration: str | int | None = None
@@ -148,46 +149,6 @@ DECLARATION_NAMES: dict[str, Any] = {**TYPE_NAMES, **DECLARATION_ONLY, "TIME": T
 
 PROGRAM_NAMES = set(DECLARATION_NAMES) | set(PURE_INSTRUCTIONS) | CPU_BOUND
 """Every name a program sees besides its own and the allowed builtins."""
-
-
-@dataclass(frozen=True)
-class NetworkSpec:
-    """One network: the function that implements it, its title and label."""
-
-    name: str
-    title: str
-    label: str | None
-    lineno: int
-
-
-@dataclass
-class TaskSpec:
-    """One OB of the program: kind (``cyclic``, ``interrupt``, ``startup``), networks and timing."""
-
-    name: str
-    kind: str
-    networks: list[NetworkSpec]
-    period_ns: int = 0
-    phase_ns: int = 0
-    priority: int = 1
-    duration_ns: int | None = None
-
-
-_OB_RE = re.compile(r"^OB(\d+)$")
-
-
-def task_kind(name: str) -> tuple[str, int]:
-    """Kind and default priority of an OB by its number (S7-1200 numbering)."""
-    number = int(_OB_RE.match(name).group(1))  # type: ignore[union-attr]
-    if number == 1:
-        return "cyclic", 1
-    if 30 <= number <= 38:
-        return "interrupt", DEFAULT_INTERRUPT_PRIORITY
-    if number == 100:
-        return "startup", 1
-    raise ProgramError(
-        f"{name} is not supported: use OB1 (program cycle), OB30..OB38 (cyclic interrupts) or OB100 (startup)"
-    )
 
 
 @dataclass
@@ -307,7 +268,7 @@ class Program:
         self.constants = values.constants
         self._declaration_lines = values.lines
         for name in values.order:
-            if _OB_RE.match(name):
+            if is_ob_name(name):
                 continue
             value = values.declared.get(name)
             line = values.lines[name]
@@ -328,7 +289,7 @@ class Program:
         for name, value in values.bindings.items():
             self.tasks[name] = self._task(name, value, values.labels, values.lines[name])
         for name in self.functions:
-            if _OB_RE.match(name) and name not in self.tasks:
+            if is_ob_name(name) and name not in self.tasks:
                 self.tasks[name] = self._task(name, NetworkRef(name), values.labels, self.functions[name].lineno)
         if "OB1" not in self.tasks:  # a program of interrupts only is valid; one of no OB, or an ob1, is not
             message = no_ob1_message(self._filename, self._tree, bool(self.tasks))
@@ -353,24 +314,22 @@ class Program:
             kind, priority = task_kind(name)
         except ProgramError as exc:
             raise ProgramError(f"{where}: {exc}") from None
-        period, phase, duration = 0, 0, None
+        period, phase, duration = None, 0, None
         if isinstance(value, CyclicInterrupt):
             if kind != "interrupt":
                 raise ProgramError(f"{where}: {name} is not a cyclic-interrupt OB; CyclicInterrupt is for OB30..OB38")
             try:
-                period = to_ns(value.period, f"{name} period")
+                period = None if value.period is None else to_ns(value.period, f"{name} period")
                 phase = to_ns(value.phase, f"{name} phase")
                 duration = None if value.duration is None else to_ns(value.duration, f"{name} duration")
             except PlcError as exc:
                 raise type(exc)(f"{where}: {exc}") from None
-            if period <= 0:
+            if period is not None and period <= 0:
                 raise ProgramError(f"{where}: {name} needs a positive period, e.g. period='1s'")
             if not isinstance(value.priority, int) or isinstance(value.priority, bool):
                 raise ProgramError(f"{where}: {name} priority must be a whole number, e.g. priority=8")
             priority = value.priority
             value = value.networks
-        elif kind == "interrupt":
-            period = to_ns(DEFAULT_INTERRUPT_PERIOD)
         funcs = list(value) if isinstance(value, list | tuple) else [value]
         networks = []
         seen_labels: dict[str, str] = {}
@@ -395,7 +354,19 @@ class Program:
             raise ProgramError(
                 f"{where}: {name} has {len(seen_labels)} labels; an S7-1200 block allows {MAX_LABELS_S7_1200}"
             )
-        return TaskSpec(name, kind, networks, period, phase, priority, duration)
+        return TaskSpec(name, kind, networks, period, phase, priority, duration, ob_number(name))
+
+    def absolute_addresses(self) -> list[str]:
+        """The absolute addresses (``"%M10.0"``) the program's text names, declared or not."""
+        found = []
+        for node in ast.walk(self._tree):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str) and node.value.strip().startswith("%"):
+                try:
+                    parse_address(node.value)
+                except PlcError:
+                    continue
+                found.append(node.value)
+        return found
 
     # -- phase 2: compile against a tag table -----------------------------------------------------
 
@@ -474,6 +445,44 @@ class Program:
             if strict_timers:
                 inert.add(path)
         return CompiledProgram(self, code, analysis, rewriter.coercers, inert, warnings, merged)
+
+    def link(self, target: LinkTarget) -> LoadedProgram:
+        """Compile against the CPU's table and run the code once to define the networks (the front end's
+        half of a download): the loaded program the runtime runs."""
+        cfg = target.config
+        compiled = self.compile(
+            target.table,
+            target.aliased,
+            strict_timers=cfg.textbook_strict_timers,
+            family=cfg.family,
+            input_writes=cfg.input_writes,
+        )
+        namespace = runtime_namespace(compiled, target.instructions)
+        exec(compiled.code, namespace)
+        analysis = compiled.analysis
+        tasks = []
+        for spec in self.tasks.values():
+            networks = []
+            used: set[str] = set()
+            for net in spec.networks:
+                node = self.functions[net.name]
+                networks.append(LoadedNetwork(namespace[net.name], (node.lineno, node.end_lineno or 0)))
+                used |= analysis.tags_used(net.name)
+            merged = compiled.merged.get(spec.name)
+            tasks.append(LoadedTask(spec, networks, namespace[merged] if merged else None, frozenset(used)))
+        facts = analysis.functions.values()
+        return LoadedProgram(
+            self.filename,
+            tasks,
+            ProgramFacts(
+                frozenset().union(*(f.reads for f in facts)),
+                frozenset().union(*(f.writes for f in facts)),
+                frozenset().union(*(f.calls for f in facts)),
+            ),
+            compiled.warnings,
+            compiled.inert_timers,
+            compiled,
+        )
 
     def _input_stores(self, table: TagTable, root_params: Mapping[str, str]) -> list[tuple[int, str]]:
         """(line, tag) of every store into an input tag: t.IN = ..., t["IN"] = ..., MOVE(x, "IN")."""

@@ -20,6 +20,7 @@ from plcsim.errors import UnknownTagError, did_you_mean
 from plcsim.instructions.counters import IecCounter
 from plcsim.instructions.edges import EdgeTrigger
 from plcsim.instructions.timers import IecTimer
+from plcsim.observers import Subscribers
 from plcsim.tags import PlcStruct
 from plcsim.trace import BLOCK, Trace
 from plcsim.types import ElementaryType
@@ -36,9 +37,8 @@ def _type_name(dtype: Any) -> str:
 def default_signals(cpu: CPU) -> list[str]:
     """The signals traced when none are chosen."""
     used: set[str] = set()
-    if cpu.compiled is not None:
-        for facts in cpu.compiled.analysis.functions.values():
-            used |= facts.reads | facts.writes
+    if cpu.loaded is not None:
+        used = set(cpu.loaded.facts.tags_read | cpu.loaded.facts.tags_written)
     names: list[str] = []
     for entry in cpu.table:
         value = cpu.t.__dict__[entry.name]
@@ -94,6 +94,7 @@ class Recorder:
         self._stopped_row = _compile_getter(physical, outputs=True)
         self.changes_only = changes_only
         self._last: tuple[Any, ...] | None = None
+        self._subscriptions: list[tuple[Subscribers, Callable[..., None]]] = []
 
     def _locate(self, name: str) -> tuple[str, str, str]:
         cpu = self.cpu
@@ -133,9 +134,21 @@ class Recorder:
     def attach(self) -> None:
         """Start recording: every OB1 scan, every interrupt execution and every execution a power cut
         interrupts writes a row."""
-        self.cpu.on_scan_end = self.on_scan if self.changes_only else self._fast_on_scan()
-        self.cpu.on_task_end = self.on_task
-        self.cpu.on_cut = self.on_cut
+        cpu = self.cpu
+        self._subscriptions = [
+            (cpu.scan_end, self.on_scan if self.changes_only else self._fast_on_scan()),
+            (cpu.task_end, self.on_task),
+            (cpu.cut, self.on_cut),
+        ]
+        for hook, subscriber in self._subscriptions:
+            hook.add(subscriber)
+        self.trace.task_numbers.update(cpu.task_numbers)
+
+    def detach(self) -> None:
+        """Stop recording (the other subscribers of the CPU's hooks stay)."""
+        for hook, subscriber in self._subscriptions:
+            hook.remove(subscriber)
+        self._subscriptions = []
 
     def on_scan(self, cpu: CPU) -> None:
         values = self.row(cpu.t.__dict__, cpu.image_in)
@@ -143,7 +156,7 @@ class Recorder:
             if values == self._last:
                 return
             self._last = values
-        self.trace.add_row(cpu.scan_start_ns, cpu.scan_end_ns, 1, values)
+        self.trace.add_row(cpu.scan_start_ns, cpu.scan_end_ns, cpu.scan_task_number, values)
 
     def _fast_on_scan(self) -> Callable[[CPU], None]:
         """:meth:`on_scan` for every-row recording, fused into one call: the hot path of a run."""
@@ -151,7 +164,7 @@ class Recorder:
         full_row, d = self._full_row, self.cpu.t.__dict__
 
         def on_scan(cpu: CPU) -> None:
-            pending.append(full_row(d, cpu.image_in, cpu.scan_start_ns, cpu.scan_end_ns))
+            pending.append(full_row(d, cpu.image_in, cpu.scan_start_ns, cpu.scan_end_ns, cpu.scan_task_number))
             if len(pending) >= BLOCK:
                 pack()
 
@@ -163,7 +176,7 @@ class Recorder:
             if values == self._last:
                 return
             self._last = values
-        self.trace.add_row(start_ns, end_ns, _task_number(task), values)
+        self.trace.add_row(start_ns, end_ns, self._number(task), values)
 
     def on_cut(self, cpu: CPU, task: str, start_ns: int) -> None:
         """The row of an execution a power cut interrupted: what its networks did is kept (retentive
@@ -173,7 +186,13 @@ class Recorder:
         if self.changes_only and values == self._last:
             return
         self._last = values
-        self.trace.add_row(start_ns, cpu.now, _task_number(task), values)
+        self.trace.add_row(start_ns, cpu.now, self._number(task), values)
+
+    def _number(self, task: str) -> int:
+        """The task column of ``task``, as the CPU's loaded program numbers it (kept with the trace)."""
+        number = self.cpu.task_numbers[task]
+        self.trace.task_numbers.setdefault(task, number)
+        return number
 
     def on_stopped(self, t_ns: int, end_ns: int) -> None:
         """A row while the CPU is in STOP: no scan runs; the outputs are what the modules drive (off)."""
@@ -184,19 +203,14 @@ class Recorder:
         self.trace.add_row(t_ns, end_ns, 0, values)
 
 
-def _task_number(task: str) -> int:
-    """The row's task column: the OB number (1 for OB1, 30 for OB30)."""
-    return int(task[2:]) if task[2:].isdigit() else 0
-
-
 def _compile_getter(sources: list[str], head: bool = False, outputs: bool = False) -> Callable[..., tuple[Any, ...]]:
     """A function returning the row as a tuple, generated once from the access paths (our code, not a
     program's): ``d`` is the CPU's tags, ``i`` the inputs as delivered (:attr:`CPU.image_in`). With
-    ``head`` it takes the scan's start and end and returns the whole trace row; with ``outputs`` it
+    ``head`` it takes the scan's start, end and task number and returns the whole trace row; with ``outputs`` it
     takes the output modules' values ``o`` (the sources name them)."""
     body = "".join(f"{source}, " for source in sources)
     if head:
-        return eval(f"lambda d, i, a, b: (a, b, 1, {body})", {"__builtins__": {}})  # built from tag names
+        return eval(f"lambda d, i, a, b, n: (a, b, n, {body})", {"__builtins__": {}})  # built from tag names
     if outputs:
         return eval(f"lambda d, i, o: ({body})", {"__builtins__": {}})  # built from tag names
     return eval(f"lambda d, i: ({body})", {"__builtins__": {}})  # built from tag names, not program text

@@ -28,7 +28,7 @@ from __future__ import annotations
 import random
 import time
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, Protocol
 
 from plcsim.actions import ActionRunner
 from plcsim.clock import NEVER
@@ -60,6 +60,8 @@ class Simulation:
         geometry_hz: how often the plant's shapes are sampled for drawing (0: never).
         changes_only: record a trace row only when a value changed (hours-long runs).
         fast_forward: skip physics steps while the plant is quiescent (see :meth:`_skip_quiet`).
+        pacing: how the run keeps pace with the wall clock: None (as fast as it goes) or
+            :class:`Realtime` (``pacing=Realtime(2.0)``: twice as fast as real time).
     """
 
     def __init__(
@@ -75,7 +77,9 @@ class Simulation:
         geometry_hz: float = 25.0,
         changes_only: bool = False,
         fast_forward: bool = True,
+        pacing: Pacing | None = None,
     ):
+        self.pacing = pacing
         self.cpu = cpu
         self.plant = plant
         self.seed = seed
@@ -165,23 +169,23 @@ class Simulation:
             raise ConfigurationError("give a duration ('10s'), until= or condition=")
         else:
             end = NEVER
-        self._advance(end, condition, progress)
+        self._paced(end, condition, progress)
         self._finish()
 
     def run_until(self, condition: Callable[[Simulation], bool], timeout: str | int = "60s") -> bool:
         """Run until ``condition(sim)`` holds; returns False if ``timeout`` passed first."""
-        self._advance(self.now + to_ns(timeout, "timeout"), condition, None)
+        self._paced(self.now + to_ns(timeout, "timeout"), condition, None)
         self._finish()
         return bool(condition(self))
 
     def scan(self, count: int = 1) -> None:
         """Run until ``count`` more OB1 scans have ended (physics advancing as needed)."""
         target = self.cpu.scan_count + count
-        self._advance(NEVER, lambda sim: sim.cpu.scan_count >= target or sim.cpu.mode != RUN, None)
+        self._paced(NEVER, lambda sim: sim.cpu.scan_count >= target or sim.cpu.mode != RUN, None)
 
     def step(self) -> None:
         """One physics step."""
-        self._advance(self.now + self.dt_ns, None, None)
+        self._paced(self.now + self.dt_ns, None, None)
 
     def pause(self) -> None:
         """Make a running :meth:`run` return at the next step (call from a condition or another thread)."""
@@ -190,6 +194,14 @@ class Simulation:
     def resume(self) -> None:
         """Allow running again after :meth:`pause`."""
         self.paused = False
+
+    def _paced(
+        self, end_ns: int, condition: Callable[[Simulation], bool] | None, progress: Callable[[int, int], None] | None
+    ) -> None:
+        if self.pacing is None:
+            self._advance(end_ns, condition, progress)
+        else:
+            self.pacing.advance(self, end_ns, condition, progress)
 
     def _advance(
         self, end_ns: int, condition: Callable[[Simulation], bool] | None, progress: Callable[[int, int], None] | None
@@ -294,28 +306,60 @@ class Simulation:
         self._diag_seen = len(cpu.diagnostics)
 
 
-class RealtimeSimulation(Simulation):
-    """A simulation paced to the wall clock × ``factor`` (2.0: twice as fast; 0.5: half speed).
+class Pacing(Protocol):
+    """How a simulation keeps pace with the outside world: it runs the steps through ``sim._advance``."""
 
-    Only the pacing reads the wall clock; the simulated results are identical to :class:`Simulation`.
+    def advance(
+        self,
+        sim: Simulation,
+        end_ns: int,
+        condition: Callable[[Simulation], bool] | None,
+        progress: Callable[[int, int], None] | None,
+    ) -> None: ...
+
+
+class Realtime:
+    """Pacing to the wall clock × ``factor`` (2.0: twice as fast; 0.5: half speed).
+
+    Only the pacing reads the wall clock; the simulated results are identical to an unpaced run (it
+    runs the same steps, in chunks of 20 ms of simulated time, and sleeps between them).
     """
 
-    def __init__(self, *args: Any, factor: float = 1.0, **kwargs: Any):
-        super().__init__(*args, **kwargs)
+    def __init__(self, factor: float = 1.0):
         if factor <= 0:
             raise ConfigurationError(f"realtime factor {factor} must be positive")
         self.factor = factor
 
-    def _advance(
-        self, end_ns: int, condition: Callable[[Simulation], bool] | None, progress: Callable[[int, int], None] | None
+    def advance(
+        self,
+        sim: Simulation,
+        end_ns: int,
+        condition: Callable[[Simulation], bool] | None,
+        progress: Callable[[int, int], None] | None,
     ) -> None:
-        chunk = max(self.dt_ns, 20_000_000)
-        wall0, sim0 = time.perf_counter(), self.now
-        while self.now < end_ns and not self.paused:
-            stop = min(end_ns, self.now + chunk)
-            super()._advance(stop, condition, progress)
-            if condition is not None and condition(self):
+        """Run ``sim`` up to ``end_ns`` (or the condition), no faster than the wall clock allows."""
+        chunk = max(sim.dt_ns, 20_000_000)
+        wall0, sim0 = time.perf_counter(), sim.now
+        while sim.now < end_ns and not sim.paused:
+            sim._advance(min(end_ns, sim.now + chunk), condition, progress)
+            if condition is not None and condition(sim):
                 break
-            ahead = (self.now - sim0) / 1e9 / self.factor - (time.perf_counter() - wall0)
+            ahead = (sim.now - sim0) / 1e9 / self.factor - (time.perf_counter() - wall0)
             if ahead > 0:
                 time.sleep(ahead)
+
+
+class RealtimeSimulation(Simulation):
+    """A simulation paced to the wall clock × ``factor``: ``Simulation(..., pacing=Realtime(factor))``."""
+
+    def __init__(self, *args: Any, factor: float = 1.0, **kwargs: Any):
+        super().__init__(*args, pacing=Realtime(factor), **kwargs)
+
+    @property
+    def factor(self) -> float:
+        """The pace: simulated seconds per wall-clock second."""
+        return self.pacing.factor  # type: ignore[union-attr]
+
+    @factor.setter
+    def factor(self, factor: float) -> None:
+        self.pacing = Realtime(factor)

@@ -47,25 +47,12 @@ import numpy as np
 
 from plcsim.errors import UnknownTagError, did_you_mean
 from plcsim.plant import Drawable, PlantEvent
+from plcsim.profiles.s7 import trace_task_number
 
 BLOCK = 4096
 """Rows per packed numpy block."""
 HEAD = 3
 """Leading columns of every row: scan start, scan end, task number."""
-
-
-def task_number(task: str | int) -> int:
-    """The task column's value for a task: ``"OB1"`` -> 1, ``"ob30"`` -> 30, ``30`` -> 30 (0: STOP rows).
-
-    >>> task_number("OB30"), task_number(1)
-    (30, 1)
-    """
-    if isinstance(task, int):
-        return task
-    text = task.strip().upper()
-    if not (text.startswith("OB") and text[2:].isdigit()):
-        raise ValueError(f"a task is named like 'OB1' or 'OB30', not {task!r}")
-    return int(text[2:])
 
 
 @dataclass(frozen=True)
@@ -112,6 +99,8 @@ class Trace:
     frames: list[GeometryFrame] = field(default_factory=list)
     static_drawables: list[Drawable] = field(default_factory=list)
     bounds: tuple[float, float, float, float] | None = None
+    task_numbers: dict[str, int] = field(default_factory=dict)
+    """Task name -> its number in the task column, as the recording CPU's tasks declared it."""
 
     def __post_init__(self) -> None:
         self._index = {name: i for i, name in enumerate(self.names)}
@@ -202,11 +191,24 @@ class Trace:
 
     def rows_of(self, task: str | int) -> np.ndarray:
         """The row numbers of one task's executions (``"OB1"``, ``"OB30"``), in order."""
-        return np.flatnonzero(self.table[:, 2] == task_number(task))
+        return np.flatnonzero(self.table[:, 2] == self.task_number(task))
+
+    def task_number(self, task: str | int) -> int:
+        """The task column's value for a task: its recorded number; a trace recorded without task names
+        (made by hand, an old file) numbers S7 names (``"OB30"`` -> 30). 0 is the rows in STOP.
+
+        >>> tr = Trace(["M"], task_numbers={"P12": 12})
+        >>> tr.task_number("P12"), tr.task_number("OB30"), tr.task_number(1)
+        (12, 30, 1)
+        """
+        if isinstance(task, int):
+            return task
+        number = self.task_numbers.get(task)
+        return number if number is not None else trace_task_number(task)
 
     def of_task(self, task: str | int) -> Trace:
         """A trace of one task's rows only (names, meta and events shared): its times are in order."""
-        view = Trace(self.names, self.kinds, self.types, self.meta, self.events)
+        view = Trace(self.names, self.kinds, self.types, self.meta, self.events, task_numbers=self.task_numbers)
         view._blocks = [self.table[self.rows_of(task)]]
         return view
 
@@ -313,6 +315,7 @@ class Trace:
             "types": self.types,
             "meta": self.meta,
             "events": [asdict(e) for e in self.events],
+            "tasks": self.task_numbers,
         }
         np.savez_compressed(path, table=self.table, header=np.array(json.dumps(header)))
         return path
@@ -328,6 +331,7 @@ class Trace:
                 header["types"],
                 header["meta"],
                 [TraceEvent(**e) for e in header["events"]],
+                task_numbers=header.get("tasks", {}),
             )
             trace._blocks = [data["table"]]
         return trace

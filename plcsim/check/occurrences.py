@@ -107,9 +107,8 @@ class Calls(Occurrences):
     task: str
 
     def times(self, ctx: Context) -> np.ndarray:
-        number = int(self.task.upper().lstrip("OB"))
         tr = ctx.trace
-        return tr.times[tr.tasks == number]
+        return tr.times[tr.rows_of(self.task)]
 
     def describe(self) -> str:
         return f"{self.task} is called"

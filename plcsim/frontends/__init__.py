@@ -1,0 +1,56 @@
+"""Front ends, chosen by file suffix: each reads a source file into a program the CPU can load.
+
+``.py`` (the Python subset, :class:`plcsim.program.Program`) is the one today; another registers with
+:func:`register` (``register(".il", read_il)``) and every tool that reads a program file through
+:func:`read_program` accepts it.
+
+>>> sorted(suffixes())
+['.py']
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+from plcsim.errors import ProgramError
+from plcsim.loaded import SourceProgram
+
+Reader = Callable[[Path], SourceProgram]
+_READERS: dict[str, Reader] = {}
+
+
+def register(suffix: str, reader: Reader) -> None:
+    """Make ``reader`` the front end of files ending in ``suffix`` (``".py"``); a later call replaces it."""
+    if not suffix.startswith(".") or len(suffix) < 2:
+        raise ValueError(f"a front end's suffix starts with a dot, like '.il', not {suffix!r}")
+    _READERS[suffix.lower()] = reader
+
+
+def unregister(suffix: str) -> None:
+    """Forget the front end of ``suffix`` (tests register a throw-away one)."""
+    _READERS.pop(suffix.lower(), None)
+
+
+def suffixes() -> list[str]:
+    """The file suffixes a front end is registered for."""
+    return list(_READERS)
+
+
+def read_program(path: str | Path) -> SourceProgram:
+    """Read a program file with the front end its suffix names (errors name the file and the fix)."""
+    path = Path(path)
+    reader = _READERS.get(path.suffix.lower())
+    if reader is None:
+        known = ", ".join(sorted(_READERS))
+        raise ProgramError(f"{path}: no front end reads {path.suffix or 'files without a suffix'}; use {known}")
+    return reader(path)
+
+
+def _read_python(path: Path) -> SourceProgram:
+    from plcsim.program import Program
+
+    return Program.from_file(path)
+
+
+register(".py", _read_python)
