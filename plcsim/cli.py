@@ -220,7 +220,7 @@ def _run(args: argparse.Namespace) -> int:
     from rich.text import Text
 
     from plcsim.check import evaluate_all
-    from plcsim.program import Program
+    from plcsim.frontends import read_program
     from plcsim.report import print_run_summary
 
     console = Console()
@@ -235,7 +235,7 @@ def _run(args: argparse.Namespace) -> int:
 
         exercise = get(args.target)
         if args.program:
-            program = Program.from_file(args.program)
+            program = read_program(args.program)
         elif args.reference or args.solution:
             program = _shipped(exercise, args.solution).program()
         else:
@@ -246,9 +246,7 @@ def _run(args: argparse.Namespace) -> int:
         scenario = exercise.scenario(args.scenario) if args.scenario else exercise.scenarios[0]
         scenario_name = scenario.name
         options = {"cycle": args.cycle} if args.cycle else {}
-        sim = exercise.simulation(program, scenario, seed=args.seed, **options)
-        if args.realtime:
-            sim = _as_realtime(sim, args.realtime)
+        sim = exercise.simulation(program, scenario, seed=args.seed, pacing=_pacing(args), **options)
     duration = int(args.seconds * 1e9) if args.seconds else (sim.scenario.duration_ns if sim.scenario else int(10e9))
     console.print(
         f"running {args.target}"
@@ -322,7 +320,7 @@ def _run(args: argparse.Namespace) -> int:
 def _rig_simulation(args: argparse.Namespace) -> Any:
     from plants import RIGS
     from plcsim.cpu import CPU
-    from plcsim.program import Program
+    from plcsim.frontends import read_program
     from plcsim.sim import Simulation
     from plcsim.tags import Tag
     from plcsim.wiring import Wire
@@ -344,21 +342,16 @@ def _rig_simulation(args: argparse.Namespace) -> Any:
         wires.append(Wire(name, name))
     options = {"cycle": args.cycle} if args.cycle else {}
     cpu = CPU(
-        tags, Program.from_file(args.program), clock_memory_byte=100, system_memory_byte=101, seed=args.seed, **options
+        tags, read_program(args.program), clock_memory_byte=100, system_memory_byte=101, seed=args.seed, **options
     )
-    cls = Simulation
-    sim = cls(cpu, plant, wires, seed=args.seed)
-    if args.realtime:
-        sim = _as_realtime(sim, args.realtime)
-    return sim
+    return Simulation(cpu, plant, wires, seed=args.seed, pacing=_pacing(args))
 
 
-def _as_realtime(sim: Any, factor: float) -> Any:
-    from plcsim.sim import RealtimeSimulation
+def _pacing(args: argparse.Namespace) -> Any:
+    """``--realtime F``: the run keeps pace with the wall clock × F; otherwise as fast as it goes."""
+    from plcsim.sim import Realtime
 
-    sim.__class__ = RealtimeSimulation
-    sim.factor = factor
-    return sim
+    return Realtime(args.realtime) if args.realtime else None
 
 
 def _spawn_viewer(path: Path, console: Any) -> None:

@@ -15,10 +15,11 @@ from typing import Any
 from plcsim.check import Check
 from plcsim.cpu import CPU, CPUConfig
 from plcsim.errors import ConfigurationError, defined_at
+from plcsim.frontends import read_program
+from plcsim.loaded import SourceProgram
 from plcsim.plant import Plant
-from plcsim.program import Program
 from plcsim.scenario import Scenario
-from plcsim.sim import Simulation
+from plcsim.sim import Pacing, Simulation
 from plcsim.tags import DataBlock, Tag, TagTable
 from plcsim.types import type_by_name
 from plcsim.validation import validate
@@ -75,8 +76,9 @@ class Solution:
     fails: tuple[str, ...] = ()
     scenarios: tuple[str, ...] | None = None
 
-    def program(self) -> Program:
-        return Program.from_file(self.path)
+    def program(self) -> SourceProgram:
+        """The solution's program, read by the front end its file suffix names."""
+        return read_program(self.path)
 
 
 @dataclass
@@ -176,16 +178,25 @@ class Exercise:
         return [c for c in self.checks if c.scenarios is None or scenario in c.scenarios]  # type: ignore[union-attr]
 
     def simulation(
-        self, program: Program, scenario: Scenario | str, *, seed: int = 0, **cpu_options: Any
+        self,
+        program: SourceProgram,
+        scenario: Scenario | str,
+        *,
+        seed: int = 0,
+        pacing: Pacing | None = None,
+        **cpu_options: Any,
     ) -> Simulation:
-        """A ready-to-run simulation of ``program`` on this exercise's rig and scenario."""
+        """A ready-to-run simulation of ``program`` (any front end's) on this exercise's rig and scenario;
+        ``pacing`` as in :class:`~plcsim.sim.Simulation` (None: as fast as it goes)."""
         if isinstance(scenario, str):
             scenario = self.scenario(scenario)
         options = {**self.cpu, **self.scenario_cpu.get(scenario.name, {}), **cpu_options}
         cpu = CPU(self.tag_table(), program, CPUConfig(seed=seed, **options))
         plant = self.rig() if self.rig is not None else None
         wires = self.wires() if plant is not None else None
-        return Simulation(cpu, plant, wires, scenario, dt=self.dt, seed=seed, changes_only=self.record_changes_only)
+        return Simulation(
+            cpu, plant, wires, scenario, dt=self.dt, seed=seed, changes_only=self.record_changes_only, pacing=pacing
+        )
 
     def describe_io(self) -> list[dict[str, str]]:
         """The I/O table as rows for printing."""

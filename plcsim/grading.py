@@ -23,8 +23,10 @@ from plcsim.check.base import Context
 from plcsim.errors import ConfigurationError, PlcError, SubsetError
 from plcsim.exercise import Exercise
 from plcsim.exercised import Activity, scenario_writes, unprovoked
+from plcsim.frontends import read_program
 from plcsim.grade_report import NOT_EXERCISED, CheckResult, Report, ScenarioRun, write_gradebook, write_junit
 from plcsim.literals import format_ns
+from plcsim.loaded import SourceProgram
 from plcsim.program import Program
 from plcsim.run_result import RunResult
 
@@ -242,7 +244,7 @@ def failure_report(report: Report, kind: str, message: str, exercise: Exercise) 
 
 def grade(
     exercise: Exercise,
-    submission: Program | str | Path,
+    submission: SourceProgram | str | Path,
     *,
     seed: int = 1,
     name: str | None = None,
@@ -253,10 +255,11 @@ def grade(
 ) -> Report:
     """Grade a program in this process (trusted code, tests, notebooks). See :func:`grade_sandboxed`."""
     started = time.perf_counter()
-    label = name or (submission.filename if isinstance(submission, Program) else str(submission))
+    from_file = isinstance(submission, str | Path)
+    label = name or (str(submission) if from_file else getattr(submission, "filename", repr(submission)))
     report = Report(exercise.number, exercise.title, label, seed=seed)
     try:
-        program = submission if isinstance(submission, Program) else Program.from_file(submission)
+        program = read_program(submission) if from_file else submission
         runs, analysis = run_scenarios(exercise, program, seed=seed, scenarios=scenarios)
     except PlcError as exc:
         failure_report(report, load_error_kind(exc), str(exc), exercise)
@@ -392,8 +395,11 @@ def parent_analysis(exercise: Exercise, path: Path) -> Any:
 
     This loads the program (parse, subset check, declarations) and compiles it against the exercise's
     tag table without running any network; it relies on the program loader evaluating module-level
-    declarations without running submission code."""
-    program = Program.from_file(path)
+    declarations without running submission code. Static checks read the Python front end's analysis;
+    another front end's program has none (None)."""
+    program = read_program(path)
+    if not isinstance(program, Program):
+        return None
     table = program.declare_into(exercise.tag_table())
     return program.compile(table).analysis
 

@@ -66,14 +66,14 @@ def lock_down(request: dict[str, Any]) -> list[str]:
 def grade_request(request: dict[str, Any]) -> bytes:
     """Load the exercise, lock down, run the submission in every scenario: the message for the grader."""
     from plcsim.errors import ExerciseError, PlcError
+    from plcsim.frontends import read_program
     from plcsim.grading import load_error_kind, run_scenarios
-    from plcsim.program import Program
     from plcsim.run_result import encode_failure, encode_runs
 
     exercise = getattr(importlib.import_module(request["module"]), request["attribute"])
     lock_down(request)
     try:
-        program = Program.from_file(request["path"])
+        program = read_program(request["path"])
         runs, _ = run_scenarios(exercise, program, seed=request["seed"], scenarios=request["scenarios"])
         return encode_runs(runs, geometry=request["geometry"])
     except ExerciseError as exc:  # a scenario the exercise cannot run: the instructor's mistake, voids the grade
