@@ -236,6 +236,16 @@ def test_holds_until(conveyor):
     assert v.message == "expected D1 to hold at some point; it never did"
 
 
+def test_holds_to_the_end():
+    check = holds("LED").to_the_end()
+    assert check.describe() == "LED holds to the end of the run"
+    assert verdict(check, make_trace({"LED": [0, 0, 1, 1, 1]})).passed
+    v = verdict(check, make_trace({"LED": [0, 1, 1, 0, 1]}))  # a coil: it goes out at 3 ms, then lights again
+    assert v.message == "expected LED to hold to the end of the run; it became true at 1 ms and stopped at 3 ms"
+    assert (v.passed, v.at_ns, v.window) == (False, 3 * MS, (1 * MS, 3 * MS))
+    assert not verdict(check, make_trace({"LED": [0, 0, 0]})).passed
+
+
 def test_holds_for_at_least(conveyor):
     assert verdict(holds("D1").for_at_least("3 scans"), conveyor).passed
     v = verdict(holds("D1").for_at_least("4 scans"), conveyor)

@@ -21,8 +21,8 @@ Building blocks:
   ``value("CISLO") > 0``, ``all_of(...)``, ``any_of(...)``, ``not_(...)``, ``implies(a, b)``,
   ``same("LED", "TLACIDLO")``.
 * **checks**: ``X.within(d).after(Y)``, ``X.between(lo, hi).after(Y)``, ``never(c)``, ``always(c)``,
-  ``holds(c).until(Y)``, ``holds(c).for_at_least(d)``, ``eventually(c).before(t)``, ``count(X)``,
-  ``spacing(X)``, ``durations(c)``, ``duty(c)``, ``final("MOTOR.SEKUNDY")``, ``program_uses_no("SET")``,
+  ``holds(c).until(Y)``, ``holds(c).to_the_end()``, ``holds(c).for_at_least(d)``, ``eventually(c).before(t)``,
+  ``count(X)``, ``spacing(X)``, ``durations(c)``, ``duty(c)``, ``final("MOTOR.SEKUNDY")``, ``program_uses_no("SET")``,
   and ``measure(label, fn)`` for a number computed from the trace by a Python function.
 
 Durations are literals with scans: ``"1 scan"``, ``"10s + 2 scans"``, ``"0.5s - 1 scan"`` (a scan is the

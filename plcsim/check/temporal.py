@@ -143,6 +143,10 @@ class HoldsBuilder:
         """Once true, the condition stays true until ``release`` happens (or the run ends)."""
         return Holds(self.condition, release, None)
 
+    def to_the_end(self) -> Holds:
+        """Once true, the condition stays true until the run ends (a latch nothing in the scenario resets)."""
+        return Holds(self.condition, None, None)
+
     def for_at_least(self, span: str | int) -> Holds:
         """Each time the condition becomes true it stays true at least ``span``."""
         return Holds(self.condition, None, Span.parse(span))
@@ -162,6 +166,8 @@ class Holds(Check):
     def describe(self) -> str:
         if self.release is not None:
             return f"{self.condition.describe()} holds until {self.release.describe()}"
+        if self.minimum is None:
+            return f"{self.condition.describe()} holds to the end of the run"
         return f"{self.condition.describe()} holds for at least {self.minimum}"
 
     def evaluate(self, ctx: Context) -> Verdict:
@@ -190,6 +196,16 @@ class Holds(Check):
                         f"expected {self.condition.describe()} to hold until "
                         f"{self.release.describe()}; it became true at {ctx.t(began)} and stopped "
                         f"at {ctx.t(fell_at)} without it",
+                        fell_at,
+                        signals,
+                        (began, fell_at),
+                    )
+            elif self.minimum is None:
+                if fell_at is not None:
+                    return Verdict(
+                        False,
+                        f"expected {self.condition.describe()} to hold to the end of the run; it became true at "
+                        f"{ctx.t(began)} and stopped at {ctx.t(fell_at)}",
                         fell_at,
                         signals,
                         (began, fell_at),
