@@ -1,7 +1,7 @@
 """4.3.15 Operating-hours meter 2 (hours, minutes, seconds). Plant: CONV1."""
 
 from exercises._common import solution
-from exercises._conveyor import CONV1_IO
+from exercises._conveyor import CONV1_IO, keeps_conveyor_control
 from exercises._hours import (
     counts_running_seconds,
     hms_meter,
@@ -79,6 +79,7 @@ EXERCISE = Exercise(
         ),
     ],
     checks=[
+        *keeps_conveyor_control(),
         counts_running_seconds(hms_meter, *SIGNALS),
         always(value("MOTOR.SEKUNDY") <= 59).named("SEKUNDY stays within 0..59 at the end of every scan"),
         always(value("MOTOR.MINUTY") <= 59).named("MINUTY stays within 0..59 at the end of every scan"),
