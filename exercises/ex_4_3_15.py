@@ -1,4 +1,12 @@
-"""4.3.15 Operating-hours meter 2 (hours, minutes, seconds). Plant: CONV1."""
+"""4.3.15 Operating-hours meter 2 (hours, minutes, seconds). Plant: CONV1.
+
+The conveyor of 4.3.5 (as in 4.3.14) is graded by keeps_conveyor_control: S1 starts the belt, S2 stops it.
+
+Mutation testing (``plcsim mutate 4.3.15``, seeds 1..3: 34 of 38 killed, 89 %). The four survivors are
+the correct programs of 4.3.14 (see its docstring): ``P -> N`` on Clock_1Hz, the pulse used one scan
+later (takt and count_seconds swapped, takt moved to the end), D1 read one scan later (start_belt moved
+to the end).
+"""
 
 from exercises._common import solution
 from exercises._conveyor import CONV1_IO, keeps_conveyor_control
