@@ -3,7 +3,7 @@ and the checks of plain conveyor control."""
 
 from __future__ import annotations
 
-from plcsim.check import Check, count, falls, rises
+from plcsim.check import Check, all_of, count, falls, never, off, rises
 from plcsim.exercise import IO
 from plcsim.scenario import after_event, held, place, remove
 
@@ -37,4 +37,15 @@ def carries_objects(objects: int) -> list[Check]:
         .after(rises("S1"))
         .named("transport S1 -> S2 takes 4.8 s +-10 %"),
         count(rises("D1")).equals(objects).named("the belt starts once per object"),
+    ]
+
+
+def keeps_conveyor_control() -> list[Check]:
+    """The conveyor of 4.3.14 and 4.3.15 (spec: "Conveyor of 4.3.5, driven by output D1"; the task: "Keep the
+    conveyor control of 4.3.5 (S1 starts the belt, S2 stops it)"), as states, since an object may be loaded
+    while the belt already runs: the belt is never off for more than a scan while S1 (and not S2) sees an
+    object, nor on for more than a scan while S2 sees one."""
+    return [
+        never(all_of("S1", off("S2"), off("D1"))).for_more_than("1 scan").named("S1 starts the belt"),
+        never(all_of("S2", "D1")).for_more_than("1 scan").named("S2 stops the belt"),
     ]

@@ -1,13 +1,11 @@
 """4.3.5 Conveyor control 1 (one object). Plant: CONV1.
 
 Mutation testing (``plcsim mutate 4.3.5``): the mutant with the two networks swapped (SET after
-RESET, so SET wins when S1 and S2 are both covered) is reported as equivalent, because no scenario
-covers both: the operator loads one object at a time, as the task says. The spec states that RESET
-wins ([T], rung 2); a scenario that loads a second object while the first waits at S2 (with "the belt
-never runs while S2 sees an object" and "no object falls off the belt") kills it, and the reference
-and wrong-coil grade as before on 20 seeds. It is not added here because tests/test_grading.py and
-tests/test_cli.py count this exercise's checks (11) and replay its seed-1 schedule; add it together
-with their figures (13 checks; wrong-coil 10 / 13).
+RESET, so SET wins when S1 and S2 are both covered) behaves like the reference as long as no
+scenario covers both, since the operator loads one object at a time, as the task says. The spec
+states that RESET wins ([T], rung 2: "RESET is later in the scan: wins if both covered"); the
+scenario "new object while one waits at S2" loads a second object at S1 while the first waits at
+S2, where "the belt never runs while S2 sees an object" and "no object falls off the belt" kill it.
 """
 
 from exercises._common import solution
@@ -15,7 +13,7 @@ from exercises._conveyor import CONV1_IO, carries_objects, shuttle
 from plants import Conv1
 from plcsim.check import always, event, implies, never, off, rises
 from plcsim.exercise import Exercise, only
-from plcsim.scenario import Scenario, place, remove
+from plcsim.scenario import Scenario, after_event, held, place, remove
 
 NUMBER = "4.3.5"
 
@@ -55,6 +53,15 @@ EXERCISE = Exercise(
             duration="4s",
             description="an object put straight at S2 on the idle belt: the belt stays off",
         ),
+        Scenario(
+            "new object while one waits at S2",
+            place("p1", at="S1", t="0.3s..0.8s"),
+            place("p2", at="S1", when=held("S2", "1s")),
+            remove("p1", when=after_event("part placed", "p2"), delay="2s..3s"),
+            duration="17s",
+            description="the operator loads a second object at S1 while the first waits at S2 (S1 and S2 both "
+            "covered: RESET wins, the belt stays off), then takes the first away; the belt carries the second",
+        ),
     ],
     checks=[
         only(
@@ -69,6 +76,7 @@ EXERCISE = Exercise(
             always(implies("S2", off("D1"))).named("the belt never runs while S2 sees an object"),
             "three objects",
             "placed at S2",
+            "new object while one waits at S2",
         ),
         never(event("part fell off")).named("no object falls off the belt"),
         only(never("D1").named("the belt stays off without a new object at S1"), "placed mid-belt", "placed at S2"),

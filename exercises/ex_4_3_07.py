@@ -1,4 +1,14 @@
-"""4.3.7 Conveyor alarm (10 s transport watchdog). Plant: CONV1."""
+"""4.3.7 Conveyor alarm (10 s transport watchdog). Plant: CONV1.
+
+Mutation testing (``plcsim mutate 4.3.7``, seeds 1..3: 24 of 26 killed). The two survivors are
+correct programs, one scan apart from the reference within the spec's tolerances:
+- networks start_belt and watchdog swapped: the watchdog sees D1 one scan after it was set, so ALARM
+  comes 10 s + 1 scan after the belt started (criterion 2 allows [10 s, 10 s + 2 scans]); while a new
+  object waits at S1 during the alarm, its TON no longer times at all (the reference's does, see notes).
+- networks stop_belt and acknowledge swapped: ACK clears ALARM before the reset rung reads it, so an
+  object waiting at S1 restarts the belt in the scan of ACK rather than the next one; criterion 4 says
+  "restarts only after ACK", which a restart in the scan that read ACK is.
+"""
 
 from __future__ import annotations
 
@@ -6,7 +16,7 @@ from exercises._common import solution
 from exercises._conveyor import CONV1_IO, carries_objects, shuttle
 from plants import Conv1
 from plcsim.check import all_of, always, count, event, falls, holds, implies, never, off, rises
-from plcsim.exercise import IO, Exercise, only
+from plcsim.exercise import IO, Exercise, GradedCheck, only
 from plcsim.scenario import Scenario, after_event, held, jam, knock_off, place, remove, write
 
 NUMBER = "4.3.7"
@@ -26,6 +36,54 @@ JAMMED = [
     place("p1", at="S1", t="0.3s..0.8s"),
     jam("p1", when=after_event("part left", "p1"), delay="0.2s..2s"),
 ]
+
+THREE_OBJECTS = Scenario(
+    "three objects",
+    *shuttle(3),
+    duration="25s",
+    description="normal operation: load at S1, remove at S2 after 1 s, three times (14 s of belt "
+    "time in all, so a watchdog that does not restart for each transport gives a false alarm)",
+)
+
+NEW_OBJECT_DURING_ALARM = Scenario(
+    "new object during the alarm",
+    *JAMMED,
+    remove("p1", t="12s..12.5s"),
+    place("p2", at="S1", t="13.5s..14s"),
+    *acknowledge(14.5, 15),
+    remove("p2", t="15.6s..15.9s"),
+    place("p3", at="S1", t="16.1s..16.4s"),
+    remove("p3", when=held("S2", "1s")),
+    duration="24s",
+    description="after the alarm the operator frees the belt and loads a new object before "
+    "acknowledging; the belt must wait for ACK (version 3); after ACK the operator lifts the object and "
+    "sets it down on S1 again (a new S1 edge), and the belt carries it to S2",
+)
+
+
+def watchdog_checks(jams: tuple[str, ...], alarms: tuple[str, ...]) -> list[GradedCheck]:
+    """Criteria 2 and 3 of 4.3.7 (also graded in 4.3.8, whose conveyor has "the control of 4.3.7"): in the
+    scenarios ``jams`` the belt stops and ALARM rises 10 s after the belt started; in ``alarms`` ALARM latches
+    until ACK and ACK clears it within 1 scan."""
+    return [
+        only(
+            falls("D1")
+            .between("10s", "10s + 2 scans")
+            .after(rises("D1"))
+            .named("the belt stops 10 s after it started without reaching S2"),
+            *jams,
+        ),
+        only(
+            rises("ALARM")
+            .between("10s - 1 scan", "10s + 2 scans")
+            .after(rises("D1"))
+            .named("ALARM is raised 10 s after the belt started"),
+            *jams,
+        ),
+        only(holds("ALARM").until(rises("ACK")).named("ALARM latches until ACK"), *alarms),
+        only(falls("ALARM").within("1 scan").after(rises("ACK")).named("ACK clears ALARM within 1 scan"), *alarms),
+    ]
+
 
 EXERCISE = Exercise(
     number=NUMBER,
@@ -50,13 +108,7 @@ EXERCISE = Exercise(
     ],
     rig=Conv1,
     scenarios=[
-        Scenario(
-            "three objects",
-            *shuttle(3),
-            duration="25s",
-            description="normal operation: load at S1, remove at S2 after 1 s, three times (14 s of belt "
-            "time in all, so a watchdog that does not restart for each transport gives a false alarm)",
-        ),
+        THREE_OBJECTS,
         Scenario(
             "jam",
             *JAMMED,
@@ -73,48 +125,14 @@ EXERCISE = Exercise(
             duration="15s",
             description="the object is pushed off the side of the belt on its way to S2",
         ),
-        Scenario(
-            "new object during the alarm",
-            *JAMMED,
-            remove("p1", t="12s..12.5s"),
-            place("p2", at="S1", t="13.5s..14s"),
-            *acknowledge(14.5, 15),
-            remove("p2", t="15.6s..15.9s"),
-            place("p3", at="S1", t="16.1s..16.4s"),
-            remove("p3", when=held("S2", "1s")),
-            duration="24s",
-            description="after the alarm the operator frees the belt and loads a new object before "
-            "acknowledging; the belt must wait for ACK (version 3); after ACK the operator lifts the object and "
-            "sets it down on S1 again (a new S1 edge), and the belt carries it to S2",
-        ),
+        NEW_OBJECT_DURING_ALARM,
     ],
     checks=[
         # normal operation (criteria 1 and 5)
         only(never("ALARM").named("no false alarm in normal operation"), "three objects"),
         *(only(check, "three objects") for check in carries_objects(3)),
         # the watchdog (criterion 2)
-        only(
-            falls("D1")
-            .between("10s", "10s + 2 scans")
-            .after(rises("D1"))
-            .named("the belt stops 10 s after it started without reaching S2"),
-            "jam",
-            "knocked off",
-        ),
-        only(
-            rises("ALARM")
-            .between("10s - 1 scan", "10s + 2 scans")
-            .after(rises("D1"))
-            .named("ALARM is raised 10 s after the belt started"),
-            "jam",
-            "knocked off",
-        ),
-        # latching and acknowledgement (criterion 3)
-        only(holds("ALARM").until(rises("ACK")).named("ALARM latches until ACK"), *ALARM_SCENARIOS),
-        only(
-            falls("ALARM").within("1 scan").after(rises("ACK")).named("ACK clears ALARM within 1 scan"),
-            *ALARM_SCENARIOS,
-        ),
+        *watchdog_checks(("jam", "knocked off"), ALARM_SCENARIOS),
         # version 3 blocks the belt (criterion 4)
         only(
             always(implies("ALARM", off("D1"))).named("the belt stays off while ALARM is TRUE"),

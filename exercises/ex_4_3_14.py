@@ -1,7 +1,19 @@
-"""4.3.14 Operating-hours meter 1 (seconds). Plant: CONV1 (the motor is the conveyor drive D1)."""
+"""4.3.14 Operating-hours meter 1 (seconds). Plant: CONV1 (the motor is the conveyor drive D1).
+
+The task keeps "the conveyor control of 4.3.5 (S1 starts the belt, S2 stops it)": keeps_conveyor_control
+grades it, so a meter that counts a belt which never starts or never stops no longer passes.
+
+Mutation testing (``plcsim mutate 4.3.14``, seeds 1..3: 19 of 23 killed, 83 %). The four survivors are
+correct programs and are not killed on purpose:
+- ``P -> N`` on Clock_1Hz: the falling edge is a 1 s pulse too (as in 4.3.11); criterion 1 ("increases by
+  exactly 1 on each Takt1s pulse ... over T seconds the increase is T +- 1") holds for it;
+- networks takt and count_seconds swapped, takt moved to the end: the count uses the pulse one scan
+  later, still once a second;
+- start_belt moved to the end: the counting network reads D1 one scan later when the belt starts.
+"""
 
 from exercises._common import solution
-from exercises._conveyor import CONV1_IO
+from exercises._conveyor import CONV1_IO, keeps_conveyor_control
 from exercises._hours import (
     counts_running_seconds,
     nuluj_resets_itself,
@@ -68,6 +80,7 @@ EXERCISE = Exercise(
         ),
     ],
     checks=[
+        *keeps_conveyor_control(),
         counts_running_seconds(seconds_meter, METER),
         still_while_off(seconds_meter, METER),
         zero_after_reset(seconds_meter, METER),

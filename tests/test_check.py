@@ -339,6 +339,8 @@ def test_measure():
     assert (v.passed, v.message) == (False, "expected gaps at most 2; measured 5")
     v = verdict(measure("nothing", lambda t: None).at_most(2), tr)
     assert v.message == "expected nothing at most 2; there was nothing to measure"
+    v = verdict(measure("per reset", lambda t: [0.0, None]).equals(0), tr)  # a None item fails, not crashes
+    assert (v.passed, v.message) == (False, "expected per reset = 0; measured nothing")
 
 
 # -- conditions ----------------------------------------------------------------------------------------------

@@ -179,7 +179,7 @@ def final(name: str) -> Quantity:
 
 
 def measure(
-    label: str, compute: Callable[[Trace], float | list[float] | None], *signals: str, unit: str = ""
+    label: str, compute: Callable[[Trace], float | list[float | None] | None], *signals: str, unit: str = ""
 ) -> Quantity:
     """A number an instructor computes from the trace with Python: the escape hatch of the language.
 
@@ -192,7 +192,7 @@ def measure(
     def run(ctx: Context) -> tuple[Any, list[int]]:
         value = compute(ctx.trace)
         if isinstance(value, (list, tuple)):
-            return [float(v) for v in value], []
+            return [None if v is None else float(v) for v in value], []  # None: nothing to measure there, a failure
         return (None if value is None else float(value)), []
 
     q = Quantity(label, run, list(signals), unit=unit)
