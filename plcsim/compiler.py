@@ -203,50 +203,95 @@ def check_subset(
 ) -> None:
     """Reject anything outside the PLC subset of Python, naming the line and the fix.
 
-    ``declaration_only`` names (``Tag``, ``DB``, ``IEC_TIMER`` ...) may be used at module level only.
+    A file with several violations is refused at its first one by line, the one a student reads
+    first. ``declaration_only`` names (``Tag``, ``DB``, ``IEC_TIMER`` ...) may be used at module level only.
     """
+    found = min(_violations(tree, filename, known_names, declaration_only), key=_line_order, default=None)
+    if found is not None:
+        raise found[1]
+
+
+Violation = tuple[int | str, ProgramError]
+"""A subset violation: its line and the error that names it."""
+
+
+def _line_order(violation: Violation) -> float:
+    line = violation[0]
+    return line if isinstance(line, int) else float("inf")
+
+
+def _violations(
+    tree: ast.Module, filename: str, known_names: Iterable[str], declaration_only: Iterable[str]
+) -> Iterator[Violation]:
+    """Every statement's first violation of the syntax rules, then of the name rules."""
     known = set(known_names) | ALLOWED_BUILTINS
     reserved = known - {"True", "False", "None"}
     module_names = _module_level_names(tree)
     declared = {id(t) for s in tree.body if isinstance(s, ast.Assign) for t in s.targets}  # seen as t.NAME
     memo: dict[int, Any] = {}  # constant values of the sub-expressions folded so far
-    for node, line in _nodes_not_too_deep(tree, filename):
-        kind = type(node)
+    try:
+        for node, line in _nodes_not_too_deep(tree, filename):
+            problem = _syntax_violation(node, line, filename, reserved, declared, memo)
+            if problem is not None:
+                yield line, problem
+    except SubsetError as exc:  # nested too deeply: nothing below that line can be read
+        yield _error_line(exc), exc
+    visible = known | module_names
+    own_tags = _declared_tags(tree)
+    decl_only = set(declaration_only) | own_tags
+    for stmt in tree.body:
+        try:
+            if isinstance(stmt, ast.FunctionDef):
+                _check_function(stmt, filename, visible, decl_only, own_tags)
+                continue
+            for node in ast.walk(stmt):
+                if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and node.id not in visible:
+                    raise _unknown_name(node, filename, visible)
+        except ProgramError as exc:
+            yield _error_line(exc), exc
+
+
+def _error_line(exc: ProgramError) -> int | str:
+    """The line an error of this module names: each starts ``file, line N:`` (see :func:`_where`)."""
+    head = str(exc).split(": ", 1)[0]
+    number = head.rpartition(", line ")[2]
+    return int(number) if number.isdigit() else "?"
+
+
+def _syntax_violation(
+    node: Any, line: int | str, filename: str, reserved: set[str], declared: set[int], memo: dict[int, Any]
+) -> ProgramError | None:
+    """What is wrong with one node's syntax, or None."""
+    kind = type(node)
+    try:
         if kind not in ALLOWED_NODES:
             reason = _REFUSED_NODES.get(kind, f"{kind.__name__} syntax is not part of PLC programs")
-            raise SubsetError(f"{filename}, line {line}: {reason}")
+            return SubsetError(f"{filename}, line {line}: {reason}")
         if kind is ast.Name and node.id.startswith("_"):
-            raise SubsetError(f"{_where(filename, node)}: names starting with _ are reserved ({node.id})")
+            return SubsetError(f"{_where(filename, node)}: names starting with _ are reserved ({node.id})")
         if kind is ast.Attribute and (node.attr.startswith("_") or node.attr in _FORBIDDEN_ATTRS):
-            raise SubsetError(f"{_where(filename, node)}: the attribute .{node.attr} is not available in PLC programs")
+            return SubsetError(f"{_where(filename, node)}: the attribute .{node.attr} is not available in PLC programs")
         if kind is ast.arg:
             _check_binding(node.arg, node, filename, reserved)
         if kind is ast.FunctionDef:
             _check_binding(node.name, node, filename, reserved)
             if node.args.vararg or node.args.kwarg:
-                raise SubsetError(f"{_where(filename, node)}: *args and **kwargs are not part of PLC programs")
+                return SubsetError(f"{_where(filename, node)}: *args and **kwargs are not part of PLC programs")
         if kind is ast.Name and isinstance(node.ctx, ast.Store) and id(node) not in declared:
             _check_binding(node.id, node, filename, reserved)
         if kind is ast.BinOp or kind is ast.UnaryOp:
             try:
-                _fold(node, memo, 0)  # type: ignore[arg-type]
+                _fold(node, memo, 0)
             except ProgramError as exc:
-                raise SubsetError(f"{filename}, line {line}: {exc}") from None
+                return SubsetError(f"{filename}, line {line}: {exc}")
         if kind is ast.For and not all(isinstance(n, ast.Name | ast.Tuple | ast.Store) for n in ast.walk(node.target)):
-            raise SubsetError(
+            return SubsetError(
                 f"{_where(filename, node)}: a for loop counts with a plain variable (for i in range(...)); "
                 f"store into a tag inside the loop"
             )
-    visible = known | module_names
-    own_tags = _declared_tags(tree)
-    decl_only = set(declaration_only) | own_tags
-    for stmt in tree.body:
-        if isinstance(stmt, ast.FunctionDef):
-            _check_function(stmt, filename, visible, decl_only, own_tags)
-            continue
-        for node in ast.walk(stmt):
-            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and node.id not in visible:
-                raise _unknown_name(node, filename, visible)
+    except SubsetError as exc:  # a binding of a reserved name
+        return exc
+    return None
 
 
 _NOT_CONSTANT = object()

@@ -9,7 +9,7 @@ import pytest
 
 from plcsim import Program
 from plcsim.compiler import ALLOWED_NODES
-from plcsim.errors import SubsetError
+from plcsim.errors import ProgramError, SubsetError
 
 
 @pytest.mark.parametrize(
@@ -92,3 +92,46 @@ def OB1(t):
     t.N = y if y is not None and y in (13, 14) else 0
 """
     Program.from_source(source, "lab.py")
+
+
+FIRST_BY_LINE = """import os
+
+
+def helper(t):
+    t.LED = abs(-1)
+
+
+def OB1(t):
+    t.LED = t.TL
+    y = t.__class__
+    x = [i for i in range(3)]
+"""
+
+
+@pytest.mark.parametrize(
+    ("source", "line", "words"),
+    [
+        pytest.param(FIRST_BY_LINE, 1, "import", id="import-before-comprehension"),
+        pytest.param(
+            FIRST_BY_LINE.replace("import os", ""), 10, "attribute .__class__", id="dunder-before-comprehension"
+        ),
+        pytest.param(
+            "def OB1(t):\n    t.LED = nope\n    x = [i for i in range(3)]\n",
+            2,
+            "unknown name 'nope'",
+            id="name-before-syntax",
+        ),
+        pytest.param(
+            "def OB1(t):\n    x = [i for i in range(3)]\n    t.LED = nope\n",
+            2,
+            "comprehensions",
+            id="syntax-before-name",
+        ),
+    ],
+)
+def test_a_file_with_several_violations_is_refused_at_the_first_by_line(source, line, words):
+    # A student reads from the top: the error names the first violation, not the last one the walk met.
+    with pytest.raises(ProgramError) as info:
+        Program.from_source(source, "lab.py")
+    assert str(info.value).startswith(f"lab.py, line {line}:"), str(info.value)
+    assert words in str(info.value)
