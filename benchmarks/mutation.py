@@ -2,12 +2,15 @@
 (``plcsim mutate``), and what the sweep costs.
 
 One figure per exercise (``mutation_score_<number>``: killed / mutants that change behaviour, with
-the counts, the seconds and the surviving mutants), then the sweep's totals. Seeds 1..3, two
-mutants at a time (the machine's two cores); ``--quick`` grades only 4.3.1 on one seed.
+the counts, the seconds, the surviving mutants and the explained ones with the exercise's reason),
+then the sweep's totals with the machine's load average before and after (the seconds of a shared
+machine mean little without it). Seeds 1..3, two mutants at a time (the machine's two cores);
+``--quick`` grades only 4.3.1 on one seed.
 """
 
 from __future__ import annotations
 
+import os
 import time
 from collections.abc import Iterator
 from typing import Any
@@ -20,10 +23,11 @@ JOBS = 2
 
 def run(settings: Settings) -> Iterator[dict[str, Any]]:
     from exercises import all_exercises, get
-    from plcsim.mutate import EQUIVALENT, KILLED, STILLBORN, SURVIVED, mutate_exercise
+    from plcsim.mutate import EQUIVALENT, EXPLAINED, KILLED, STILLBORN, SURVIVED, mutate_exercise
 
     chosen = [get("4.3.1")] if settings.quick else list(all_exercises())
     seeds = 1 if settings.quick else SEEDS
+    load_before = _load()
     t0 = time.perf_counter()
     mutants = 0
     scores = []
@@ -41,16 +45,27 @@ def run(settings: Settings) -> Iterator[dict[str, Any]]:
             mutants=len(report.outcomes),
             killed=report.count(KILLED),
             survived=report.count(SURVIVED),
+            explained=report.count(EXPLAINED),
             equivalent=report.count(EQUIVALENT),
             stillborn=report.count(STILLBORN),
             seconds=round(report.elapsed_s, 2),
             seeds=seeds,
             survivors=[f"{o.mutant} ({o.detail})" for o in report.of(SURVIVED)],
+            explained_mutants=[f"{o.mutant}: {o.reason}" for o in report.of(EXPLAINED)],
+            misleading_declarations=report.misleading,
             reference_failures=report.reference_failures,
         )
     wall = time.perf_counter() - t0
     yield figure(
-        "mutation_sweep_s", round(wall, 1), "s", exercises=len(chosen), mutants=mutants, seeds=seeds, jobs=JOBS
+        "mutation_sweep_s",
+        round(wall, 1),
+        "s",
+        exercises=len(chosen),
+        mutants=mutants,
+        seeds=seeds,
+        jobs=JOBS,
+        load_before=load_before,
+        load_after=_load(),
     )
     yield figure(
         "mutation_score_min",
@@ -58,3 +73,8 @@ def run(settings: Settings) -> Iterator[dict[str, Any]]:
         "killed / behaviour-changing mutants",
         exercises=len(scores),
     )
+
+
+def _load() -> float | None:
+    """The 1-minute load average (None where the platform has none, as on Windows)."""
+    return round(os.getloadavg()[0], 2) if hasattr(os, "getloadavg") else None

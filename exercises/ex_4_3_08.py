@@ -4,14 +4,9 @@ The conveyor is "the conveyor of 4.3.5 with the control of 4.3.7" (spec), so 4.3
 "new object during the alarm" are graded here too, with 4.3.7's criteria 1..4 (its watchdog and
 acknowledgement checks in the jam scenarios): without them the belt and alarm networks were unchecked.
 
-Mutation testing (``plcsim mutate 4.3.8``, seeds 1..3: 27 of 31 killed, 87 %). The four survivors are
-correct programs, one scan apart from the reference within the spec's tolerances, and are not killed
-on purpose (a check that did would fail a correct program written in another order):
-- start_belt and watchdog swapped, stop_belt and acknowledge swapped: as in 4.3.7 (ALARM 10 s + 1 scan
-  after the start; the belt restarts in the scan that read ACK);
-- stop_belt moved to the end: the same restart one scan earlier after ACK;
-- acknowledge and alarm_lamp swapped: the LED goes dark one scan after ACK, which criterion 1 allows
-  ("LED FALSE within 1 scan after ACK clears ALARM").
+Mutation testing (``plcsim mutate 4.3.8``): the four survivors are correct programs, one scan apart from the
+reference within the spec's tolerances (a check that killed one would fail a correct program written in
+another order); ``spec_equivalent`` below gives each with the words of the spec that allow it.
 """
 
 from __future__ import annotations
@@ -22,7 +17,7 @@ import numpy as np
 
 from exercises._common import solution
 from exercises._conveyor import CONV1_IO, carries_objects
-from exercises.ex_4_3_07 import NEW_OBJECT_DURING_ALARM, THREE_OBJECTS, watchdog_checks
+from exercises.ex_4_3_07 import NEW_OBJECT_DURING_ALARM, SPEC_EQUIVALENT, THREE_OBJECTS, watchdog_checks
 from plants import Conv1
 from plcsim.check import Condition, Context, all_of, always, durations, duty, implies, never, off
 from plcsim.exercise import IO, Exercise, only
@@ -181,6 +176,17 @@ EXERCISE = Exercise(
             fails=("each flash lasts 0.5 s", "the LED is dark 0.5 s between flashes"),
         ),
     ],
+    spec_equivalent={
+        **SPEC_EQUIVALENT,
+        "OB1: network stop_belt moved to the end": (
+            "as stop_belt and acknowledge swapped: ACK clears ALARM before the reset rung runs, so the waiting "
+            "object restarts the belt in the scan that read ACK (criterion 4 of 4.3.7: 'only after ACK')"
+        ),
+        "OB1: networks acknowledge and alarm_lamp swapped": (
+            "the lamp reads ALARM before ACK clears it, so the LED goes dark in the scan after ALARM fell: "
+            "criterion 1 asks 'LED FALSE within 1 scan after ACK clears ALARM'"
+        ),
+    },
     notes=(
         "Text issue: 'period 0.5 s' contradicts '0.5 s TRUE, 0.5 s FALSE'; the exercise uses the half-period 0.5 s "
         "(the parenthesis and the textbook's Clock_1Hz). System memory is at MB1 (the textbook says byte 0 for "

@@ -1,17 +1,10 @@
 """4.3.9 Conveyors 1 (three conveyors, occupancy states). Plant: CONV3.
 
-Mutation testing (``plcsim mutate 4.3.9``): two mutants survive, both start a conveyor one scan
-later than the reference and change nothing else:
-
-- network ``loading`` moved to the end of OB1: the run networks see D1_OBS a scan after it is set.
-- network ``removal_d3`` moved to the end: after the removal at D3, D3 (and the queue) starts a scan
-  later.
-
-The spec bounds when a conveyor stops (criterion 2, "within 1 scan"), not when it starts; a start
-one scan later is a correct program (a student may well write the run networks first), so no check
-kills them. The equivalent ones are swaps of adjacent networks that never act in the same scan
-(a load at D1_OS and an arrival at D2_OS, say), and ``P(D3_OS) -> D3_OS``: D3_VPRED falls in the
-scan that sets D3_OBS, so the level acts once, like the edge.
+Mutation testing (``plcsim mutate 4.3.9``): two mutants survive, both start a conveyor one scan later than
+the reference and change nothing else; ``spec_equivalent`` says why they are correct programs. The
+equivalent ones are swaps of adjacent networks that never act in the same scan (a load at D1_OS and an
+arrival at D2_OS, say), and ``P(D3_OS) -> D3_OS``: D3_VPRED falls in the scan that sets D3_OBS, so the
+level acts once, like the edge.
 """
 
 from __future__ import annotations
@@ -189,6 +182,16 @@ EXERCISE = Exercise(
             ),
         ),
     ],
+    spec_equivalent={
+        "OB1: network loading moved to the end": (
+            "the run networks see D1_OBS a scan after it is set, so D1 starts one scan later: the spec bounds when "
+            "a conveyor stops (criterion 2, 'within 1 scan'), not when it starts"
+        ),
+        "OB1: network removal_d3 moved to the end": (
+            "after the removal at D3 the queue starts a scan later: the spec bounds when a conveyor stops "
+            "(criterion 2, 'within 1 scan'), not when it starts"
+        ),
+    },
     notes=(
         "Text issue: the tag table has SB1-SB3 for three edges (D2_OS rising, D3_OS rising, D3_OS falling), and SB1 "
         "suggests an edge on D1_OS as well; P and N on D3_OS must not share a bit, so SB4 (%M2.3) is added "

@@ -1,12 +1,8 @@
 """4.3.10 Conveyors 2 (two conveyors, two NC sensors each). Plant: CONV2x2.
 
-Mutation testing (``plcsim mutate 4.3.10``): three mutants survive, and each starts D1 one scan
-later than the reference: network ``loading`` moved to the end of OB1 (D1_VPRED sees the new
-D1_POZ1_OBS a scan later), ``removal`` moved to the end, and ``removal`` swapped with ``run_d1``
-(after the removal at D2_OS2, the waiting object is sent on a scan later). The spec bounds when a
-conveyor stops and when the removal clears D2_POZ2_OBS (criteria 1 and 4, "within 1 scan"), not
-when a conveyor starts; such a program is correct, so no check kills them. The equivalent ones are
-swaps of adjacent networks that never act in the same scan.
+Mutation testing (``plcsim mutate 4.3.10``): three mutants survive, and each starts D1 one scan later than
+the reference; ``spec_equivalent`` says why they are correct programs. The equivalent ones are swaps of
+adjacent networks that never act in the same scan.
 """
 
 from __future__ import annotations
@@ -209,6 +205,21 @@ EXERCISE = Exercise(
             fails=("D1_POZ1_OBS matches the object at D1 position 1",),
         ),
     ],
+    spec_equivalent={
+        "OB1: network loading moved to the end": (
+            "D1_VPRED sees the new D1_POZ1_OBS a scan later, so D1 starts one scan later: the spec bounds when a "
+            "conveyor stops and when the removal clears D2_POZ2_OBS (criteria 1 and 4, 'within 1 scan'), not when "
+            "it starts"
+        ),
+        "OB1: network removal moved to the end": (
+            "the removal still clears D2_POZ2_OBS in the scan that saw it (criterion 4), and the waiting object "
+            "is sent on a scan later: the spec does not bound when a conveyor starts"
+        ),
+        "OB1: networks removal and run_d1 swapped": (
+            "after the removal at D2_OS2 the waiting object is sent on a scan later; D2_POZ2_OBS is still cleared "
+            "in the scan that saw the removal (criterion 4): the spec does not bound when a conveyor starts"
+        ),
+    },
     notes=(
         "The DB DATA is the exercise's (Fig. 4.95, non-retentive, start values FALSE). The wire-break scenario is the "
         "NC wiring's point (a broken wire reads 'object present', so the end sensor stops the belt instead of "

@@ -1,11 +1,7 @@
 """4.3.11 1-second clock pulse ("Takt 1s"). Plant: none (a PLC-only run).
 
-Mutation testing (``plcsim mutate 4.3.11``, score 1 of 2): the reference has two mutants. The edge
-removed (Takt1s := Clock_1Hz) is killed; ``P -> N`` survives, and must: the falling edge of
-Clock_1Hz is a one-scan pulse every 1.000 s too, half a second later. The task asks for a variable
-"TRUE every second, for one scan", not for a pulse in phase with the clock's rising edge; a check
-on the phase would fail the textbook's solution 2 (a self-restarting TON, in no phase with the
-clock memory), which is correct. The mutant is a correct program, not a slip the checks miss.
+Mutation testing (``plcsim mutate 4.3.11``): the reference has two mutants. The edge removed
+(Takt1s := Clock_1Hz) is killed; ``P -> N`` is a correct program (``spec_equivalent`` says why).
 """
 
 from exercises._common import solution
@@ -92,6 +88,13 @@ EXERCISE = Exercise(
             ),
         ),
     ],
+    spec_equivalent={
+        "P(t.Clock_1Hz, 'AUX') → N(t.Clock_1Hz, 'AUX')": (
+            "the falling edge of Clock_1Hz is a one-scan pulse every 1.000 s too, half a second later: the task "
+            "asks for a variable 'TRUE every second' for one scan, not in phase with the rising edge (a check on "
+            "the phase would fail the textbook's solution 2, a self-restarting TON in no phase with the clock)"
+        ),
+    },
     notes=(
         "Solution 3 ('not quite correct' in the textbook) is shipped as a wrong solution: it passes at a 1 ms "
         "cycle and fails only the 100 ms scenario, where its period is 1.2 s against solution 2's 1.1 s (the "

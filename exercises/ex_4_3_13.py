@@ -1,15 +1,8 @@
 """4.3.13 Machine control (three on/off cycles). Plant: MACHINE.
 
-Mutation testing (``plcsim mutate 4.3.13``): two mutants survive, both one scan off the reference,
-inside the spec's tolerance of 2 scans (acceptance criterion 1: "1.0 s +- 2 T_scan"), so no check may
-kill them without failing correct programs that are a scan later than the reference (a cycle timer
-restarted by RT restarts one scan later, spec 0.4):
-
-- ``ET < TIME('1s') -> ET <= TIME('1s')``: the ON phase lasts one scan longer.
-- networks ``cycle`` and ``machine`` swapped: the machine network sees the expired timer before RT
-  restarts it, so each ON phase after the first starts one scan later.
-
-The mutant that drops ``q = ...`` does not load (``q`` unknown) and is not counted.
+Mutation testing (``plcsim mutate 4.3.13``): the two survivors are one scan off the reference, inside the
+spec's tolerance of 2 scans (``spec_equivalent`` says why). The mutant that drops ``q = ...`` does not load
+(``q`` unknown) and is not counted.
 """
 
 from exercises._common import solution
@@ -145,6 +138,16 @@ EXERCISE = Exercise(
             fails=("exactly three ON phases", "the whole sequence lasts 9 s (+ at most 3 scans)"),
         ),
     ],
+    spec_equivalent={
+        "t.TON_S.ET < TIME('1s') → t.TON_S.ET <= TIME('1s')": (
+            "the ON phase lasts one scan longer (the scan with ET = 1 s exactly): criterion 1 allows 1.0 s +- 2 scans"
+        ),
+        "OB1: networks cycle and machine swapped": (
+            "the machine network sees the expired timer before RT restarts it, so each ON phase after the first "
+            "starts one scan later: criterion 1 allows +- 2 scans, and a timer restarted by RT restarts a scan "
+            "late anyway (spec 0.4)"
+        ),
+    },
     notes=(
         "Text issue (erratum 4.3.13): the task says on 1 s / off 2 s, the solution text says off 1 s / on 2 s and "
         "names STROJ_START for STROJ_ZAP. The task statement is normative; the textbook's variant ships as the "

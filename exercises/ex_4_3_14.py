@@ -3,13 +3,8 @@
 The task keeps "the conveyor control of 4.3.5 (S1 starts the belt, S2 stops it)": keeps_conveyor_control
 grades it, so a meter that counts a belt which never starts or never stops no longer passes.
 
-Mutation testing (``plcsim mutate 4.3.14``, seeds 1..3: 19 of 23 killed, 83 %). The four survivors are
-correct programs and are not killed on purpose:
-- ``P -> N`` on Clock_1Hz: the falling edge is a 1 s pulse too (as in 4.3.11); criterion 1 ("increases by
-  exactly 1 on each Takt1s pulse ... over T seconds the increase is T +- 1") holds for it;
-- networks takt and count_seconds swapped, takt moved to the end: the count uses the pulse one scan
-  later, still once a second;
-- start_belt moved to the end: the counting network reads D1 one scan later when the belt starts.
+Mutation testing (``plcsim mutate 4.3.14``): the four survivors are correct programs and are not killed on
+purpose; ``SPEC_EQUIVALENT`` gives each with the words of the spec that allow it.
 """
 
 from exercises._common import solution
@@ -32,6 +27,22 @@ from plcsim.types import DTL, Bool, DInt
 
 NUMBER = "4.3.14"
 METER = "MOTOR.SEKUNDY"
+
+_PULSE_A_SCAN_LATER = "the count uses the pulse one scan later, still once a second (criterion 1: T +- 1 in T s)"
+SPEC_EQUIVALENT = {
+    "P(t.Clock_1Hz, 'TAKT_SB') → N(t.Clock_1Hz, 'TAKT_SB')": (
+        "the falling edge of Clock_1Hz is a 1 s pulse too (as in 4.3.11): criterion 1 ('increases by exactly 1 on "
+        "each Takt1s pulse ... over T seconds the increase is T +- 1') holds for it"
+    ),
+    "OB1: networks takt and count_seconds swapped": _PULSE_A_SCAN_LATER,
+    "OB1: network takt moved to the end": _PULSE_A_SCAN_LATER,
+    "OB1: network start_belt moved to the end": (
+        "the counting network reads D1 one scan later when the belt starts: a pulse in that one scan is not "
+        "counted, which criterion 1's T +- 1 allows"
+    ),
+}
+"""The mutants of the reference that are correct programs by the spec's words (see plcsim.mutate);
+4.3.15's reference has the same networks and the same four."""
 
 EXERCISE = Exercise(
     number=NUMBER,
@@ -115,6 +126,7 @@ EXERCISE = Exercise(
             fails=("the meter survives a power cycle (retain)",),
         ),
     ],
+    spec_equivalent=SPEC_EQUIVALENT,
     notes=(
         "Runs at a 100 ms cycle (the textbook allows cycles up to 100 ms) so that minutes of running grade in a "
         "fraction of a second; while the belt runs empty the plant is quiescent and the simulator skips its idle "

@@ -2,10 +2,8 @@
 
 The conveyor of 4.3.5 (as in 4.3.14) is graded by keeps_conveyor_control: S1 starts the belt, S2 stops it.
 
-Mutation testing (``plcsim mutate 4.3.15``, seeds 1..3: 34 of 38 killed, 89 %). The four survivors are
-the correct programs of 4.3.14 (see its docstring): ``P -> N`` on Clock_1Hz, the pulse used one scan
-later (takt and count_seconds swapped, takt moved to the end), D1 read one scan later (start_belt moved
-to the end).
+Mutation testing (``plcsim mutate 4.3.15``): the four survivors are the correct programs of 4.3.14,
+declared with its reasons (``SPEC_EQUIVALENT`` of ``ex_4_3_14``).
 """
 
 from exercises._common import solution
@@ -19,6 +17,7 @@ from exercises._hours import (
     survives_power_cycle,
     zero_after_reset,
 )
+from exercises.ex_4_3_14 import SPEC_EQUIVALENT
 from plants import Conv1
 from plcsim.check import always, value
 from plcsim.exercise import Exercise, only
@@ -119,6 +118,7 @@ EXERCISE = Exercise(
             fails=("SEKUNDY stays within 0..59 at the end of every scan",),
         ),
     ],
+    spec_equivalent=SPEC_EQUIVALENT,
     notes=(
         "The two-hour scenario records a trace row only when a value changes and runs at a 100 ms cycle; the idle "
         "physics of the empty belt is skipped (provably equivalent), so two hours grade in about a second. "

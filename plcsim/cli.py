@@ -479,7 +479,7 @@ def _mutate(args: argparse.Namespace) -> int:
         Path(args.json).parent.mkdir(parents=True, exist_ok=True)
         report.to_json(args.json)
         console.print(f"JSON report: {args.json}", highlight=False)
-    return 0
+    return EXIT_FAILED if report.misleading else 0
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -14,7 +14,7 @@ from typing import Any
 
 from plcsim.check import Check
 from plcsim.cpu import CPU, CPUConfig
-from plcsim.errors import ConfigurationError, defined_at
+from plcsim.errors import ConfigurationError, ExerciseError, defined_at
 from plcsim.frontends import read_program
 from plcsim.loaded import SourceProgram
 from plcsim.plant import Plant
@@ -106,6 +106,12 @@ class Exercise:
     It is validated when built (see :mod:`plcsim.validation`): a name that its tags, wiring or plant
     lack, a check on a scenario that does not exist, raise :class:`~plcsim.errors.ExerciseError`
     naming the file and line, so the instructor's mistake never reaches a student's grade.
+
+    ``spec_equivalent`` declares the mutants of the reference (``plcsim mutate``) that are correct
+    programs by the spec's words, each with the reason: ``{"OB1: network takt moved to the end":
+    "the pulse used one scan later is still one a second"}`` (a key is a mutant's description, or
+    ``"line N: description"`` where the description alone names several). Mutation testing reports
+    them as explained, outside the score; one that matches no mutant, or is killed, is reported.
     """
 
     number: str
@@ -125,9 +131,13 @@ class Exercise:
     record_changes_only: bool = False
     notes: str = ""
     plant_name: str = ""
+    spec_equivalent: Mapping[str, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.defined_at = defined_at()
+        for mutant, reason in self.spec_equivalent.items():
+            if not (isinstance(reason, str) and reason.strip()):
+                raise ExerciseError(f"{self.defined_at}: spec_equivalent[{mutant!r}] needs the reason it is correct")
         self.checks = [c if isinstance(c, GradedCheck) else GradedCheck(c) for c in self.checks]
         validate(self)
 

@@ -33,7 +33,11 @@ and the same events (the program's own tags, such as a timer's ET, and the edge 
 reference names are the edge and timer instructions' bookkeeping, which no check reads; the CPU's
 clock and system bits do not depend on the program). A survivor's report names the tags that
 differ. Equivalent means "no scenario tells it apart": read those too, a scenario may be missing.
-Score = killed / (killed + survived).
+A survivor the exercise declares a correct program by the spec's words (its ``spec_equivalent``,
+with the reason: the falling edge of Clock_1Hz is a one-second pulse too) is **explained**; a
+declaration that names no mutant is an error (:class:`~plcsim.errors.ExerciseError`), and one whose
+mutant a check kills is reported as misleading (a check is stricter than the spec, or the
+declaration is wrong). Score = killed / (killed + survived): explained mutants are left out.
 
 >>> from plcsim.tags import Tag, TagTable
 >>> table = TagTable()
@@ -62,7 +66,7 @@ import numpy as np
 
 from plcsim.compiler import Typing
 from plcsim.cpu import CLOCK_BITS, SYSTEM_BITS
-from plcsim.errors import PlcError
+from plcsim.errors import ExerciseError, PlcError, did_you_mean
 from plcsim.exercise import Exercise
 from plcsim.grading import Report, grade
 from plcsim.literals import time_ms
@@ -70,7 +74,8 @@ from plcsim.program import Program
 from plcsim.tags import TagTable
 from plcsim.types import Bool
 
-KILLED, SURVIVED, EQUIVALENT, STILLBORN = "killed", "survived", "equivalent", "stillborn"
+KILLED, SURVIVED, EXPLAINED, EQUIVALENT, STILLBORN = "killed", "survived", "explained", "equivalent", "stillborn"
+STATUSES = (KILLED, SURVIVED, EXPLAINED, EQUIVALENT, STILLBORN)
 
 _TIMERS = ("TON", "TOF", "TP")
 _EDGE_FUNCS = {"P": "N", "N": "P", "P_TRIG": "N_TRIG", "N_TRIG": "P_TRIG"}
@@ -464,11 +469,13 @@ def _text(node: ast.AST, limit: int = 60) -> str:
 
 @dataclass
 class Outcome:
-    """What became of one mutant: its status and why (the check that killed it, the load error)."""
+    """What became of one mutant: its status and why (the check that killed it, the load error), and
+    the exercise's reason when it declares the mutant a correct program."""
 
     mutant: Mutant
     status: str
     detail: str = ""
+    reason: str = ""
 
 
 @dataclass
@@ -480,6 +487,7 @@ class MutationReport:
     seeds: list[int]
     outcomes: list[Outcome] = field(default_factory=list)
     reference_failures: list[str] = field(default_factory=list)
+    misleading: list[str] = field(default_factory=list)
     elapsed_s: float = 0.0
 
     def count(self, status: str) -> int:
@@ -497,7 +505,7 @@ class MutationReport:
     def to_dict(self) -> dict[str, Any]:
         data = asdict(self)
         data["score"] = self.score
-        data["counts"] = {s: self.count(s) for s in (KILLED, SURVIVED, EQUIVALENT, STILLBORN)}
+        data["counts"] = {s: self.count(s) for s in STATUSES}
         for o in data["outcomes"]:
             o["mutant"]["label"] = f"line {o['mutant']['line']}: {o['mutant']['description']}"
         return data
@@ -510,12 +518,43 @@ class MutationReport:
 
 
 def exercise_mutants(exercise: Exercise) -> list[Mutant]:
-    """The mutants of an exercise's reference solution (its NC inputs from the I/O table)."""
+    """The mutants of an exercise's reference solution (its NC inputs from the I/O table).
+
+    Raises :class:`~plcsim.errors.ExerciseError` if the exercise's ``spec_equivalent`` names a mutant
+    the reference does not have (see :func:`declared_equivalents`).
+    """
     path = exercise.reference.path
     nc = [row.tag for row in exercise.io if row.wiring == "NC" and row.direction == "input"]
-    return derive_mutants(
+    mutants = derive_mutants(
         Path(path).read_text(encoding="utf-8"), exercise.tag_table(), nc_inputs=nc, filename=str(path)
     )
+    declared_equivalents(exercise, mutants)
+    return mutants
+
+
+def declared_equivalents(exercise: Exercise, mutants: Sequence[Mutant]) -> dict[tuple[int, str], str]:
+    """The exercise's ``spec_equivalent`` matched to ``mutants`` (its reference's): {(line, description): reason}.
+
+    A key is a mutant's description, or ``"line N: description"``. A key that matches no mutant is
+    stale (the reference or an operator changed) and one that matches several is ambiguous: both
+    raise :class:`~plcsim.errors.ExerciseError` naming the exercise's file and line.
+    """
+    out: dict[tuple[int, str], str] = {}
+    problems = []
+    for key, reason in exercise.spec_equivalent.items():
+        matches = [m for m in mutants if key in (m.description, str(m))]
+        if len(matches) == 1:
+            out[matches[0].line, matches[0].description] = reason
+        elif not matches:
+            hint = did_you_mean(key, [m.description for m in mutants])
+            problems.append(f"spec_equivalent names {key!r}, which is no mutant of the reference{hint}")
+        else:
+            lines = ", ".join(str(m.line) for m in matches)
+            problems.append(f"spec_equivalent {key!r} names the mutants of lines {lines}: write 'line N: {key}'")
+    if problems:
+        listed = "; ".join(problems)
+        raise ExerciseError(f"{exercise.defined_at}: exercise {exercise.number}: {listed}", problems)
+    return out
 
 
 def mutate_exercise(
@@ -528,7 +567,9 @@ def mutate_exercise(
 ) -> MutationReport:
     """Grade every mutant of the exercise's reference on seeds 1..``seeds``; ``jobs`` mutants at a time."""
     started = time.perf_counter()
-    chosen = list(mutants) if mutants is not None else exercise_mutants(exercise)
+    every = exercise_mutants(exercise)
+    reasons = declared_equivalents(exercise, every)
+    chosen = list(mutants) if mutants is not None else every
     job = _Job(exercise, list(range(1, seeds + 1)))
     report = MutationReport(exercise.number, exercise.title, job.seeds, reference_failures=job.reference_failures())
     outcomes: list[Outcome] = []
@@ -537,8 +578,25 @@ def mutate_exercise(
         if progress is not None:
             progress(len(outcomes), len(chosen), outcome)
     report.outcomes = sorted(outcomes, key=lambda o: o.mutant.number)
+    for outcome in report.outcomes:
+        _explain(outcome, reasons.get((outcome.mutant.line, outcome.mutant.description)), report.misleading)
     report.elapsed_s = time.perf_counter() - started
     return report
+
+
+def _explain(outcome: Outcome, reason: str | None, misleading: list[str]) -> None:
+    """Apply the exercise's declaration to one outcome: a survivor is explained; a killed or
+    stillborn mutant makes the declaration misleading (an equivalent one stays equivalent)."""
+    if reason is None:
+        return
+    outcome.reason = reason
+    if outcome.status == SURVIVED:
+        outcome.status = EXPLAINED
+    elif outcome.status in (KILLED, STILLBORN):
+        misleading.append(
+            f"{outcome.mutant}: declared a correct program ({reason}), but {outcome.status} ({outcome.detail}):"
+            " a check is stricter than the spec, or the declaration is wrong"
+        )
 
 
 class _Job:
@@ -675,6 +733,7 @@ def print_mutation_report(report: MutationReport, console: Any) -> None:
             console.print(Text(f"  {line}"))
     for status, title, style in (
         (SURVIVED, "surviving mutants (behave differently, pass every check)", "red"),
+        (EXPLAINED, "explained mutants (correct programs by the spec's words, not counted)", "cyan"),
         (EQUIVALENT, "equivalent mutants (no scenario tells them apart)", "yellow"),
         (STILLBORN, "mutants that do not load (not counted)", "dim"),
     ):
@@ -686,17 +745,22 @@ def print_mutation_report(report: MutationReport, console: Any) -> None:
         for col in ("#", "line", "operator", "mutant"):
             table.add_column(col)
         for o in rows:
-            what = o.mutant.description + (f"\n{o.detail.splitlines()[0]}" if status != EQUIVALENT else "")
+            why = o.reason if status == EXPLAINED else "" if status == EQUIVALENT else o.detail.splitlines()[0]
+            what = o.mutant.description + (f"\n{why}" if why else "")
             table.add_row(str(o.mutant.number), str(o.mutant.line), o.mutant.operator, Text(what))
         console.print(table)
+    if report.misleading:
+        console.print(Text("misleading declarations (spec_equivalent names a mutant the checks kill):", style="red"))
+        for line in report.misleading:
+            console.print(Text(f"  {line}"))
     score = report.score
     shown = "n/a (no mutant changes behaviour)" if score is None else f"{100 * score:.0f} %"
     console.print(
         Text.assemble(
             ("mutation score: ", "bold"),
             (shown, "bold green" if score is not None and score >= 0.9 else "bold red"),
-            f"  ({report.count(KILLED)} killed, {report.count(SURVIVED)} survived, "
-            f"{report.count(EQUIVALENT)} equivalent, {report.count(STILLBORN)} do not load)",
+            f"  ({report.count(KILLED)} killed, {report.count(SURVIVED)} survived, {report.count(EXPLAINED)} explained,"
+            f" {report.count(EQUIVALENT)} equivalent, {report.count(STILLBORN)} do not load)",
         )
     )
 
@@ -707,12 +771,14 @@ __all__ = [
     "MutationReport",
     "derive_mutants",
     "exercise_mutants",
+    "declared_equivalents",
     "mutate_exercise",
     "behaviour",
     "edge_memories",
     "print_mutation_report",
     "KILLED",
     "SURVIVED",
+    "EXPLAINED",
     "EQUIVALENT",
     "STILLBORN",
 ]

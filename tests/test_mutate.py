@@ -6,20 +6,29 @@ tests use the smallest exercises and one seed.
 
 from __future__ import annotations
 
+import dataclasses
 import json
+import re
 
-from exercises import get
+import pytest
+from rich.console import Console
+
+from exercises import all_exercises, get
 from plcsim.cli import main
+from plcsim.errors import ExerciseError
 from plcsim.mutate import (
     EQUIVALENT,
+    EXPLAINED,
     KILLED,
     STILLBORN,
     SURVIVED,
     Mutant,
     behaviour,
+    declared_equivalents,
     derive_mutants,
     exercise_mutants,
     mutate_exercise,
+    print_mutation_report,
 )
 from plcsim.program import Program
 from plcsim.tags import Tag, TagTable
@@ -137,7 +146,8 @@ def test_a_preset_hidden_by_a_slow_task_is_equivalent_and_leaves_the_score():
 
 
 def test_a_correct_variant_survives_and_is_not_called_equivalent():
-    exercise = get("4.3.11")  # the falling edge of Clock_1Hz is also a 1-s pulse, half a second later
+    # 4.3.11 without its declaration: the falling edge of Clock_1Hz is also a 1-s pulse, half a second later
+    exercise = dataclasses.replace(get("4.3.11"), spec_equivalent={})
     report = mutate_exercise(exercise, seeds=1)
     assert [(o.mutant.description, o.status) for o in report.outcomes] == [
         ("P(t.Clock_1Hz, 'AUX') → t.Clock_1Hz", KILLED),
@@ -145,6 +155,74 @@ def test_a_correct_variant_survives_and_is_not_called_equivalent():
     ]
     assert report.score == 0.5
     assert "these differ: Takt1s (seed 1" in report.outcomes[1].detail
+    console = Console(record=True, width=200)
+    print_mutation_report(report, console)
+    text = console.export_text()
+    assert "surviving mutants" in text and "N(t.Clock_1Hz, 'AUX')" in text and "mutation score: 50 %" in text
+    assert "every check passes, but these differ: Takt1s (seed 1" in text
+
+
+def test_a_survivor_the_exercise_declares_correct_is_explained_and_leaves_the_score():
+    report = mutate_exercise(get("4.3.11"), seeds=1)  # declares P -> N a correct program
+    assert [o.status for o in report.outcomes] == [KILLED, EXPLAINED]
+    explained = report.outcomes[1]
+    assert "one-scan pulse every 1.000 s" in explained.reason
+    assert "these differ: Takt1s" in explained.detail  # it does behave differently: explained, not equivalent
+    assert report.score == 1.0 and report.misleading == []
+    data = json.loads(report.to_json())
+    assert data["counts"] == {"killed": 1, "survived": 0, "explained": 1, "equivalent": 0, "stillborn": 0}
+    assert data["outcomes"][1]["status"] == "explained" and data["outcomes"][1]["reason"] == explained.reason
+
+
+def test_a_declared_mutant_that_does_not_exist_is_an_error_naming_the_exercise():
+    stale = dataclasses.replace(get("4.3.11"), spec_equivalent={"P(t.Clock_1Hz, 'AUX') → N(t.Clock_1Hz, 'AU')": "x"})
+    with pytest.raises(ExerciseError) as info:
+        exercise_mutants(stale)
+    message = str(info.value)
+    assert message.startswith(f"{stale.defined_at}: exercise 4.3.11: ")  # the file and line that declared it
+    assert "which is no mutant of the reference; did you mean \"P(t.Clock_1Hz, 'AUX') → N(t.Clock_1Hz, 'AUX')\"" in (
+        message
+    )
+    with pytest.raises(ExerciseError, match="no mutant of the reference"):
+        mutate_exercise(stale, seeds=1)
+
+
+def test_a_description_that_names_several_mutants_needs_its_line():
+    exercise = get("4.3.8")  # ALARM is read on lines 27 and 39 of the reference
+    mutants = exercise_mutants(exercise)
+    twice = dataclasses.replace(exercise, spec_equivalent={"t.ALARM → not t.ALARM": "x"})
+    with pytest.raises(ExerciseError, match=re.escape("lines 27, 39: write 'line N: t.ALARM → not t.ALARM'")):
+        declared_equivalents(twice, mutants)
+    chosen = dataclasses.replace(exercise, spec_equivalent={"line 39: t.ALARM → not t.ALARM": "x"})
+    assert declared_equivalents(chosen, mutants) == {(39, "t.ALARM → not t.ALARM"): "x"}
+
+
+def test_a_killed_mutant_declared_correct_is_reported_as_misleading():
+    exercise = dataclasses.replace(
+        get("4.3.11"), spec_equivalent={"P(t.Clock_1Hz, 'AUX') → t.Clock_1Hz": "a level is a pulse too"}
+    )
+    report = mutate_exercise(exercise, seeds=1)
+    assert report.outcomes[0].status == KILLED  # the declaration never turns a kill into an excuse
+    assert report.score == 0.5  # and the undeclared P -> N survives
+    [line] = report.misleading
+    assert line.startswith("line 12: P(t.Clock_1Hz, 'AUX') → t.Clock_1Hz: declared a correct program")
+    assert "but killed (seed 1: scenario" in line and "a check is stricter than the spec" in line
+    console = Console(record=True, width=200)
+    print_mutation_report(report, console)
+    assert "misleading declarations" in console.export_text()
+    assert json.loads(report.to_json())["misleading"] == [line]
+
+
+def test_a_declaration_needs_a_reason():
+    with pytest.raises(ExerciseError, match=r"spec_equivalent\['OB1: x'\] needs the reason it is correct"):
+        dataclasses.replace(get("4.3.11"), spec_equivalent={"OB1: x": " "})
+
+
+def test_every_shipped_declaration_names_a_mutant_of_its_reference():
+    declaring = [e for e in all_exercises() if e.spec_equivalent]
+    assert {e.number for e in declaring} >= {"4.3.7", "4.3.8", "4.3.11", "4.3.13", "4.3.14", "4.3.15"}
+    for exercise in declaring:
+        assert len(declared_equivalents(exercise, exercise_mutants(exercise))) == len(exercise.spec_equivalent)
 
 
 def test_a_mutant_that_does_not_load_is_counted_apart():
@@ -175,11 +253,13 @@ def test_the_cli_prints_the_score_and_writes_json(tmp_path, capsys):
     assert data["outcomes"][0]["mutant"]["label"] == "line 5: t.TLACIDLO → not t.TLACIDLO"
 
 
-def test_the_cli_lists_survivors(capsys):
+def test_the_cli_lists_explained_mutants_with_their_reason(capsys, monkeypatch):
+    monkeypatch.setenv("COLUMNS", "300")  # the reason on one line
     assert main(["mutate", "4.3.11", "--seeds", "1"]) == 0
     text = capsys.readouterr().out
-    assert "surviving mutants" in text and "N(t.Clock_1Hz, 'AUX')" in text and "mutation score: 50 %" in text
-    assert "every check passes, but these differ: Takt1s (seed 1" in text
+    assert "explained mutants (correct programs by the spec's words, not counted)" in text
+    assert "N(t.Clock_1Hz, 'AUX')" in text and "one-scan pulse every 1.000 s" in text
+    assert "mutation score: 100 %" in text and "1 killed, 0 survived, 1 explained" in text
 
 
 def test_the_cli_refuses_zero_seeds(capsys):
