@@ -118,7 +118,17 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument(
         "--plots", metavar="DIR", help="write a timing diagram per failed check into DIR (a batch: DIR/<student>/)"
     )
-    grade.add_argument("--jobs", type=int, default=1, metavar="N", help="grade N submissions at a time (batch)")
+    grade.add_argument(
+        "--jobs", type=int, default=1, metavar="N", help="grade N submissions at a time (batch: threads or workers)"
+    )
+    grade.add_argument(
+        "--executor",
+        default="local",
+        metavar="WHERE",
+        help="where a batch is graded: local (default, --jobs threads here), dask (a Dask cluster of --jobs "
+        "worker processes on this machine) or dask://HOST:PORT (an existing Dask scheduler; pip install "
+        "'plcsim[cluster]')",
+    )
     grade.add_argument("--gradebook", metavar="OUT.csv", help="write one CSV row per submission (batch)")
     grade.add_argument("--cpu-seconds", type=int, default=60, help="CPU-time limit per submission, > 0 (default 60)")
     grade.add_argument("--memory-mb", type=int, default=2048, help="memory limit per submission, >= 64 (default 2048)")
@@ -370,12 +380,14 @@ def _grade(args: argparse.Namespace) -> int:
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
     from exercises import get
+    from plcsim.executors import parse_executor
     from plcsim.grade_report import write_gradescope
     from plcsim.grading import Limits, grade, grade_batch, grade_sandboxed, write_gradebook, write_junit
     from plcsim.report import print_batch_line, print_report
 
     console = Console()
     limits = Limits(cpu_seconds=args.cpu_seconds, memory_mb=args.memory_mb)  # refused here if not positive
+    parse_executor(args.executor)  # a misspelt executor is refused before anything is graded
     exercise = get(args.exercise)
     options = {"rrd_dir": args.rrd, "plots_dir": args.plots}
     visibility = args.gradescope_visibility
@@ -397,6 +409,7 @@ def _grade(args: argparse.Namespace) -> int:
                 exercise,
                 files,
                 jobs=args.jobs,
+                executor=args.executor,
                 seed=args.seed,
                 limits=limits,
                 progress=lambda done, total, r: progress.update(task, completed=done),
@@ -405,6 +418,7 @@ def _grade(args: argparse.Namespace) -> int:
         for r in reports:
             print_batch_line(r, console)
         if args.gradebook:
+            Path(args.gradebook).parent.mkdir(parents=True, exist_ok=True)
             console.print(f"gradebook: {write_gradebook(reports, args.gradebook)}", markup=False)
         if args.json:
             out = Path(args.json)

@@ -14,6 +14,7 @@ the whole process group (and, through the PID namespace, everything the child st
 from __future__ import annotations
 
 import contextlib
+import copy
 import json
 import os
 import select
@@ -26,6 +27,7 @@ import tempfile
 import threading
 import time
 import uuid
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -79,12 +81,16 @@ def run_child(
     *,
     geometry: bool = False,
     entry: str = DEFAULT_ENTRY,
+    probes: Probes | None = None,
 ) -> ChildOutcome:
-    """Run ``path`` on the scenarios in a confined child; its results, validated, or what went wrong."""
+    """Run ``path`` on the scenarios in a confined child; its results, validated, or what went wrong.
+
+    ``probes``: the batch's trusted probe results (:class:`Probes`), instead of probing again."""
     if not path.is_file():
         return ChildOutcome(kind="program error", message=f"cannot read program {path}: no such file")
     with _PREPARING:  # process-wide state (sys.modules, sysconfig's lazy caches): one batch thread at a time
-        expected = [_expected(exercise, s, seed) for s in scenarios]  # an exercise's mistake shows here
+        probes = probes or Probes(exercise.number, seed, {})
+        expected = [probes.expected(exercise, s, seed) for s in scenarios]  # an exercise's mistake shows here
         module, attribute = _locate(exercise)
         readable = [str(path.resolve()), *_readable(exercise, path)]
     cap = MAX_HEADER_BYTES + sum(e.max_rows * (HEAD + len(e.kinds) + EXTRA_COLUMNS) * 8 for e in expected)
@@ -293,6 +299,32 @@ def gaps(cgroup: str | None) -> list[str]:
     if os.geteuid() == 0 and cgroup is None:
         return ["sandbox: running as root without a writable pids cgroup, the number of processes is not limited"]
     return []
+
+
+@dataclass(frozen=True)
+class Probes:
+    """The trusted probe's results of one batch, computed once per (exercise, scenario, seed) in the
+    grader (:meth:`of`) instead of once per submission.
+
+    Each submission is validated against its own deep copy (:meth:`expected`), so nothing done while
+    grading one submission can change what the next is checked against; what a child sends never
+    reaches them. A scenario or seed the batch did not probe is probed afresh.
+    """
+
+    exercise: str
+    seed: int
+    by_scenario: Mapping[str, Expected]
+    """Scenario name -> what its run must look like."""
+
+    @classmethod
+    def of(cls, exercise: Exercise, scenarios: Sequence[Any], seed: int) -> Probes:
+        return cls(exercise.number, seed, {s.name: _expected(exercise, s, seed) for s in scenarios})
+
+    def expected(self, exercise: Exercise, scenario: Any, seed: int) -> Expected:
+        """What the run of ``scenario`` must look like: a copy of the cached probe, or a fresh probe."""
+        ours = (exercise.number, seed) == (self.exercise, self.seed)
+        cached = self.by_scenario.get(scenario.name) if ours else None
+        return copy.deepcopy(cached) if cached is not None else _expected(exercise, scenario, seed)
 
 
 def _expected(exercise: Exercise, scenario: Any, seed: int) -> Expected:
