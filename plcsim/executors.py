@@ -90,11 +90,35 @@ def open_executor(spec: str = LOCAL, *, jobs: int = 1) -> Iterator[Executor]:
                 raise ConfigurationError(
                     f"cannot reach the Dask scheduler at {address}: {exc}; is `dask scheduler` running there?"
                 ) from None
+        _check_workers(client)
         executor = client.get_executor(pure=False)  # every grade is its own task, never merged with another
         try:
             yield executor
         finally:
             executor.shutdown(wait=False)
+
+
+def _check_workers(client: Any) -> None:
+    """Load the grader on every worker now (in parallel, instead of in each worker's first task) and
+    refuse a cluster whose workers run another plcsim version than this one."""
+    from plcsim import __version__
+
+    versions = client.run(worker_version)
+    other = {worker: version for worker, version in versions.items() if version != __version__}
+    if other:
+        raise ConfigurationError(
+            f"the Dask workers {', '.join(sorted(other))} run plcsim {', '.join(sorted(set(other.values())))}, "
+            f"this grader {__version__}: install the same plcsim on every worker"
+        )
+
+
+def worker_version() -> str:
+    """Run on a worker: import the grading code (for its cost, before the first task) and say which
+    plcsim it is."""
+    import importlib
+
+    importlib.import_module("plcsim.sandbox")
+    return importlib.import_module("plcsim").__version__
 
 
 def _distributed() -> Any:

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import contextlib
 import copy
+import functools
 import json
 import os
 import select
@@ -362,7 +363,10 @@ def _readable(exercise: Exercise, path: Path) -> list[str]:
     """What the child may read (a list of allowed files and folders, not of forbidden ones): the Python
     installation, the folders of the packages this process has loaded and the system's libraries; not
     the exercise's solutions, not the other files of the submission's folder (the other students'),
-    not the temporary folder (the other children's scratch)."""
+    not the temporary folder (the other children's scratch).
+
+    The walk is cached (:func:`_granted`): the submissions of a batch share their folder, hidden
+    folders and loaded packages, so it runs once per batch, not once per submission."""
     hidden = {s.path.resolve().parent for s in exercise.solutions}
     hidden |= {h.parent for h in hidden if h.parent.name == "solutions"}
     hidden.add(Path(tempfile.gettempdir()).resolve())
@@ -370,6 +374,13 @@ def _readable(exercise: Exercise, path: Path) -> list[str]:
     roots = {Path(p) for p in _SYSTEM_READABLE}
     roots |= {Path(p) for p in _PYTHON_PATHS}
     roots |= {_package_root(m) for m in list(sys.modules.values())} - {None}  # type: ignore[arg-type]
+    return list(_granted(folder, frozenset(hidden), frozenset(roots)))
+
+
+@functools.lru_cache(maxsize=32)
+def _granted(folder: Path, hidden: frozenset[Path], roots: frozenset[Path]) -> tuple[str, ...]:
+    """The trees below ``roots`` a child may read: each root whole, or, where it holds a hidden folder or
+    the submissions' ``folder``, its other entries (never the files of ``folder`` itself)."""
     out: list[str] = []
 
     def within(inner: Path, outer: Path) -> bool:
@@ -391,7 +402,7 @@ def _readable(exercise: Exercise, path: Path) -> list[str]:
     for root in sorted(roots):
         grant(root.resolve())
     granted = set(out)
-    return sorted(g for g in granted if not _ancestors(g) & granted)  # one rule per granted tree
+    return tuple(sorted(g for g in granted if not _ancestors(g) & granted))  # one rule per granted tree
 
 
 def _ancestors(path: str) -> set[str]:
@@ -405,10 +416,14 @@ def _ancestors(path: str) -> set[str]:
 def _package_root(module: Any) -> Path | None:
     """The top-level package folder (or the file) a loaded module comes from."""
     file = getattr(module, "__file__", None)
-    if not file:
-        return None
+    return _root_of(file, module.__name__.count(".")) if file else None
+
+
+@functools.lru_cache(maxsize=8192)
+def _root_of(file: str, depth: int) -> Path:
+    """The folder ``depth`` levels above a package module's file (its file, for a top-level module)."""
     top = Path(file).resolve().parent if Path(file).name == "__init__.py" else Path(file).resolve()
-    for _ in range(module.__name__.count(".")):
+    for _ in range(depth):
         top = top.parent
     return top
 

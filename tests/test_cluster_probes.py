@@ -76,3 +76,15 @@ def test_hostile_children_in_a_batch_leave_the_cached_probes_untouched(tmp_path,
     (probes,) = made
     monkeypatch.undo()
     assert probes.by_scenario == Probes.of(ex1, ex1.scenarios, seed=1).by_scenario
+
+
+def test_what_a_child_may_read_is_walked_once_per_batch(ex4, tmp_path):
+    paths = [tmp_path / f"student{k}.py" for k in range(3)]
+    sandbox._granted.cache_clear()
+    lists = [sandbox._readable(ex4, p) for p in paths]
+    info = sandbox._granted.cache_info()
+    assert (info.misses, info.hits) == (1, 2)
+    sandbox._granted.cache_clear()
+    assert lists[0] == lists[1] == lists[2] == sandbox._readable(ex4, paths[0])  # a fresh walk: the same
+    assert not any(str(tmp_path) in entry for entry in lists[0])
+    assert not any("solutions" in entry for entry in lists[0])
