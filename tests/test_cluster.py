@@ -30,11 +30,12 @@ MEMORY_MB = 1024  # the bomb's allocation fails inside the network: a CPU STOP w
 
 
 def class_folder(root: Path, number: str, extra: dict[str, str]) -> Path:
-    """A folder of submissions: every shipped solution of the exercise and the ``extra`` sources."""
+    """A folder of submissions: the reference and the wrong solutions of the exercise, and the ``extra`` sources."""
     folder = root / number.replace(".", "_")
     folder.mkdir()
     for sol in get(number).solutions:
-        shutil.copy(sol.path, folder / f"{sol.name}.py")
+        if sol.kind != "alternative":
+            shutil.copy(sol.path, folder / f"{sol.name}.py")
     for name, source in extra.items():
         (folder / name).write_text(source, encoding="utf-8")
     return folder
@@ -59,17 +60,14 @@ def _forbid_fork() -> None:
 
 @pytest.fixture(scope="module")
 def cluster():
-    """Two worker processes, one thread each, spawned; a task whose worker dies is not retried."""
+    """``--executor dask --jobs 2``: two spawned worker processes, one thread each (a task whose worker
+    dies is not retried here, so that a test can kill one); its client, for the tests to look inside."""
     import dask
 
-    with (
-        dask.config.set({"distributed.scheduler.allowed-failures": 0}),
-        distributed.LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
-        ) as cluster,
-        distributed.Client(cluster) as client,
-    ):
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}), open_executor("dask", jobs=2):
+        client = distributed.default_client()
         assert dask.config.get("distributed.worker.multiprocessing-method") == "spawn"
+        assert [w["nthreads"] for w in client.scheduler_info()["workers"].values()] == [1, 1]
         client.run(_forbid_fork)
         yield client
 
@@ -83,15 +81,16 @@ def outputs(folder: Path) -> dict[str, str]:
     return {str(p.relative_to(folder)): without_timings(p.read_text(encoding="utf-8")) for p in folder.rglob("*.*")}
 
 
-def test_the_cli_grades_a_class_on_a_local_dask_cluster_like_jobs_2(classes, tmp_path):
+def test_the_cli_grades_a_class_on_a_local_dask_cluster_like_jobs_2(classes, cluster, tmp_path):
     results = {}
-    for how in (["--jobs", "2"], ["--executor", "dask", "--jobs", "2"]):
-        out = tmp_path / how[1]
+    address = cluster.scheduler.address.replace("tcp://", "dask://")
+    for name, how in (("local", ["--jobs", "2"]), ("dask", ["--executor", address])):
+        out = tmp_path / name
         reports = ["--gradebook", str(out / "grades.csv"), "--json", str(out / "json"), "--junit", str(out / "all.xml")]
         code = main(["grade", "4.3.1", str(classes["4.3.1"]), *how, "--memory-mb", str(MEMORY_MB), *reports])
         assert code == EXIT_FAILED  # some students failed; no grade is void
-        results[how[1]] = outputs(out)
-    local, dask = results["2"], results["dask"]
+        results[name] = outputs(out)
+    local, dask = results["local"], results["dask"]
     assert (
         sorted(local)
         == sorted(dask)
@@ -104,8 +103,6 @@ def test_the_cli_grades_a_class_on_a_local_dask_cluster_like_jobs_2(classes, tmp
         ("imports.py", "0", "no", "subset violation: " + str(classes["4.3.1"])[:22], "-"),
         ("loops.py", "0", "no", "", "STOP in presses: 0 ns: cycle time monitoring excee"),
         ("reference.py", "3", "yes", "", "RUN"),
-        ("solution-2.py", "3", "yes", "", "RUN"),
-        ("solution-3.py", "3", "yes", "", "RUN"),
         ("wrong-latch.py", "0", "no", "", "RUN"),
     ]
     assert "MemoryError" in local["grades.csv"]
@@ -179,3 +176,34 @@ def test_executor_names_and_jobs_are_checked(capsys, classes):
     assert "unknown executor 'ray': use local, dask, or dask://HOST:PORT" in capsys.readouterr().err
     with pytest.raises(ConfigurationError, match="--jobs must be a whole number of at least 1, got 0"):
         open_executor("local", jobs=0).__enter__()
+
+
+def test_an_existing_scheduler_is_reached_by_its_address_and_its_workers_versions_are_checked(cluster, monkeypatch):
+    import plcsim
+
+    ex = get("4.3.1")
+    address = cluster.scheduler.address  # tcp://127.0.0.1:PORT
+    (report,) = grade_batch(ex, [ex.reference.path], executor=address.replace("tcp://", "dask://"))
+    assert (report.passed, report.score) == (True, 3.0)
+    monkeypatch.setattr(plcsim, "__version__", "0.0.0-other")
+    with pytest.raises(
+        ConfigurationError, match=r"the Dask workers tcp://127\.0\.0\.1:\d+, tcp://127\.0\.0\.1:\d+ run"
+    ):
+        grade_batch(ex, [ex.reference.path], executor=address)
+
+
+def test_a_scheduler_that_does_not_answer_and_a_missing_dask_are_usage_errors(monkeypatch):
+    import socket
+    import sys
+
+    from plcsim import executors
+
+    with socket.socket() as s:  # a port nobody listens on
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    monkeypatch.setattr(executors, "CONNECT_TIMEOUT_S", 2)
+    with pytest.raises(ConfigurationError, match=f"cannot reach the Dask scheduler at tcp://127.0.0.1:{port}: "):
+        open_executor(f"tcp://127.0.0.1:{port}").__enter__()
+    monkeypatch.setitem(sys.modules, "distributed", None)  # import distributed raises ImportError
+    with pytest.raises(ConfigurationError, match=r"needs Dask distributed: pip install 'plcsim\[cluster\]'"):
+        open_executor("dask").__enter__()
