@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 from exercises import get
-from plcsim.cli import EXIT_FAILED, EXIT_USAGE, main
+from plcsim.cli import EXIT_FAILED, EXIT_GRADER, EXIT_USAGE, main
 from plcsim.errors import ConfigurationError
 from plcsim.executors import open_executor
 from plcsim.grading import Limits, grade_batch, write_gradebook, write_junit
@@ -207,3 +207,25 @@ def test_a_scheduler_that_does_not_answer_and_a_missing_dask_are_usage_errors(mo
     monkeypatch.setitem(sys.modules, "distributed", None)  # import distributed raises ImportError
     with pytest.raises(ConfigurationError, match=r"needs Dask distributed: pip install 'plcsim\[cluster\]'"):
         open_executor("dask").__enter__()
+
+
+def test_a_task_that_raises_is_a_grader_error_of_that_submission_alone(classes, monkeypatch):
+    from plcsim import grading
+
+    real = grading.grade_sandboxed
+
+    def flaky(exercise, path, **options):
+        if Path(path).name == "wrong-set-reset.py":
+            raise OSError("No space left on device")
+        return real(exercise, path, **options)
+
+    monkeypatch.setattr(grading, "grade_sandboxed", flaky)
+    reports = grade_batch(get("4.3.4"), sorted(classes["4.3.4"].glob("*.py")), jobs=2)
+    assert [(r.student, r.score, r.error_kind) for r in reports] == [
+        ("reference", 10.0, None),
+        ("syntax", 0.0, "program error"),
+        ("wrong-set-reset", 0.0, "grader error"),
+        ("wrong-start-dominant", 7.0, None),
+    ]
+    assert reports[2].error.startswith("the grading task failed (OSError: No space left on device); ")
+    assert main(["grade", "4.3.4", str(classes["4.3.4"]), "--jobs", "2"]) == EXIT_GRADER
