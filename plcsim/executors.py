@@ -9,7 +9,8 @@ process. The executors differ only in where that task runs:
     ``os.fork``), waits on its pipe and evaluates the checks, so threads are enough.
 ``dask``
     A Dask distributed ``LocalCluster`` of ``jobs`` worker processes on this machine (started with
-    ``spawn``, one thread each), torn down afterwards.
+    ``spawn``, one thread each), torn down afterwards with the temporary folder its workers use (so
+    that a worker killed mid-grade leaves nothing behind).
 ``dask://host:port`` or ``tcp://host:port``
     The scheduler of an existing Dask cluster (``dask scheduler`` and ``dask worker`` on the
     machines). Its workers need plcsim at the same version, and the submissions, the exercise and
@@ -31,6 +32,7 @@ plcsim.errors.ConfigurationError: unknown executor 'ray': use local, dask, or da
 from __future__ import annotations
 
 import contextlib
+import tempfile
 from collections.abc import Iterator
 from concurrent.futures import Executor, ThreadPoolExecutor
 from typing import Any
@@ -73,6 +75,9 @@ def open_executor(spec: str = LOCAL, *, jobs: int = 1) -> Iterator[Executor]:
     distributed = _distributed()
     with contextlib.ExitStack() as stack:
         if kind == DASK:
+            # the workers' temporary folder is ours: a killed worker's leftovers go with the cluster
+            folder = tempfile.TemporaryDirectory(prefix="plcsim-dask-", ignore_cleanup_errors=True)
+            scratch = stack.enter_context(folder)
             cluster = stack.enter_context(
                 distributed.LocalCluster(
                     n_workers=jobs,
@@ -80,6 +85,8 @@ def open_executor(spec: str = LOCAL, *, jobs: int = 1) -> Iterator[Executor]:
                     processes=True,
                     host="127.0.0.1",
                     dashboard_address=None,
+                    local_directory=scratch,
+                    env=dict.fromkeys(("TMPDIR", "TEMP", "TMP"), scratch),
                 )
             )
             client = stack.enter_context(distributed.Client(cluster))

@@ -11,6 +11,7 @@ import os
 import re
 import shutil
 import signal
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -160,6 +161,8 @@ def test_a_worker_killed_mid_grade_voids_that_grade_alone(classes, cluster, tmp_
     assert dead.error.startswith("the grading task failed (KilledWorker: ")
     assert dead.error.endswith("(a fault of the grader or its workers, not of the submission)")
     cluster.wait_for_workers(2, timeout=60)  # the nanny restarts it
+    folders = set(cluster.run(tempfile.gettempdir).values())  # where the killed worker's child had its scratch
+    assert len(folders) == 1 and Path(folders.pop()).name.startswith("plcsim-dask-")  # removed with the cluster
 
 
 def test_an_exercise_no_module_defines_cannot_be_shipped_to_a_worker(cluster):
