@@ -124,6 +124,7 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument(
         "--executor",
         default="local",
+        type=_executor,
         metavar="WHERE",
         help="where a batch is graded: local (default, --jobs threads here), dask (a Dask cluster of --jobs "
         "worker processes on this machine) or dask://HOST:PORT (an existing Dask scheduler; pip install "
@@ -136,6 +137,17 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("-v", "--verbose", action="store_true", help="also show why passed checks passed")
     _add_mutate_parser(sub)
     return p
+
+
+def _executor(spec: str) -> str:
+    """``--executor``: refused with the usage message, before anything is graded, if misspelt."""
+    from plcsim.executors import parse_executor
+
+    try:
+        parse_executor(spec)
+    except PlcError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    return spec
 
 
 def _add_mutate_parser(sub: Any) -> None:
@@ -380,14 +392,12 @@ def _grade(args: argparse.Namespace) -> int:
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
     from exercises import get
-    from plcsim.executors import parse_executor
     from plcsim.grade_report import write_gradescope
     from plcsim.grading import Limits, grade, grade_batch, grade_sandboxed, write_gradebook, write_junit
     from plcsim.report import print_batch_line, print_report
 
     console = Console()
     limits = Limits(cpu_seconds=args.cpu_seconds, memory_mb=args.memory_mb)  # refused here if not positive
-    parse_executor(args.executor)  # a misspelt executor is refused before anything is graded
     exercise = get(args.exercise)
     options = {"rrd_dir": args.rrd, "plots_dir": args.plots}
     visibility = args.gradescope_visibility

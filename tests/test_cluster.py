@@ -174,8 +174,9 @@ def test_an_exercise_no_module_defines_cannot_be_shipped_to_a_worker(cluster):
 
 
 def test_executor_names_and_jobs_are_checked(capsys, classes):
-    code = main(["grade", "4.3.1", str(classes["4.3.1"]), "--executor", "ray"])
-    assert code == EXIT_USAGE
+    with pytest.raises(SystemExit) as refused:  # by the argument parser, before anything is graded
+        main(["grade", "4.3.1", str(classes["4.3.1"]), "--executor", "ray"])
+    assert refused.value.code == EXIT_USAGE
     assert "unknown executor 'ray': use local, dask, or dask://HOST:PORT" in capsys.readouterr().err
     with pytest.raises(ConfigurationError, match="--jobs must be a whole number of at least 1, got 0"):
         open_executor("local", jobs=0).__enter__()
