@@ -139,17 +139,6 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
-def _executor(spec: str) -> str:
-    """``--executor``: refused with the usage message, before anything is graded, if misspelt."""
-    from plcsim.executors import parse_executor
-
-    try:
-        parse_executor(spec)
-    except PlcError as exc:
-        raise argparse.ArgumentTypeError(str(exc)) from None
-    return spec
-
-
 def _add_mutate_parser(sub: Any) -> None:
     mutate = sub.add_parser(
         "mutate",
@@ -385,6 +374,17 @@ def _spawn_viewer(path: Path, console: Any) -> None:
         console.print("[yellow]the rerun viewer is not on PATH; open the file with `rerun` yourself[/]")
         return
     subprocess.Popen([exe, str(path)])
+
+
+def _executor(spec: str) -> str:
+    """``--executor``: refused with the usage message, before anything is graded, if misspelt."""
+    from plcsim.executors import parse_executor
+
+    try:
+        parse_executor(spec)
+    except PlcError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    return spec
 
 
 def _grade(args: argparse.Namespace) -> int:
