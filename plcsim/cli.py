@@ -118,7 +118,18 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument(
         "--plots", metavar="DIR", help="write a timing diagram per failed check into DIR (a batch: DIR/<student>/)"
     )
-    grade.add_argument("--jobs", type=int, default=1, metavar="N", help="grade N submissions at a time (batch)")
+    grade.add_argument(
+        "--jobs", type=int, default=1, metavar="N", help="grade N submissions at a time (batch: threads or workers)"
+    )
+    grade.add_argument(
+        "--executor",
+        default="local",
+        type=_executor,
+        metavar="WHERE",
+        help="where a batch is graded: local (default, --jobs threads here), dask (a Dask cluster of --jobs "
+        "worker processes on this machine) or dask://HOST:PORT (an existing Dask scheduler; pip install "
+        "'plcsim[cluster]')",
+    )
     grade.add_argument("--gradebook", metavar="OUT.csv", help="write one CSV row per submission (batch)")
     grade.add_argument("--cpu-seconds", type=int, default=60, help="CPU-time limit per submission, > 0 (default 60)")
     grade.add_argument("--memory-mb", type=int, default=2048, help="memory limit per submission, >= 64 (default 2048)")
@@ -365,6 +376,17 @@ def _spawn_viewer(path: Path, console: Any) -> None:
     subprocess.Popen([exe, str(path)])
 
 
+def _executor(spec: str) -> str:
+    """``--executor``: refused with the usage message, before anything is graded, if misspelt."""
+    from plcsim.executors import parse_executor
+
+    try:
+        parse_executor(spec)
+    except PlcError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    return spec
+
+
 def _grade(args: argparse.Namespace) -> int:
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
@@ -397,6 +419,7 @@ def _grade(args: argparse.Namespace) -> int:
                 exercise,
                 files,
                 jobs=args.jobs,
+                executor=args.executor,
                 seed=args.seed,
                 limits=limits,
                 progress=lambda done, total, r: progress.update(task, completed=done),
@@ -405,6 +428,7 @@ def _grade(args: argparse.Namespace) -> int:
         for r in reports:
             print_batch_line(r, console)
         if args.gradebook:
+            Path(args.gradebook).parent.mkdir(parents=True, exist_ok=True)
             console.print(f"gradebook: {write_gradebook(reports, args.gradebook)}", markup=False)
         if args.json:
             out = Path(args.json)

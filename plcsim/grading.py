@@ -12,8 +12,12 @@ were asked for.
 
 from __future__ import annotations
 
+import contextlib
+import importlib
+import sys
 import time
 from collections.abc import Callable, Iterable, Sequence
+from concurrent.futures import Executor, Future, ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -342,11 +346,12 @@ def grade_sandboxed(
     plots_dir: str | Path | None = None,
     traces_dir: str | Path | None = None,
     child_entry: str | None = None,
+    probes: Any = None,
 ) -> Report:
     """Grade an untrusted submission file: run it in a confined child (:mod:`plcsim.sandbox`), check here.
 
     ``child_entry`` (tests only) names another child module to start, to prove what the grader does
-    with a hostile child's output."""
+    with a hostile child's output. ``probes``: a batch's :class:`plcsim.sandbox.Probes`."""
     from plcsim.sandbox import DEFAULT_ENTRY, run_child
 
     limits = limits or Limits()
@@ -361,6 +366,7 @@ def grade_sandboxed(
             limits,
             geometry=rrd_dir is not None,
             entry=child_entry or DEFAULT_ENTRY,
+            probes=probes,
         )
     except Exception as exc:  # noqa: BLE001 - the grader could not run the child: its fault, not the student's
         return _finish(failure_report(report, "grader error", f"{type(exc).__name__}: {exc}", exercise), started)
@@ -413,34 +419,119 @@ def per_student(folder: str | Path | None, submission: Path) -> Path | None:
     return None if folder is None else Path(folder) / (submission.stem or "submission")
 
 
+@dataclass(frozen=True)
+class ExerciseRef:
+    """How a grading process elsewhere imports the exercise: its module and attribute, and the folder
+    to put on ``sys.path`` first for an instructor's exercise file found by path."""
+
+    module: str
+    attribute: str
+    root: str | None = None
+
+    @classmethod
+    def of(cls, exercise: Exercise) -> ExerciseRef:
+        """Raises ConfigurationError for an exercise no module defines (one built in a test or notebook)."""
+        from plcsim.sandbox import _locate, _package_root
+
+        module, attribute = _locate(exercise)
+        top = _package_root(sys.modules[module])
+        return cls(module, attribute, str(top.parent) if top is not None else None)
+
+    def resolve(self) -> Exercise:
+        if self.root is not None and self.module not in sys.modules and self.root not in sys.path:
+            sys.path.append(self.root)  # last, like exercises.load_path: it never shadows an installed module
+        exercise = getattr(importlib.import_module(self.module), self.attribute)
+        if not isinstance(exercise, Exercise):
+            raise ConfigurationError(f"{self.module}.{self.attribute} is not an Exercise here")
+        return exercise
+
+
+@dataclass(frozen=True)
+class GradingTask:
+    """One submission of a batch, as an executor ships it to the process that grades it."""
+
+    exercise: Exercise | ExerciseRef
+    """The exercise itself (threads of this process) or how to import it (another process)."""
+    path: str
+    seed: int
+    limits: Limits | None
+    probes: Any
+    """The batch's :class:`plcsim.sandbox.Probes`, or None to probe in the task."""
+    options: dict[str, Any]
+    version: str
+
+
+def grade_task(task: GradingTask) -> Report:
+    """Grade one submission of a batch, wherever an executor runs this: the submission in its own
+    confined child, the checks here. Whatever this raises becomes a grader error in :func:`grade_batch`."""
+    from plcsim import __version__
+
+    if task.version != __version__:
+        raise ConfigurationError(
+            f"this grading worker runs plcsim {__version__}, the grader {task.version}: "
+            f"install the same plcsim on every worker"
+        )
+    exercise = task.exercise.resolve() if isinstance(task.exercise, ExerciseRef) else task.exercise
+    return grade_sandboxed(exercise, task.path, seed=task.seed, limits=task.limits, probes=task.probes, **task.options)
+
+
 def grade_batch(
     exercise: Exercise,
     paths: Iterable[str | Path],
     *,
     jobs: int = 1,
+    executor: str | Executor = "local",
     seed: int = 1,
     limits: Limits | None = None,
     progress: Callable[[int, int, Report], None] | None = None,
     **options: Any,
 ) -> list[Report]:
-    """Grade many submissions, ``jobs`` at a time, each in its own child process.
+    """Grade many submissions, each in its own confined child process, through ``executor``.
+
+    ``executor`` is ``"local"`` (``jobs`` threads here), ``"dask"`` (a Dask cluster of ``jobs`` worker
+    processes on this machine), an existing Dask scheduler's address (``"tcp://host:8786"``), see
+    :mod:`plcsim.executors`, or any ``concurrent.futures.Executor`` (left open). The reports come in
+    the order of ``paths``, whatever order they finish in; a task that fails (its worker died, the
+    cluster is gone) is a grader error of that submission alone. ``progress(done, total, report)`` is
+    called as each finishes. The trusted probe runs once per scenario for the whole batch.
 
     Recordings, traces and diagrams (``rrd_dir``, ``traces_dir``, ``plots_dir``) go into one folder per
     student below the folder given (``out/alice/led-1-alice-presses.rrd``)."""
-    from concurrent.futures import ThreadPoolExecutor
+    from plcsim import __version__
+    from plcsim.executors import open_executor
+    from plcsim.sandbox import Probes
 
     paths = [Path(p) for p in paths]
     reports: list[Report | None] = [None] * len(paths)
-    done = 0
-
-    def one(k: int) -> tuple[int, Report]:
-        mine = {key: per_student(value, paths[k]) if key in EXPORT_DIRS else value for key, value in options.items()}
-        return k, grade_sandboxed(exercise, paths[k], seed=seed, limits=limits, **mine)
-
-    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        for k, report in pool.map(one, range(len(paths))):
-            reports[k] = report
-            done += 1
+    try:
+        probes = Probes.of(exercise, chosen_scenarios(exercise, options.get("scenarios")), seed)
+    except Exception:  # noqa: BLE001 - the exercise's mistake: each task probes again and reports it
+        probes = None
+    opened = open_executor(executor, jobs=jobs) if isinstance(executor, str) else contextlib.nullcontext(executor)
+    with opened as pool:
+        target = exercise if isinstance(pool, ThreadPoolExecutor) else ExerciseRef.of(exercise)
+        futures: dict[Future[Report], int] = {}
+        for k, path in enumerate(paths):
+            mine = {key: per_student(value, path) if key in EXPORT_DIRS else value for key, value in options.items()}
+            task = GradingTask(target, str(path), seed, limits, probes, mine, __version__)
+            futures[pool.submit(grade_task, task)] = k
+        for done, future in enumerate(as_completed(futures), start=1):
+            k = futures[future]
+            reports[k] = _task_report(future, exercise, paths[k], seed)
             if progress is not None:
-                progress(done, len(paths), report)
+                progress(done, len(paths), reports[k])
     return [r for r in reports if r is not None]
+
+
+def _task_report(future: Future[Report], exercise: Exercise, path: Path, seed: int) -> Report:
+    """The task's report, or, if the task itself failed, a grader error of this submission alone."""
+    try:
+        report = future.result()
+    except Exception as exc:  # noqa: BLE001 - a dead worker, a lost cluster, our own bug: never the student's
+        message = (
+            f"the grading task failed ({type(exc).__name__}: {exc}); the submission was not graded "
+            f"(a fault of the grader or its workers, not of the submission)"
+        )
+        blank = Report(exercise.number, exercise.title, str(path), seed=seed)
+        return failure_report(blank, "grader error", message, exercise)
+    return report

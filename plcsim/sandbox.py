@@ -14,6 +14,8 @@ the whole process group (and, through the PID namespace, everything the child st
 from __future__ import annotations
 
 import contextlib
+import copy
+import functools
 import json
 import os
 import select
@@ -26,6 +28,7 @@ import tempfile
 import threading
 import time
 import uuid
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -79,12 +82,16 @@ def run_child(
     *,
     geometry: bool = False,
     entry: str = DEFAULT_ENTRY,
+    probes: Probes | None = None,
 ) -> ChildOutcome:
-    """Run ``path`` on the scenarios in a confined child; its results, validated, or what went wrong."""
+    """Run ``path`` on the scenarios in a confined child; its results, validated, or what went wrong.
+
+    ``probes``: the batch's trusted probe results (:class:`Probes`), instead of probing again."""
     if not path.is_file():
         return ChildOutcome(kind="program error", message=f"cannot read program {path}: no such file")
     with _PREPARING:  # process-wide state (sys.modules, sysconfig's lazy caches): one batch thread at a time
-        expected = [_expected(exercise, s, seed) for s in scenarios]  # an exercise's mistake shows here
+        probes = probes or Probes(exercise.number, seed, {})
+        expected = [probes.expected(exercise, s, seed) for s in scenarios]  # an exercise's mistake shows here
         module, attribute = _locate(exercise)
         readable = [str(path.resolve()), *_readable(exercise, path)]
     cap = MAX_HEADER_BYTES + sum(e.max_rows * (HEAD + len(e.kinds) + EXTRA_COLUMNS) * 8 for e in expected)
@@ -295,6 +302,32 @@ def gaps(cgroup: str | None) -> list[str]:
     return []
 
 
+@dataclass(frozen=True)
+class Probes:
+    """The trusted probe's results of one batch, computed once per (exercise, scenario, seed) in the
+    grader (:meth:`of`) instead of once per submission.
+
+    Each submission is validated against its own deep copy (:meth:`expected`), so nothing done while
+    grading one submission can change what the next is checked against; what a child sends never
+    reaches them. A scenario or seed the batch did not probe is probed afresh.
+    """
+
+    exercise: str
+    seed: int
+    by_scenario: Mapping[str, Expected]
+    """Scenario name -> what its run must look like."""
+
+    @classmethod
+    def of(cls, exercise: Exercise, scenarios: Sequence[Any], seed: int) -> Probes:
+        return cls(exercise.number, seed, {s.name: _expected(exercise, s, seed) for s in scenarios})
+
+    def expected(self, exercise: Exercise, scenario: Any, seed: int) -> Expected:
+        """What the run of ``scenario`` must look like: a copy of the cached probe, or a fresh probe."""
+        ours = (exercise.number, seed) == (self.exercise, self.seed)
+        cached = self.by_scenario.get(scenario.name) if ours else None
+        return copy.deepcopy(cached) if cached is not None else _expected(exercise, scenario, seed)
+
+
 def _expected(exercise: Exercise, scenario: Any, seed: int) -> Expected:
     """What the run of ``scenario`` must look like, from a trusted probe program on the same CPU and rig."""
     sim = exercise.simulation(Program.from_source(_PROBE_PROGRAM, "<probe>"), scenario, seed=seed)
@@ -330,7 +363,10 @@ def _readable(exercise: Exercise, path: Path) -> list[str]:
     """What the child may read (a list of allowed files and folders, not of forbidden ones): the Python
     installation, the folders of the packages this process has loaded and the system's libraries; not
     the exercise's solutions, not the other files of the submission's folder (the other students'),
-    not the temporary folder (the other children's scratch)."""
+    not the temporary folder (the other children's scratch).
+
+    The walk is cached (:func:`_granted`): the submissions of a batch share their folder, hidden
+    folders and loaded packages, so it runs once per batch, not once per submission."""
     hidden = {s.path.resolve().parent for s in exercise.solutions}
     hidden |= {h.parent for h in hidden if h.parent.name == "solutions"}
     hidden.add(Path(tempfile.gettempdir()).resolve())
@@ -338,6 +374,13 @@ def _readable(exercise: Exercise, path: Path) -> list[str]:
     roots = {Path(p) for p in _SYSTEM_READABLE}
     roots |= {Path(p) for p in _PYTHON_PATHS}
     roots |= {_package_root(m) for m in list(sys.modules.values())} - {None}  # type: ignore[arg-type]
+    return list(_granted(folder, frozenset(hidden), frozenset(roots)))
+
+
+@functools.lru_cache(maxsize=32)
+def _granted(folder: Path, hidden: frozenset[Path], roots: frozenset[Path]) -> tuple[str, ...]:
+    """The trees below ``roots`` a child may read: each root whole, or, where it holds a hidden folder or
+    the submissions' ``folder``, its other entries (never the files of ``folder`` itself)."""
     out: list[str] = []
 
     def within(inner: Path, outer: Path) -> bool:
@@ -359,7 +402,7 @@ def _readable(exercise: Exercise, path: Path) -> list[str]:
     for root in sorted(roots):
         grant(root.resolve())
     granted = set(out)
-    return sorted(g for g in granted if not _ancestors(g) & granted)  # one rule per granted tree
+    return tuple(sorted(g for g in granted if not _ancestors(g) & granted))  # one rule per granted tree
 
 
 def _ancestors(path: str) -> set[str]:
@@ -373,10 +416,14 @@ def _ancestors(path: str) -> set[str]:
 def _package_root(module: Any) -> Path | None:
     """The top-level package folder (or the file) a loaded module comes from."""
     file = getattr(module, "__file__", None)
-    if not file:
-        return None
+    return _root_of(file, module.__name__.count(".")) if file else None
+
+
+@functools.lru_cache(maxsize=8192)
+def _root_of(file: str, depth: int) -> Path:
+    """The folder ``depth`` levels above a package module's file (its file, for a top-level module)."""
     top = Path(file).resolve().parent if Path(file).name == "__init__.py" else Path(file).resolve()
-    for _ in range(module.__name__.count(".")):
+    for _ in range(depth):
         top = top.parent
     return top
 
