@@ -148,6 +148,9 @@ def _version() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
+    from plcsim.safe_output import make_streams_safe
+
+    make_streams_safe()  # a cp1252 console must not turn a printed ✓ into exit code 1
     args = _parser().parse_args(argv)
     if args.command is None:
         _parser().print_help()
