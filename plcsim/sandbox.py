@@ -181,7 +181,7 @@ def _run_posix(entry: str, request: dict[str, Any], limits: Any, cap: int) -> tu
         raise ConfigurationError(f"cannot start the grading child: {exc}") from None
     finally:
         os.close(write_end)
-    watch = _outside_watch(proc.pid, limits, portable=False)
+    watch = _outside_watch(proc.pid, limits)
     try:
         buffer, problem, stopped = _collect(proc, read_end, limits.wall_seconds, cap, watch)
         if buffer is None and not stopped:  # it ended by itself: let it report how, briefly
@@ -201,7 +201,7 @@ def _run_portable(entry: str, request: dict[str, Any], limits: Any, cap: int) ->
     from outside (:mod:`plcsim.watchdog`), killing them all at the wall-time, CPU-time or memory limit or
     when the result file grows past what any result can hold. The child's stdin is a pipe the grader
     holds open: the child ends itself when it closes (the grader ended)."""
-    from plcsim.watchdog import POLL_S
+    from plcsim.watchdog import POLL_S, TreeWatch
 
     result = os.path.join(request["scratch"], "result.bin")
     proc = subprocess.Popen(
@@ -213,8 +213,7 @@ def _run_portable(entry: str, request: dict[str, Any], limits: Any, cap: int) ->
         stderr=subprocess.DEVNULL,
         creationflags=getattr(subprocess, "CREATE_NEW_PROCESS_GROUP", 0),
     )
-    watch = _outside_watch(proc.pid, limits, portable=True, result_file=result, cap=cap)
-    assert watch is not None
+    watch = TreeWatch(proc.pid, limits.cpu_seconds, limits.memory_mb, result_file=result, max_bytes=cap)
     deadline = time.monotonic() + limits.wall_seconds
     stopped = None
     try:
@@ -226,6 +225,8 @@ def _run_portable(entry: str, request: dict[str, Any], limits: Any, cap: int) ->
                 stopped = "wall" if time.monotonic() >= deadline else watch.check()
     finally:
         watch.kill_all()
+        with contextlib.suppress(OSError):
+            proc.kill()  # in case the watch could not reach it
         proc.wait()
         with contextlib.suppress(OSError):
             proc.stdin.close()  # type: ignore[union-attr]
@@ -255,20 +256,15 @@ def _whole_message(buffer: bytes, cap: int) -> tuple[bytes | None, str | None]:
     return buffer, None
 
 
-def _outside_watch(pid: int, limits: Any, *, portable: bool, result_file: str | None = None, cap: int = 0) -> Any:
-    """The grader's watch over the limits this system does not enforce in the child (None: it enforces all)."""
+def _outside_watch(pid: int, limits: Any) -> Any:
+    """The grader's watch over the limits this POSIX system does not enforce in the child (macOS: memory),
+    or None where it enforces all (Linux)."""
     from plcsim.watchdog import TreeWatch, outside_limits
 
-    cpu, memory = outside_limits(portable)
-    if not (cpu or memory or result_file):
+    cpu, memory = outside_limits(portable=False)
+    if not (cpu or memory):
         return None
-    return TreeWatch(
-        pid,
-        cpu_seconds=limits.cpu_seconds if cpu else None,
-        memory_mb=limits.memory_mb if memory else None,
-        result_file=result_file,
-        max_bytes=cap if result_file else None,
-    )
+    return TreeWatch(pid, limits.cpu_seconds if cpu else None, limits.memory_mb if memory else None)
 
 
 def _collect(

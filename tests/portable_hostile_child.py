@@ -10,6 +10,7 @@ import json
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 from typing import Any
 
@@ -36,6 +37,10 @@ def work(request: dict[str, Any]) -> bytes:
         Path(order["pid_file"]).write_text(str(sleeper.pid))
         while True:
             pass
+    if do == "spawn-a-hog-then-sleep":  # the CPU time is spent by the process it starts, not by itself
+        hog = subprocess.Popen([sys.executable, "-c", "while True: pass"])
+        Path(order["pid_file"]).write_text(str(hog.pid))
+        time.sleep(120)
     if do == "tell-pid-then-hog":
         Path(order["pid_file"]).write_text(str(os.getpid()))
         while True:
