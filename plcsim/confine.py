@@ -130,12 +130,15 @@ def exit_with_grader() -> None:
     """Portable (any OS): end this process once the grader's end of stdin closes, i.e. the grader ended.
 
     The grader holds the write end of the child's stdin and never writes to it; a read returns
-    end-of-file only when every write end is closed."""
+    end-of-file only when every write end is closed. The thread reads the raw descriptor: blocked in
+    ``sys.stdin.buffer.read()`` it would hold the buffer's lock, and the interpreter, ending, would
+    abort on it."""
 
     def wait_for_end_of_input() -> None:
         try:
-            sys.stdin.buffer.read()
-        except (OSError, ValueError, AttributeError):  # no stdin at all: nothing to wait for
+            while os.read(0, 4096):
+                pass
+        except OSError:  # no stdin at all: nothing to wait for
             return
         os._exit(ORPHANED_EXIT)
 

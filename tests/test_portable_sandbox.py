@@ -42,6 +42,7 @@ from test_sandbox_child import (  # noqa: F401 - fixtures and tests re-run on th
     test_the_control_an_honest_trace_of_the_reference_gets_full_marks,
 )
 
+from plcsim.confine import ORPHANED_EXIT
 from plcsim.errors import ConfigurationError
 from plcsim.grading import Limits, grade_sandboxed
 from plcsim.sandbox import MODE_VARIABLE, portable_mode
@@ -157,3 +158,27 @@ def _alive(pid: int) -> bool:
         return psutil.Process(pid).status() != psutil.STATUS_ZOMBIE
     except psutil.NoSuchProcess:
         return False
+
+
+@pytest.mark.parametrize(
+    ("script", "close_stdin", "code"),
+    [
+        ("pass", False, 0),  # ends normally while the grader holds stdin: no abort at shutdown
+        ("import time; time.sleep(30)", True, ORPHANED_EXIT),  # the grader's end closes: it ends itself
+    ],
+    ids=["normal-end", "grader-gone"],
+)
+def test_the_portable_child_s_watch_on_its_grader(script, close_stdin, code):
+    child = subprocess.Popen(
+        [sys.executable, "-c", f"from plcsim import confine; confine.exit_with_grader(); {script}"],
+        stdin=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
+    try:
+        if close_stdin:
+            time.sleep(1)
+            child.stdin.close()
+        assert child.wait(timeout=20) == code, child.stderr.read().decode()
+    finally:
+        child.kill()
+        child.wait()
