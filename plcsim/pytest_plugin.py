@@ -234,7 +234,7 @@ class _Runner:
     ) -> PlcRun:
         ex, path, seed, confined = self._resolve(exercise, program, solution, seed, sandbox)
         name = ex.scenario(scenario).name if scenario else ex.scenarios[0].name
-        key = ("run", ex.number, path, name, seed, confined)
+        key = ("run", ex.number, ex.slug, path, name, seed, confined, _limits_key(limits))
         if key not in self.cache:
             self.cache[key] = _run_one(ex, path, name, seed, confined, limits)
         found = self.cache[key]
@@ -256,13 +256,18 @@ class _Runner:
         from plcsim.grading import grade, grade_sandboxed
 
         ex, path, seed, confined = self._resolve(exercise, program, solution, seed, sandbox)
-        key = ("grade", ex.number, path, seed, confined, tuple(scenarios or ()))
+        key = ("grade", ex.number, ex.slug, path, seed, confined, tuple(scenarios or ()), _limits_key(limits))
         if key not in self.cache:
             if confined:
                 self.cache[key] = grade_sandboxed(ex, path, seed=seed, scenarios=scenarios, limits=limits)
             else:
                 self.cache[key] = grade(ex, path, seed=seed, scenarios=scenarios)
         return self.cache[key]
+
+
+def _limits_key(limits: Any) -> tuple[Any, ...] | None:
+    """The sandbox limits as part of a cache key (Limits is not hashable)."""
+    return None if limits is None else (limits.cpu_seconds, limits.memory_mb, limits.wall_seconds)
 
 
 def _exercise(exercise: Any) -> Any:
