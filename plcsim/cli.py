@@ -1,12 +1,12 @@
-"""The ``plcsim`` command: list and show exercises, run a program on a rig, grade submissions.
+"""The ``plcsim`` command: list and show exercises, run a program on a rig, grade submissions::
 
-plcsim list
-plcsim show 4.3.7
-plcsim run 4.3.7 --reference --rrd out/run.rrd
-plcsim run CONV1 --program my_conveyor.py --seconds 20 --plot out/conveyor.png
-plcsim grade 4.3.7 my_alarm.py --json out/report.json --junit out/report.xml
-plcsim grade 4.3.7 submissions/ --jobs 2 --gradebook out/grades.csv --junit out/grades.xml
-plcsim mutate 4.3.7 --seeds 3 --jobs 2 --json out/mutants.json
+    plcsim list
+    plcsim show 4.3.7
+    plcsim run 4.3.7 --reference --rrd out/run.rrd
+    plcsim run CONV1 --program my_conveyor.py --seconds 20 --plot out/conveyor.png
+    plcsim grade 4.3.7 my_alarm.py --json out/report.json --junit out/report.xml
+    plcsim grade 4.3.7 submissions/ --jobs 2 --gradebook out/grades.csv --junit out/grades.xml
+    plcsim mutate 4.3.7 --seeds 3 --jobs 2 --json out/mutants.json
 
 Exit codes: 0 every check passed, 1 a submission failed (or did not run), 2 a usage error,
 3 a grade is void because of the grader or the exercise (a check that raised).
@@ -159,6 +159,9 @@ def _version() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
+    from plcsim.safe_output import make_streams_safe
+
+    make_streams_safe()  # a cp1252 console must not turn a printed ✓ into exit code 1
     args = _parser().parse_args(argv)
     if args.command is None:
         _parser().print_help()

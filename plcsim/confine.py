@@ -15,8 +15,10 @@ whether it is in force (the grader lists the missing ones in the report's warnin
   scratch folders), none created, written, truncated or removed outside the scratch folder; no TCP
   bind or connect (ABI 4), no signal to a process outside (ABI 6).
 
-On Windows and macOS none of these exist; the grader then warns that the child runs with a
-wall-time limit only (see :func:`available`).
+macOS has the resource limits but does not enforce the address-space one, and no namespaces or
+Landlock; Windows has none of these. On the portable path (Windows, or ``PLCSIM_SANDBOX=portable``)
+the child applies nothing but :func:`exit_with_grader`, and the grader enforces the limits from
+outside (:mod:`plcsim.watchdog`); its report lists what is missing.
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ import ctypes
 import ctypes.util
 import os
 import sys
+import threading
 from typing import Any
 
 CLONE_NEWNS = 0x00020000
@@ -66,7 +69,7 @@ def set_limits(cpu_seconds: int, memory_mb: int, file_mb: int = 64) -> list[str]
     try:
         import resource
     except ImportError:
-        return ["no resource limits on this system (Windows): only the wall-time limit applies"]
+        return ["no resource limits on this system (Windows): the grader watches the limits from outside"]
     missing = []
     wanted = [
         ("RLIMIT_CPU", (cpu_seconds, cpu_seconds + 1)),  # SIGXCPU at the soft limit, SIGKILL a second later
@@ -117,6 +120,29 @@ def enter_namespaces() -> tuple[bool, list[str]]:
     if libc.unshare(flags & ~CLONE_NEWNET) == 0:
         return True, ["no network namespace: the network is only closed by Landlock (TCP)"]
     return False, ["no PID or network namespace: a process the submission starts is only killed with its group"]
+
+
+ORPHANED_EXIT = 87
+"""Exit code of a portable child whose grader ended."""
+
+
+def exit_with_grader() -> None:
+    """Portable (any OS): end this process once the grader's end of stdin closes, i.e. the grader ended.
+
+    The grader holds the write end of the child's stdin and never writes to it; a read returns
+    end-of-file only when every write end is closed. The thread reads the raw descriptor: blocked in
+    ``sys.stdin.buffer.read()`` it would hold the buffer's lock, and the interpreter, ending, would
+    abort on it."""
+
+    def wait_for_end_of_input() -> None:
+        try:
+            while os.read(0, 4096):
+                pass
+        except OSError:  # no stdin at all: nothing to wait for
+            return
+        os._exit(ORPHANED_EXIT)
+
+    threading.Thread(target=wait_for_end_of_input, name="plcsim-grader-watch", daemon=True).start()
 
 
 def die_with_parent() -> None:

@@ -9,6 +9,9 @@ validated (:mod:`plcsim.run_result`) against what this process computed the exer
 The grader reads the pipe until the message is complete, the child has exited or the wall-time
 limit has passed, never waiting for end-of-file (a grandchild may hold the pipe open); then it kills
 the whole process group (and, through the PID namespace, everything the child started).
+
+Where none of that exists (Windows), or with ``PLCSIM_SANDBOX=portable`` on any system, the portable
+path runs the child without any of it and watches it from outside (:mod:`plcsim.watchdog`).
 """
 
 from __future__ import annotations
@@ -51,6 +54,8 @@ from plcsim.sandbox_child import MEMORY_EXIT, SIGNAL_EXIT_BASE
 DEFAULT_ENTRY = "plcsim.sandbox_child"
 POSIX = hasattr(os, "waitid") and hasattr(os, "killpg") and hasattr(os, "wait4")
 """Process groups, waitid and wait4 (Linux, macOS); otherwise (Windows) the portable, weaker path."""
+MODE_VARIABLE = "PLCSIM_SANDBOX"
+"""``PLCSIM_SANDBOX=portable`` takes the portable path on any system (to prove it on Linux)."""
 EXIT_GRACE_S = 1.0
 """How long a child whose pipe closed without a result may take to exit and tell its exit status."""
 _PROBE_PROGRAM = "def OB1(t):\n    pass\n"
@@ -71,6 +76,19 @@ _PREPARING = threading.Lock()
 _PYTHON_PATHS = tuple(sysconfig.get_paths().values())
 """Computed once at import: sysconfig fills its caches lazily and not thread-safely, and a batch grades
 from several threads (two threads in the first grade of a batch met "dictionary changed size")."""
+
+
+def portable_mode() -> bool:
+    """True where the child gets no POSIX confinement: on Windows, or with ``PLCSIM_SANDBOX=portable``.
+
+    The portable path disables every Unix-only part (resource limits, process groups, namespaces,
+    Landlock, cgroups, fork); the grader then watches the child from outside (:mod:`plcsim.watchdog`)."""
+    mode = os.environ.get(MODE_VARIABLE, "").strip().lower()
+    if mode not in ("", "confined", "portable"):
+        raise ConfigurationError(
+            f"{MODE_VARIABLE}={os.environ[MODE_VARIABLE]!r} is not a sandbox mode; use 'portable' or leave it unset"
+        )
+    return mode == "portable" or not POSIX
 
 
 def run_child(
@@ -95,8 +113,9 @@ def run_child(
         module, attribute = _locate(exercise)
         readable = [str(path.resolve()), *_readable(exercise, path)]
     cap = MAX_HEADER_BYTES + sum(e.max_rows * (HEAD + len(e.kinds) + EXTRA_COLUMNS) * 8 for e in expected)
+    portable = portable_mode()
     scratch = tempfile.mkdtemp(prefix="plcsim-grade-")
-    cgroup = _make_cgroup()
+    cgroup = None if portable else _make_cgroup()
     request = {
         "module": module,
         "attribute": attribute,
@@ -108,21 +127,22 @@ def run_child(
         "scratch": scratch,
         "cgroup": cgroup,
         "readable": readable,
+        "confine": not portable,
     }
     try:
-        run = _run_posix if POSIX else _run_portable
-        buffer, problem, timed_out, status, cpu_s = run(entry, request, limits, cap)
+        run = _run_portable if portable else _run_posix
+        buffer, problem, stopped, status, cpu_s = run(entry, request, limits, cap)
     finally:
         _cleanup(scratch, cgroup)
-    outcome = _interpret(buffer, problem, timed_out, status, cpu_s, expected, seed, limits)
-    outcome.notes = gaps(cgroup)
+    outcome = _interpret(buffer, problem, stopped, status, cpu_s, expected, seed, limits)
+    outcome.notes = gaps(cgroup, portable)
     return outcome
 
 
 def _interpret(
     buffer: bytes | None,
     problem: str | None,
-    timed_out: bool,
+    stopped: str | None,
     status: int,
     cpu_s: float,
     expected: list[Expected],
@@ -132,7 +152,7 @@ def _interpret(
     if problem is not None:
         return ChildOutcome(kind="invalid result", message=problem)
     if buffer is None:
-        return _no_result(status, cpu_s, timed_out, limits)
+        return _no_result(status, cpu_s, stopped, limits)
     try:
         decoded = decode(buffer, expected, seed)
     except InvalidResultError as exc:
@@ -147,7 +167,9 @@ def _command(entry: str, request: dict[str, Any]) -> list[str]:
 
 
 def _run_posix(entry: str, request: dict[str, Any], limits: Any, cap: int) -> tuple[Any, ...]:
-    """The child in its own session, its result on a pipe: (message, problem, out of time, status, CPU s)."""
+    """The child in its own session, its result on a pipe: (message, problem, limit passed, status, CPU s).
+
+    The limit passed is ``wall`` or, where the grader watches the memory from outside (macOS), ``memory``."""
     read_end, write_end = os.pipe()
     request = {**request, "fd": write_end}
     try:
@@ -166,49 +188,100 @@ def _run_posix(entry: str, request: dict[str, Any], limits: Any, cap: int) -> tu
         raise ConfigurationError(f"cannot start the grading child: {exc}") from None
     finally:
         os.close(write_end)
+    watch = _outside_watch(proc.pid, limits)
     try:
-        buffer, problem, timed_out = _collect(proc, read_end, limits.wall_seconds, cap)
-        if buffer is None and not timed_out:  # it ended by itself: let it report how, briefly
+        buffer, problem, stopped = _collect(proc, read_end, limits.wall_seconds, cap, watch)
+        if buffer is None and not stopped:  # it ended by itself: let it report how, briefly
             _wait_exit(proc.pid, EXIT_GRACE_S)
     finally:
         os.close(read_end)
         _kill_group(proc.pid)
+        if watch is not None:
+            watch.kill_all()
         status, cpu_s = _reap(proc)
-    return buffer, problem, timed_out, status, cpu_s
+    return buffer, problem, stopped, status, cpu_s
 
 
 def _run_portable(entry: str, request: dict[str, Any], limits: Any, cap: int) -> tuple[Any, ...]:
-    """Windows (no process groups to kill, no select on pipes, no resource limits): the child writes its
-    result to a file in scratch and is killed at the wall-time limit; what it starts may outlive it."""
+    """No process groups, no select on pipes, no resource limits (Windows, or ``PLCSIM_SANDBOX=portable``):
+    the child writes its result to a file in scratch, and the grader watches the child and what it starts
+    from outside (:mod:`plcsim.watchdog`), killing them all at the wall-time, CPU-time or memory limit or
+    when the result file grows past what any result can hold. The child's stdin is a pipe the grader
+    holds open: the child ends itself when it closes (the grader ended)."""
+    from plcsim.watchdog import POLL_S, TreeWatch
+
     result = os.path.join(request["scratch"], "result.bin")
     proc = subprocess.Popen(
         _command(entry, {**request, "fd": None, "result_file": result}),
         cwd=request["scratch"],
         env=_child_env(request["scratch"]),
-        stdin=subprocess.DEVNULL,
+        stdin=subprocess.PIPE,
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
         creationflags=getattr(subprocess, "CREATE_NEW_PROCESS_GROUP", 0),
     )
+    watch = TreeWatch(proc.pid, limits.cpu_seconds, limits.memory_mb, result_file=result, max_bytes=cap)
+    deadline = time.monotonic() + limits.wall_seconds
+    stopped = None
     try:
-        proc.wait(timeout=limits.wall_seconds)
-    except subprocess.TimeoutExpired:
-        proc.kill()
+        while stopped is None:
+            try:
+                proc.wait(timeout=POLL_S)
+                break
+            except subprocess.TimeoutExpired:
+                stopped = "wall" if time.monotonic() >= deadline else watch.check()
+    finally:
+        watch.kill_all()
+        with contextlib.suppress(OSError):
+            proc.kill()  # in case the watch could not reach it
         proc.wait()
-        return None, None, True, proc.returncode, 0.0
-    if not os.path.exists(result):
-        return None, None, False, proc.returncode, 0.0
+        with contextlib.suppress(OSError):
+            proc.stdin.close()  # type: ignore[union-attr]
+    if stopped == "output":
+        return None, f"the child sent more than {cap} bytes", None, proc.returncode, watch.cpu_s
+    if stopped is not None or not os.path.exists(result):
+        return None, None, stopped, proc.returncode, watch.cpu_s
     if os.path.getsize(result) > cap:
-        return None, f"the child sent more than {cap} bytes", False, proc.returncode, 0.0
+        return None, f"the child sent more than {cap} bytes", None, proc.returncode, watch.cpu_s
     with open(result, "rb") as f:
-        return f.read(), None, False, proc.returncode, 0.0
+        buffer, problem = _whole_message(f.read(), cap)
+    return buffer, problem, None, proc.returncode, watch.cpu_s
 
 
-def _collect(proc: subprocess.Popen, fd: int, wall_s: float, cap: int) -> tuple[bytes | None, str | None, bool]:
-    """Read one message from ``fd``: (the message or None, a protocol problem or None, out of time?).
+def _whole_message(buffer: bytes, cap: int) -> tuple[bytes | None, str | None]:
+    """A result read whole (from a file): the message, or the problem :func:`_collect` names on a pipe."""
+    try:
+        total = message_length(buffer)
+    except InvalidResultError as exc:
+        return None, str(exc)
+    if total is not None and total > cap:
+        return None, f"the child's result announces {total} bytes; at most {cap} are possible"
+    if total is None or len(buffer) < total:
+        return None, f"the child's result is incomplete ({len(buffer)} bytes)"
+    if len(buffer) > total:
+        return None, f"the child sent {len(buffer) - total} bytes after its result"
+    return buffer, None
+
+
+def _outside_watch(pid: int, limits: Any) -> Any:
+    """The grader's watch over the limits this POSIX system does not enforce in the child (macOS: memory),
+    or None where it enforces all (Linux)."""
+    from plcsim.watchdog import TreeWatch, outside_limits
+
+    cpu, memory = outside_limits(portable=False)
+    if not (cpu or memory):
+        return None
+    return TreeWatch(pid, limits.cpu_seconds if cpu else None, limits.memory_mb if memory else None)
+
+
+def _collect(
+    proc: subprocess.Popen, fd: int, wall_s: float, cap: int, watch: Any = None
+) -> tuple[bytes | None, str | None, str | None]:
+    """Read one message from ``fd``: (the message or None, a protocol problem or None, the limit passed).
 
     It returns as soon as the message is complete, or the child has exited and the pipe holds nothing
-    more (a grandchild holding the pipe open does not delay it), or the wall time is up."""
+    more (a grandchild holding the pipe open does not delay it), or the wall time is up (``wall``), or
+    the outside ``watch`` (if any) saw a limit passed."""
     os.set_blocking(fd, False)
     deadline = time.monotonic() + wall_s
     buffer = bytearray()
@@ -216,7 +289,10 @@ def _collect(proc: subprocess.Popen, fd: int, wall_s: float, cap: int) -> tuple[
     while True:
         remaining = deadline - time.monotonic()
         if remaining <= 0:
-            return None, None, True
+            return None, None, "wall"
+        passed = watch.check() if watch is not None else None
+        if passed is not None:
+            return None, None, passed
         gone = _exited(proc.pid)  # before select: what it wrote before exiting is readable now
         ready, _, _ = select.select([fd], [], [], min(remaining, 0.05))
         data = b""
@@ -231,17 +307,17 @@ def _collect(proc: subprocess.Popen, fd: int, wall_s: float, cap: int) -> tuple[
             try:
                 total = message_length(buffer)
             except InvalidResultError as exc:
-                return None, str(exc), False
+                return None, str(exc), None
             if total is not None and total > cap:
-                return None, f"the child's result announces {total} bytes; at most {cap} are possible", False
+                return None, f"the child's result announces {total} bytes; at most {cap} are possible", None
         if total is not None and len(buffer) >= total:
             if len(buffer) > total:
-                return None, f"the child sent {len(buffer) - total} bytes after its result", False
-            return bytes(buffer), None, False
+                return None, f"the child sent {len(buffer) - total} bytes after its result", None
+            return bytes(buffer), None, None
         if len(buffer) > cap:
-            return None, f"the child sent more than {cap} bytes", False
+            return None, f"the child sent more than {cap} bytes", None
         if gone and not data:
-            return None, (f"the child's result is incomplete ({len(buffer)} bytes)" if buffer else None), False
+            return None, (f"the child's result is incomplete ({len(buffer)} bytes)" if buffer else None), None
 
 
 def _kill_group(pgid: int) -> None:
@@ -267,15 +343,16 @@ def _reap(proc: subprocess.Popen) -> tuple[int, float]:
     return proc.returncode, usage.ru_utime + usage.ru_stime
 
 
-def _no_result(code: int, cpu_s: float, timed_out: bool, limits: Any) -> ChildOutcome:
+def _no_result(code: int, cpu_s: float, stopped: str | None, limits: Any) -> ChildOutcome:
+    """What a child that sent no result came to: ``stopped`` names the limit the grader stopped it at."""
     signum = -code if code < 0 else code - SIGNAL_EXIT_BASE if code > SIGNAL_EXIT_BASE else 0
-    if timed_out:
+    if stopped == "wall":
         return ChildOutcome(kind="time limit", message=f"no result within {limits.wall_seconds:g} s of wall time")
     xcpu, kill = getattr(signal, "SIGXCPU", None), getattr(signal, "SIGKILL", None)
-    if signum and (signum == xcpu or (signum == kill and cpu_s >= limits.cpu_seconds)):
+    if stopped == "cpu" or (signum and (signum == xcpu or (signum == kill and cpu_s >= limits.cpu_seconds))):
         message = f"the submission used more than {limits.cpu_seconds} s of CPU time"
         return ChildOutcome(kind="time limit", message=message)
-    if code == MEMORY_EXIT:
+    if stopped == "memory" or code == MEMORY_EXIT:
         message = f"the submission ran out of memory (the limit is {limits.memory_mb} MB)"
         return ChildOutcome(kind="memory limit", message=message)
     try:
@@ -285,17 +362,20 @@ def _no_result(code: int, cpu_s: float, timed_out: bool, limits: Any) -> ChildOu
     return ChildOutcome(kind="crash", message=f"the grading process {how} without sending a result")
 
 
-def gaps(cgroup: str | None) -> list[str]:
+def gaps(cgroup: str | None, portable: bool = False) -> list[str]:
     """The guards this system lacks, as warnings for the report (none on Linux with Landlock)."""
-    if not POSIX:
+    if portable:
         return [
-            "sandbox: on this system the child runs without resource limits, process group or file "
-            "confinement; only the wall-time limit applies (grade on Linux for untrusted submissions)"
+            "sandbox: portable path (no resource limits, process group, namespaces or file confinement in the "
+            "child): the grader watches its wall time, CPU time and memory from outside and kills it with the "
+            "processes it saw it start; the submission may read and write wherever the grading user may "
+            "(grade on Linux for untrusted submissions)"
         ]
     if not sys.platform.startswith("linux"):
         return [
-            "sandbox: on this system the child has resource limits and is killed with its process group, "
-            "but no namespaces or Landlock: it may read and write wherever the grading user may"
+            "sandbox: on this system the child has resource limits (memory watched by the grader) and is killed "
+            "with its process group, but no namespaces or Landlock: it may read and write wherever the grading "
+            "user may"
         ]
     if os.geteuid() == 0 and cgroup is None:
         return ["sandbox: running as root without a writable pids cgroup, the number of processes is not limited"]

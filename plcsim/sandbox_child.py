@@ -4,6 +4,10 @@ It confines itself (:mod:`plcsim.confine`), loads the exercise and the submissio
 scenario and writes the raw results (:mod:`plcsim.run_result`) to the file descriptor the grader
 passed; then it exits. It sends no score: the grader evaluates the checks itself.
 
+On the portable path (``"confine": false`` in the request: Windows, or ``PLCSIM_SANDBOX=portable``)
+it applies none of that and writes its result to a file; the grader watches it from outside
+(:mod:`plcsim.watchdog`), and it ends itself when the grader's end of its stdin closes.
+
 With a PID namespace, the process the grader started forks once: the fork is process 1 of the
 namespace and does the work, the first waits for it and exits with its status (a death by signal
 N as exit code 128 + N), so that the grader can tell a CPU-time limit from a crash.
@@ -30,14 +34,17 @@ def main(argv: list[str], work: Callable[[dict[str, Any]], bytes] | None = None)
     request = json.loads(argv[1])
     fd = request["fd"]
     limits = request["limits"]
-    confine.set_limits(limits["cpu_seconds"], limits["memory_mb"])
-    if confine.enter_namespaces()[0]:
-        pid = os.fork()
-        if pid:
-            if fd is not None:
-                os.close(fd)
-            return _exit_code(os.waitpid(pid, 0)[1])
-        confine.die_with_parent()
+    if request.get("confine", True):
+        confine.set_limits(limits["cpu_seconds"], limits["memory_mb"])
+        if confine.enter_namespaces()[0]:
+            pid = os.fork()
+            if pid:
+                if fd is not None:
+                    os.close(fd)
+                return _exit_code(os.waitpid(pid, 0)[1])
+            confine.die_with_parent()
+    else:
+        confine.exit_with_grader()
     try:
         message = (work or grade_request)(request)
     except MemoryError as exc:
@@ -58,6 +65,8 @@ def lock_down(request: dict[str, Any]) -> list[str]:
     grader lists (the submission, the Python installation and packages), writes only in scratch."""
     from plcsim import confine
 
+    if not request.get("confine", True):
+        return ["portable path: no confinement"]
     return confine.forbid_processes(request.get("cgroup")) + confine.restrict_files(
         request["scratch"], request["readable"]
     )

@@ -181,12 +181,13 @@ def test_limits_cannot_be_switched_off(options, word):
 
 
 def test_the_portable_path_without_process_groups_grades_and_stops_at_the_wall_limit(ex1, tmp_path, monkeypatch):
-    """Windows' path (a result file, a kill at the wall-time limit), forced here on a POSIX system."""
+    """Windows' path (a result file, the grader's outside watch), forced here on a POSIX system; the
+    hostile programs on this path are in tests/test_portable_sandbox.py."""
     import plcsim.sandbox
 
     monkeypatch.setattr(plcsim.sandbox, "POSIX", False)
     r = grade_sandboxed(ex1, ex1.reference.path)
     assert (r.error_kind, r.passed, r.score) == (None, True, 3.0)
-    assert r.warnings[0].startswith("sandbox: on this system the child runs without resource limits")
+    assert r.warnings[0].startswith("sandbox: portable path (no resource limits, process group, namespaces")
     r = hostile(ex1, tmp_path, {"do": "cpu-hog"}, Limits(cpu_seconds=30, wall_seconds=1.5))
     assert (r.error_kind, r.error) == ("time limit", "no result within 1.5 s of wall time")
