@@ -71,9 +71,13 @@ def _parser() -> argparse.ArgumentParser:
     which.add_argument("--program", metavar="FILE.py", help="the PLC program to run")
     which.add_argument("--reference", action="store_true", help="run the exercise's shipped reference solution")
     which.add_argument("--solution", metavar="NAME", help="run a shipped solution by name (see `plcsim show`)")
-    run.add_argument("--scenario", metavar="NAME", help="which scenario of the exercise (default: the first)")
+    run.add_argument(
+        "--scenario",
+        metavar="NAME",
+        help="which scenario of the exercise (default: the first), or a saved live session (.toml, .py)",
+    )
     run.add_argument("--seconds", type=float, metavar="N", help="simulated seconds (default: the scenario's)")
-    run.add_argument("--seed", type=int, default=1, help="seed of placement noise and timing (default 1)")
+    run.add_argument("--seed", type=int, help="seed of placement noise and timing (default 1, or the saved session's)")
     run.add_argument(
         "--realtime",
         nargs="?",
@@ -225,11 +229,12 @@ def _run(args: argparse.Namespace) -> int:
 
     console = Console()
     exercise = None
+    saved = _saved_scenario(args)
     if _is_rig(args.target):
         if not args.program:
             raise PlcError(f"running the bare rig {args.target} needs --program FILE.py")
-        sim = _rig_simulation(args)
-        scenario_name = None
+        sim = _rig_simulation(args, saved)
+        scenario_name = saved.name if saved else None
     else:
         from exercises import get
 
@@ -243,7 +248,10 @@ def _run(args: argparse.Namespace) -> int:
                 f"which program? plcsim run {args.target} --program FILE.py runs yours; "
                 f"--reference (or --solution NAME) runs a shipped one"
             )
-        scenario = exercise.scenario(args.scenario) if args.scenario else exercise.scenarios[0]
+        if saved is not None:
+            scenario = saved
+        else:
+            scenario = exercise.scenario(args.scenario) if args.scenario else exercise.scenarios[0]
         scenario_name = scenario.name
         options = {"cycle": args.cycle} if args.cycle else {}
         sim = exercise.simulation(program, scenario, seed=args.seed, pacing=_pacing(args), **options)
@@ -272,6 +280,8 @@ def _run(args: argparse.Namespace) -> int:
             error = exc
     wall = time.perf_counter() - wall0
     print_run_summary(sim, wall, console)
+    if saved is not None:  # the live page shows the same digest for the same session
+        console.print(f"seed {args.seed}, trace digest {sim.trace.digest()[:16]}")
     if error is not None:
         console.print(Text.assemble(("the run stopped:", "bold red"), f" {error}"))
     if args.rrd:
@@ -317,34 +327,33 @@ def _run(args: argparse.Namespace) -> int:
     return 0 if passed == len(results) else EXIT_FAILED
 
 
-def _rig_simulation(args: argparse.Namespace) -> Any:
+def _rig_simulation(args: argparse.Namespace, scenario: Any = None) -> Any:
     from plants import RIGS
-    from plcsim.cpu import CPU
     from plcsim.frontends import read_program
-    from plcsim.sim import Simulation
-    from plcsim.tags import Tag
-    from plcsim.wiring import Wire
+    from plcsim.live.build import rig_simulation
 
     factory = next(v for k, v in RIGS.items() if k.upper() == args.target.upper())
-    plant = factory()
-    tags: dict[str, Tag] = {}
-    wires = []
-    n_in = n_out = 0
-    for name, spec in plant.signals.items():
-        if spec.kind != "bool":
-            continue
-        if spec.direction == "sensor":
-            tags[name] = Tag(f"%I{n_in // 8}.{n_in % 8}")
-            n_in += 1
-        else:
-            tags[name] = Tag(f"%Q{n_out // 8}.{n_out % 8}")
-            n_out += 1
-        wires.append(Wire(name, name))
-    options = {"cycle": args.cycle} if args.cycle else {}
-    cpu = CPU(
-        tags, read_program(args.program), clock_memory_byte=100, system_memory_byte=101, seed=args.seed, **options
-    )
-    return Simulation(cpu, plant, wires, seed=args.seed, pacing=_pacing(args))
+    program = read_program(args.program)
+    return rig_simulation(factory(), program, scenario, seed=args.seed, cycle=args.cycle, pacing=_pacing(args))
+
+
+def _saved_scenario(args: argparse.Namespace) -> Any:
+    """``--scenario FILE.toml|.py``: a saved live session (its seed unless --seed says otherwise); else None."""
+    if not (args.scenario and args.scenario.endswith((".toml", ".py"))):
+        args.seed = 1 if args.seed is None else args.seed
+        return None
+    from plcsim.live.recording import load_scenario_file
+
+    base = None if _is_rig(args.target) else _exercise_scenario(args.target)
+    scenario, seed = load_scenario_file(args.scenario, base=base)
+    args.seed = args.seed if args.seed is not None else (seed if seed is not None else 1)
+    return scenario
+
+
+def _exercise_scenario(target: str) -> Any:
+    from exercises import get
+
+    return get(target).scenario
 
 
 def _pacing(args: argparse.Namespace) -> Any:
