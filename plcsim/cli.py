@@ -129,7 +129,26 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("--no-sandbox", action="store_true", help="grade in this process (trusted code only)")
     grade.add_argument("-v", "--verbose", action="store_true", help="also show why passed checks passed")
     _add_mutate_parser(sub)
+    _add_live_parser(sub)
     return p
+
+
+def _add_live_parser(sub: Any) -> None:
+    live = sub.add_parser(
+        "live",
+        help="run a program live in the browser: press buttons, place parts, inject faults, watch tags",
+        description="Serve a live operator panel on a local page. What you do is recorded as a scenario: save it "
+        "(--save-scenario) and `plcsim run TARGET --program FILE --scenario SAVED` replays it bit for bit.",
+    )
+    live.add_argument("target", help="an exercise (4.3.7, a slug or an exercise file) or a rig (PANEL, CONV1 ...)")
+    live.add_argument("--program", metavar="FILE.py", required=True, help="the PLC program to run")
+    live.add_argument("--scenario", metavar="NAME", help="start from this scenario of the exercise (default: none)")
+    live.add_argument("--seed", type=int, default=1, help="seed of placement noise and timing (default 1)")
+    live.add_argument("--port", type=int, default=8765, help="local port of the page (default 8765; 0: any free one)")
+    live.add_argument("--save-scenario", metavar="OUT.toml|OUT.py", help="save the session as a scenario here")
+    live.add_argument("--rrd", metavar="OUT.rrd", help="write the session's rerun recording when it ends")
+    live.add_argument("--paused", action="store_true", help="start paused (then: one scan at a time, or run)")
+    live.add_argument("--no-browser", action="store_true", help="do not open the page in the browser")
 
 
 def _add_mutate_parser(sub: Any) -> None:
@@ -164,6 +183,7 @@ def main(argv: list[str] | None = None) -> int:
             "run": _run,
             "grade": _grade,
             "mutate": _mutate,
+            "live": _live,
         }
         return commands[args.command](args)
     except PlcError as exc:
@@ -315,16 +335,20 @@ def _run(args: argparse.Namespace) -> int:
     points = sum(c.weight for c, v in results if v.passed)
     total = sum(c.weight for c, _ in results)
     console.print(f"[bold]grade of this run[/] (scenario {scenario_name!r}, seed {args.seed}):")
-    for check, verdict in results:
-        mark = "[green]✓[/]" if verdict.passed else "[red]✗[/]"
-        console.print(
-            f"  {mark} {check.title}" + ("" if verdict.passed else f"\n      {verdict.message}"), highlight=False
-        )
+    _print_verdicts(results, console)
     console.print(
         f"[bold]{points:g} / {total:g}[/] points, {passed}/{len(results)} checks passed  "
         f"(grade every scenario with: plcsim grade {exercise.number} FILE.py)"
     )
     return 0 if passed == len(results) else EXIT_FAILED
+
+
+def _print_verdicts(results: list[Any], console: Any) -> None:
+    for check, verdict in results:
+        mark = "[green]✓[/]" if verdict.passed else "[red]✗[/]"
+        console.print(
+            f"  {mark} {check.title}" + ("" if verdict.passed else f"\n      {verdict.message}"), highlight=False
+        )
 
 
 def _rig_simulation(args: argparse.Namespace, scenario: Any = None) -> Any:
@@ -446,6 +470,47 @@ def _grade(args: argparse.Namespace) -> int:
         written = write_gradescope(report, args.gradescope, visibility=visibility)
         console.print(f"Gradescope results: {written}", markup=False)
     return _exit_code([report])
+
+
+def _live(args: argparse.Namespace) -> int:
+    import webbrowser
+
+    from rich.console import Console
+
+    from plcsim.live.server import open_live
+
+    console = Console()
+    if args.save_scenario and not args.save_scenario.endswith((".toml", ".py")):
+        raise PlcError(f"--save-scenario {args.save_scenario}: save as .toml (exact replay) or .py (a scenario)")
+    panel = open_live(
+        args.target,
+        args.program,
+        scenario=args.scenario,
+        seed=args.seed,
+        port=args.port,
+        paused=args.paused,
+        save_scenario=args.save_scenario,
+    )
+    console.print(f"live panel of {panel.session.target.name}: [bold]{panel.url}[/]  (Ctrl-C or 'End session' ends it)")
+    if not args.no_browser:
+        webbrowser.open(panel.url)
+    try:
+        while not panel.runner.finished.wait(0.5):
+            pass
+    except KeyboardInterrupt:
+        console.print("ending the session")
+    panel.stop()
+    session = panel.session
+    saved = panel.runner.save()
+    ran = f"simulated {saved['t_ns'] / 1e9:g} s, {len(session.recorded)} actions"
+    console.print(f"{ran}; trace digest {saved['digest'][:16]}")
+    if saved["path"]:
+        console.print(f"scenario: {saved['path']}  (replay: {session.recording().replay_command()})", highlight=False)
+    if args.rrd:
+        Path(args.rrd).parent.mkdir(parents=True, exist_ok=True)
+        console.print(f"recording: {session.write_rrd(args.rrd)}  (open it with: rerun {args.rrd})", highlight=False)
+    _print_verdicts(session.grade(), console)
+    return 0
 
 
 def _shipped(exercise: Any, name: str | None) -> Any:

@@ -6,6 +6,7 @@ handle shows the page inline). The server needs the ``live`` extra: ``pip instal
 """
 
 from plcsim.live.recording import Recording, load_scenario_file
+from plcsim.live.server import LivePanel, open_live
 from plcsim.live.session import LiveSession
 
-__all__ = ["LiveSession", "Recording", "load_scenario_file"]
+__all__ = ["LivePanel", "LiveSession", "Recording", "load_scenario_file", "open_live"]
