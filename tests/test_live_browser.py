@@ -1,0 +1,98 @@
+"""The live panel in a real browser: headless Chromium (Debian's, driven by playwright; no browser download).
+
+A click on the PANEL rig's button TL lights the lamp within the next frames; letting go puts it out; the saved
+scenario replays to the trace digest the page showed. Where no browser can be had, the test says so and is skipped.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+
+import pytest
+
+from plcsim.live import Recording
+from plcsim.live.build import Target
+from plcsim.live.session import PANEL_DEMO
+
+CHROMIUM_ARGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+LAMP = 'circle[data-path="panel/lamps/LED"]'
+LAMP_OFF = "rgb(70,70,70)"  # plants.components.draw.LAMP_OFF
+FRAMES = 6
+"""The lamp must light within this many frames (25 a second) after the press is sent."""
+
+
+def _chromium() -> str:
+    path = os.environ.get("PLCSIM_CHROMIUM") or shutil.which("chromium") or shutil.which("chromium-browser")
+    if path is None:
+        pytest.skip("no Chromium on this machine (Debian: apt-get install chromium; or set PLCSIM_CHROMIUM)")
+    return path
+
+
+@pytest.fixture
+def browser():
+    executable = _chromium()
+    sync_api = pytest.importorskip("playwright.sync_api", reason="playwright is not installed (the test extra has it)")
+    with sync_api.sync_playwright() as p:
+        try:
+            chromium = p.chromium.launch(executable_path=executable, args=CHROMIUM_ARGS)
+        except sync_api.Error as exc:
+            pytest.skip(f"Chromium at {executable} does not start headless: {str(exc).splitlines()[0]}")
+        yield chromium
+        chromium.close()
+
+
+def test_a_click_lights_the_lamp_and_the_saved_session_replays(browser, tmp_path):
+    from plcsim.live.server import open_live
+
+    program = tmp_path / "lamp.py"
+    program.write_text(PANEL_DEMO, encoding="utf-8")
+    panel = open_live("PANEL", program, port=0)
+    try:
+        page = browser.new_page(viewport={"width": 1400, "height": 900})
+        errors: list[str] = []
+        page.on("pageerror", lambda exc: errors.append(str(exc)))
+        page.goto(panel.url)
+        page.wait_for_selector(LAMP)
+        assert page.get_attribute(LAMP, "fill") == LAMP_OFF
+        button = page.locator('#controls button[data-control="TL"]')
+        box = button.bounding_box()
+        page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+        before = page.evaluate("window.plcsimLive.frames")
+        page.mouse.down()
+        page.wait_for_function(
+            f"document.querySelector('{LAMP}').getAttribute('fill') !== '{LAMP_OFF}'", timeout=10_000
+        )
+        frames = page.evaluate("window.plcsimLive.frames") - before
+        assert frames <= FRAMES, f"the lamp lit only {frames} frames after the press"
+        assert page.locator('tr[data-tag="LED"] .dot.true').count() == 1  # the watch table shows LED TRUE
+        page.mouse.up()
+        page.wait_for_function(
+            f"document.querySelector('{LAMP}').getAttribute('fill') === '{LAMP_OFF}'", timeout=10_000
+        )
+        page.click("#save")
+        page.wait_for_function("window.plcsimLive.lastSaved !== null", timeout=10_000)
+        saved = page.evaluate("window.plcsimLive.lastSaved")
+        shown = page.inner_text("#digest")
+        page.screenshot(path=str(tmp_path / "panel.png"))
+    finally:
+        panel.stop()
+    assert errors == []
+    assert saved["digest"][:16] in shown
+    rec = Recording.from_toml(saved["toml"], "saved from the page")
+    assert [(a.verb, a.target) for a in rec.actions] == [("press", "TL"), ("release", "TL")]
+    sim = Target.find("PANEL").simulation(program, rec.scenario(), seed=rec.seed)
+    sim.run()
+    assert sim.now == saved["t_ns"]
+    assert sim.trace.digest() == saved["digest"]
+    lit = sim.trace.intervals("LED")
+    assert len(lit) == 1 and lit[0][0] >= rec.actions[0].t.lo_ns  # the replay lights the lamp once, after the press
