@@ -83,3 +83,66 @@ def _wait(ws, condition, timeout_s: float = 20.0) -> dict:
         if condition(message):
             return message
     raise AssertionError("no such message in time")
+
+
+def test_plcsim_live_ends_from_the_page_saving_the_scenario_and_the_recording(tmp_path, capsys):
+    pytest.importorskip("uvicorn", reason="the live extra is not installed: pip install 'plcsim[live]'")
+    import socket
+    import threading
+
+    from websockets.sync.client import connect
+
+    from plcsim.cli import main
+
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    program = tmp_path / "lamp.py"
+    program.write_text(PANEL_DEMO, encoding="utf-8")
+    saved, rrd = tmp_path / "session.py", tmp_path / "session.rrd"
+    argv = ["live", "PANEL", "--program", str(program), "--port", str(port), "--no-browser", "--paused"]
+    argv += ["--save-scenario", str(saved), "--rrd", str(rrd)]
+    result: list[int] = []
+    cli = threading.Thread(target=lambda: result.append(main(argv)))
+    cli.start()
+    try:
+        ws = _connect(connect, port)
+        with ws:
+            json.loads(ws.recv(timeout=10))
+            ws.send(json.dumps({"op": "do", "verb": "press", "target": "TL"}))
+            for _ in range(3):  # paused: one scan at a time
+                ws.send(json.dumps({"op": "scan"}))
+            ws.send(json.dumps({"op": "end"}))
+            ended = _wait(ws, lambda m: m["type"] == "ended")
+    finally:
+        cli.join(timeout=30)
+    assert result == [0]
+    assert ended["t_ns"] == 3 * MS and ended["path"] == str(saved)
+    assert 'press("TL", t="0ms")' in saved.read_text(encoding="utf-8")
+    assert rrd.stat().st_size > 0
+    out = capsys.readouterr().out
+    assert f"trace digest {ended['digest'][:16]}" in out
+
+
+def test_the_notebook_handle_shows_the_page_inline(tmp_path):
+    pytest.importorskip("uvicorn", reason="the live extra is not installed: pip install 'plcsim[live]'")
+    from plcsim.live import open_live
+
+    panel = open_live("PANEL", PANEL_DEMO, port=0, paused=True)
+    try:
+        assert f'<iframe src="{panel.url}"' in panel._repr_html_()
+        assert repr(panel) == f"<LivePanel PANEL at {panel.url}>"
+    finally:
+        panel.stop()
+
+
+def _connect(connect, port: int):
+    """The CLI's server comes up within a moment of its thread starting."""
+    end = time.monotonic() + 30
+    while True:
+        try:
+            return connect(f"ws://127.0.0.1:{port}/ws", open_timeout=10)
+        except OSError:
+            if time.monotonic() > end:
+                raise
+            time.sleep(0.1)

@@ -262,6 +262,8 @@ class LiveSession:
             "motors": motors,
             "faults": faults,
             "watch": list(sim.trace.names),
+            "inputs": list(sim.cpu.inputs),
+            "outputs": list(sim.cpu.outputs),
             "min_hold_ns": self.min_hold_ns,
             "dt_ns": sim.dt_ns,
         }
@@ -280,6 +282,7 @@ class LiveSession:
             "dynamic": [drawable_json(d) for d in (plant.dynamic_drawables() if plant is not None else [])],
             "sensors": {k: _jsonable(v) for k, v in (plant.sensors.items() if plant is not None else ())},
             "watch": {name: _jsonable(_read(cpu, name)) for name in sim.trace.names},
+            "io": {k: _jsonable(v) for k, v in (*cpu.inputs.items(), *cpu.outputs.items())},
             "forces": {k: _jsonable(v) for k, v in cpu.forces.items()},
             "faults": sorted(sim.wiring.faults) if sim.wiring is not None else [],
             "parts": parts,
