@@ -147,6 +147,9 @@ def _add_live_parser(sub: Any) -> None:
     live.add_argument("--port", type=int, default=8765, help="local port of the page (default 8765; 0: any free one)")
     live.add_argument("--save-scenario", metavar="OUT.toml|OUT.py", help="save the session as a scenario here")
     live.add_argument("--rrd", metavar="OUT.rrd", help="write the session's rerun recording when it ends")
+    live.add_argument(
+        "--speed", default="1", metavar="X", help="simulated s per wall s, 0.1 ... 10, or max (default 1)"
+    )
     live.add_argument("--paused", action="store_true", help="start paused (then: one scan at a time, or run)")
     live.add_argument("--no-browser", action="store_true", help="do not open the page in the browser")
 
@@ -488,6 +491,7 @@ def _live(args: argparse.Namespace) -> int:
         scenario=args.scenario,
         seed=args.seed,
         port=args.port,
+        speed=_speed(args.speed),
         paused=args.paused,
         save_scenario=args.save_scenario,
     )
@@ -511,6 +515,19 @@ def _live(args: argparse.Namespace) -> int:
         console.print(f"recording: {session.write_rrd(args.rrd)}  (open it with: rerun {args.rrd})", highlight=False)
     _print_verdicts(session.grade(), console)
     return 0
+
+
+def _speed(text: str) -> float | None:
+    """``--speed``: a factor from 0.1 to 10, or ``max`` (None: as fast as possible)."""
+    if text.strip().lower() == "max":
+        return None
+    try:
+        speed = float(text)
+    except ValueError:
+        speed = 0.0
+    if not 0.1 <= speed <= 10:
+        raise PlcError(f"--speed {text}: give a factor from 0.1 to 10, or max")
+    return speed
 
 
 def _shipped(exercise: Any, name: str | None) -> Any:

@@ -96,3 +96,52 @@ def test_a_click_lights_the_lamp_and_the_saved_session_replays(browser, tmp_path
     assert sim.trace.digest() == saved["digest"]
     lit = sim.trace.intervals("LED")
     assert len(lit) == 1 and lit[0][0] >= rec.actions[0].t.lo_ns  # the replay lights the lamp once, after the press
+
+
+def test_parts_faults_and_the_watch_table_from_the_page_replay(browser, tmp_path):
+    from plcsim.live.server import open_live
+
+    program = tmp_path / "belt.py"
+    program.write_text("def OB1(t):\n    if t.S1:\n        t.D1 = True\n    if t.S2:\n        t.D1 = False\n")
+    panel = open_live("CONV1", program, port=0, speed=2.0)
+    try:
+        page = browser.new_page(viewport={"width": 1400, "height": 900})
+        errors: list[str] = []
+        page.on("pageerror", lambda exc: errors.append(str(exc)))
+        page.goto(panel.url)
+        page.click('[data-station="S1"]')  # the station's marker on the drawing
+        part = page.locator('#machine [data-part="p1"]')
+        part.wait_for(timeout=10_000)
+        page.wait_for_function("window.plcsimLive.state.watch.D1 === true", timeout=10_000)  # S1 started the belt
+        part.click()  # the part's menu
+        page.click('#part-menu button:text("jam")')
+        page.wait_for_function("window.plcsimLive.state.events.some((e) => e.includes('scenario jam p1'))")
+        page.select_option("#fault-verb", "stick")
+        page.select_option("#fault-signal", "S2")
+        page.select_option("#fault-value", "true")
+        page.click("#fault-apply")
+        page.locator('#faults .chip:text("S2")').wait_for(timeout=10_000)
+        page.wait_for_function("window.plcsimLive.state.watch.D1 === false", timeout=10_000)  # S2 'seen': stop
+        page.fill('tr[data-tag="D1"] input', "1")
+        page.click('tr[data-tag="D1"] button:text("force")')
+        page.locator('tr[data-tag="D1"].forced').wait_for(timeout=10_000)
+        page.click("#run")  # pause, then save: the digest is of a standing simulation
+        page.wait_for_function("window.plcsimLive.state.paused === true")
+        page.click("#save")
+        page.wait_for_function("window.plcsimLive.lastSaved !== null", timeout=10_000)
+        saved = page.evaluate("window.plcsimLive.lastSaved")
+        page.screenshot(path=str(tmp_path / "conv1.png"))
+    finally:
+        panel.stop()
+    assert errors == []
+    rec = Recording.from_toml(saved["toml"], "saved from the page")
+    assert [(a.verb, a.target) for a in rec.actions] == [
+        ("place", "p1"),
+        ("jam", "p1"),
+        ("stick", "S2"),
+        ("force", "D1"),
+    ]
+    sim = Target.find("CONV1").simulation(program, rec.scenario(), seed=rec.seed)
+    sim.run()
+    assert sim.trace.digest() == saved["digest"]
+    assert sim.cpu.forces == {"D1": True}

@@ -146,3 +146,14 @@ def _connect(connect, port: int):
             if time.monotonic() > end:
                 raise
             time.sleep(0.1)
+
+
+def test_the_page_grades_an_exercise_session_on_its_trace_so_far():
+    from exercises import get
+
+    runner = Runner(LiveSession("4.3.7", str(get("4.3.7").reference.path), scenario="jam", seed=2))
+    runner.session.advance(16_000 * MS)
+    graded = runner.command({"op": "grade"})
+    assert graded["type"] == "graded" and graded["t_ns"] == 16_000 * MS
+    assert len(graded["results"]) >= 5 and all(r["passed"] for r in graded["results"]), graded["results"]
+    assert Runner(LiveSession("PANEL", PANEL_DEMO)).command({"op": "grade"})["results"] == []

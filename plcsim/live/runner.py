@@ -91,7 +91,7 @@ class Runner:
     def command(self, message: dict[str, Any]) -> dict[str, Any] | None:
         """Carry out one command from the page; returns a reply for it (or None), an error as ``{"type":
         "error"}``. Commands: ``do`` (verb, target, args), ``release``, ``toggle``, ``write`` (tag, text, force),
-        ``pause``, ``resume``, ``scan``, ``speed`` (value or null), ``save``, ``digest``, ``end``."""
+        ``pause``, ``resume``, ``scan``, ``speed`` (value or null), ``grade``, ``save``, ``digest``, ``end``."""
         op = message.get("op")
         handler: Callable[[dict[str, Any]], dict[str, Any] | None] | None = getattr(self, f"_op_{op}", None)
         if handler is None:
@@ -135,6 +135,13 @@ class Runner:
 
     def _op_digest(self, _m: dict[str, Any]) -> dict[str, Any]:
         return {"type": "digest", "t_ns": self.session.now, "digest": self.session.sim.trace.digest()}
+
+    def _op_grade(self, _m: dict[str, Any]) -> dict[str, Any]:
+        results = [
+            {"title": check.title, "passed": verdict.passed, "message": verdict.message}
+            for check, verdict in self.session.grade()
+        ]
+        return {"type": "graded", "t_ns": self.session.now, "results": results}
 
     def _op_save(self, _m: dict[str, Any]) -> dict[str, Any]:
         return {"type": "saved", **self.save()}

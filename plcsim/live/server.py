@@ -13,6 +13,8 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import json
+import mimetypes
+import os
 import socket
 import threading
 import time
@@ -24,6 +26,8 @@ from plcsim.live.runner import Runner
 from plcsim.live.session import LiveSession
 
 STATIC = Path(__file__).parent / "static"
+mimetypes.add_type("text/javascript", ".js")  # Windows' registry may map .js to text/plain, which browsers refuse
+mimetypes.add_type("text/css", ".css")
 SEND_EVERY_S = 0.04
 """The page's frame period (25 frames a second)."""
 
@@ -109,7 +113,8 @@ class LivePanel:
         self.runner = runner
         self.session: LiveSession = runner.session
         self._socket = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
-        self._socket.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        if os.name != "nt":  # on Windows the option would let two servers share the port
+            self._socket.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         try:
             self._socket.bind((host, port))
         except OSError as exc:

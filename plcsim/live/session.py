@@ -247,6 +247,7 @@ class LiveSession:
         return {
             "target": self.target.name,
             "title": f"{exercise.number} {exercise.title}" if exercise is not None else f"rig {self.target.name}",
+            "graded": exercise is not None,
             "scenario": self.name,
             "seed": self.seed,
             "program": self.program_file or "<program text>",

@@ -16,7 +16,7 @@ function connect() {
   ws.onmessage = (event) => {
     const m = JSON.parse(event.data);
     ({ layout: buildLayout, state: render, error: (r) => toast(r.message, true), saved: onSaved,
-       ended: onEnded, digest: (r) => showDigest(r) })[m.type]?.(m);
+       ended: onEnded, digest: (r) => showDigest(r), graded: showChecks })[m.type]?.(m);
   };
 }
 function send(message) {
@@ -80,6 +80,18 @@ function buildLayout(layout) {
   buildWatch(layout);
   $("controls-card").classList.toggle("hidden", layout.controls.length === 0);
   $("parts-card").classList.toggle("hidden", layout.stations.length === 0);
+  $("grade").classList.toggle("hidden", !layout.graded);
+}
+
+function showChecks(r) {
+  $("checks-card").classList.remove("hidden");
+  $("checks-time").textContent = `(at ${(r.t_ns / 1e9).toFixed(3)} s)`;
+  $("checks").replaceChildren(...r.results.map((c) => {
+    const li = document.createElement("li");
+    li.className = c.passed ? "pass" : "fail";
+    li.textContent = `${c.passed ? "✓" : "✗"} ${c.title}` + (c.passed ? "" : ` — ${c.message}`);
+    return li;
+  }));
 }
 
 function buildStations(layout) {
@@ -212,6 +224,8 @@ function render(s) {
   $("pace").textContent = s.paused ? "paused" : `${s.speed === null ? "as fast as possible" : "×" + s.speed} (now ×${s.actual_speed.toFixed(2)})`;
   $("run").textContent = s.paused ? "Run" : "Pause";
   $("run").classList.toggle("on", s.paused);
+  const speed = $("speed");
+  if (document.activeElement !== speed) speed.value = s.speed === null ? "max" : String(s.speed);
   updateDynamic(s);
   for (const b of $("controls").children) b.classList.toggle("on", !!s.sensors[b.dataset.control]);
   for (const tr of $("watch").children) {
@@ -268,6 +282,7 @@ $("cpu-stop").onclick = () => send({ op: "do", verb: "stop_cpu" });
 $("cpu-run").onclick = () => send({ op: "do", verb: "start_cpu" });
 $("cpu-power").onclick = () => send({ op: "do", verb: "power_cycle" });
 $("save").onclick = () => send({ op: "save" });
+$("grade").onclick = () => send({ op: "grade" });
 $("end").onclick = () => { if (confirm("End the session? It is saved as a scenario.")) send({ op: "end" }); };
 window.addEventListener("keydown", (e) => {
   if (e.key === " " && !(e.target instanceof HTMLInputElement)) { e.preventDefault(); $("run").click(); }
