@@ -175,3 +175,15 @@ def test_the_cli_replays_a_saved_session_with_its_seed(tmp_path, capsys):
     session.save(tmp_path / "s.toml")
     assert main(["run", "PANEL", "--program", str(program), "--scenario", str(tmp_path / "s.toml")]) == 0
     assert f"seed 7, trace digest {session.sim.trace.digest()[:16]}" in capsys.readouterr().out
+
+
+def test_saving_midway_does_not_change_what_follows(tmp_path):
+    session = LiveSession("CONV1", CONVEYOR, seed=4)
+    session.do("place", station="S1")
+    session.advance(1500 * MS)
+    first = replayed_digest(session, tmp_path / "first.toml")
+    assert first == session.sim.trace.digest()
+    _ = session.state()  # a page frame in between
+    session.do("knock_off", "p1")
+    session.advance(2000 * MS)
+    assert replayed_digest(session, tmp_path / "second.toml") == session.sim.trace.digest() != first

@@ -216,7 +216,6 @@ function showValue(td, value) {
 // -- each frame --------------------------------------------------------------------------------------
 function render(s) {
   page.state = s;
-  page.frames = (page.frames || 0) + 1;
   if (!page.layout) return;
   const mode = $("mode"); mode.textContent = s.mode; mode.className = "badge " + s.mode;
   $("time").textContent = s.time;
@@ -242,6 +241,7 @@ function render(s) {
   }));
   list("diagnostics", s.diagnostics); list("events", s.events); list("actions", s.actions);
   const err = $("error"); err.classList.toggle("hidden", !s.error); err.textContent = s.error || "";
+  page.onFrame?.(s); // a hook for the browser test: called after each frame is drawn
 }
 // the moving shapes are kept and updated in place (a shape under the pointer stays the same element)
 function updateDynamic(s) {
