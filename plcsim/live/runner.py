@@ -61,7 +61,10 @@ class Runner:
             wall, last = now - last, now
             with self.lock:
                 t0 = self.session.now
-                self.tick(wall, deadline=now + FRAME_S)
+                try:
+                    self.tick(wall, deadline=now + FRAME_S)
+                except Exception as exc:  # noqa: BLE001 - a bug of ours: the page says so instead of freezing
+                    self.session.error = f"the live session failed: {type(exc).__name__}: {exc}"
                 self.actual_speed = (self.session.now - t0) / 1e9 / wall if wall > 0 else 0.0
                 self._take_snapshot()
 
