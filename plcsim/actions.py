@@ -78,6 +78,11 @@ class ActionRunner:
                 due = min(due, item.armed_since + item.action.when.for_ns)  # type: ignore[union-attr]
         return due
 
+    def schedule(self, action: Action, at_ns: int, order: int) -> None:
+        """Add a timed action during the run (a live session's click), applied at the first step starting at or
+        after ``at_ns``; ``order`` breaks ties as an action's place in a scenario does."""
+        self._schedule(Planned(action, at_ns, order), at_ns)
+
     # -- during the run ---------------------------------------------------------------------------
 
     def apply_due(self, t: int) -> None:
@@ -179,6 +184,11 @@ class ActionRunner:
         elif verb == "write":
             cpu.write(target, args["value"])
             detail = f"= {args['value']!r}"
+        elif verb == "force":
+            cpu.force(target, args["value"])
+            detail = f"= {args['value']!r}"
+        elif verb == "unforce":
+            cpu.unforce(target)
         elif verb in ("stick", "break_wire", "chatter", "clear"):
             self._wiring_fault(verb, target, args)
         elif verb == "shift":

@@ -71,9 +71,13 @@ def _parser() -> argparse.ArgumentParser:
     which.add_argument("--program", metavar="FILE.py", help="the PLC program to run")
     which.add_argument("--reference", action="store_true", help="run the exercise's shipped reference solution")
     which.add_argument("--solution", metavar="NAME", help="run a shipped solution by name (see `plcsim show`)")
-    run.add_argument("--scenario", metavar="NAME", help="which scenario of the exercise (default: the first)")
+    run.add_argument(
+        "--scenario",
+        metavar="NAME",
+        help="which scenario of the exercise (default: the first), or a saved live session (.toml, .py)",
+    )
     run.add_argument("--seconds", type=float, metavar="N", help="simulated seconds (default: the scenario's)")
-    run.add_argument("--seed", type=int, default=1, help="seed of placement noise and timing (default 1)")
+    run.add_argument("--seed", type=int, help="seed of placement noise and timing (default 1, or the saved session's)")
     run.add_argument(
         "--realtime",
         nargs="?",
@@ -136,7 +140,29 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("--no-sandbox", action="store_true", help="grade in this process (trusted code only)")
     grade.add_argument("-v", "--verbose", action="store_true", help="also show why passed checks passed")
     _add_mutate_parser(sub)
+    _add_live_parser(sub)
     return p
+
+
+def _add_live_parser(sub: Any) -> None:
+    live = sub.add_parser(
+        "live",
+        help="run a program live in the browser: press buttons, place parts, inject faults, watch tags",
+        description="Serve a live operator panel on a local page. What you do is recorded as a scenario: save it "
+        "(--save-scenario) and `plcsim run TARGET --program FILE --scenario SAVED` replays it bit for bit.",
+    )
+    live.add_argument("target", help="an exercise (4.3.7, a slug or an exercise file) or a rig (PANEL, CONV1 ...)")
+    live.add_argument("--program", metavar="FILE.py", required=True, help="the PLC program to run")
+    live.add_argument("--scenario", metavar="NAME", help="start from this scenario of the exercise (default: none)")
+    live.add_argument("--seed", type=int, default=1, help="seed of placement noise and timing (default 1)")
+    live.add_argument("--port", type=int, default=8765, help="local port of the page (default 8765; 0: any free one)")
+    live.add_argument("--save-scenario", metavar="OUT.toml|OUT.py", help="save the session as a scenario here")
+    live.add_argument("--rrd", metavar="OUT.rrd", help="write the session's rerun recording when it ends")
+    live.add_argument(
+        "--speed", default="1", metavar="X", help="simulated s per wall s, 0.1 ... 10, or max (default 1)"
+    )
+    live.add_argument("--paused", action="store_true", help="start paused (then: one scan at a time, or run)")
+    live.add_argument("--no-browser", action="store_true", help="do not open the page in the browser")
 
 
 def _add_mutate_parser(sub: Any) -> None:
@@ -174,6 +200,7 @@ def main(argv: list[str] | None = None) -> int:
             "run": _run,
             "grade": _grade,
             "mutate": _mutate,
+            "live": _live,
         }
         return commands[args.command](args)
     except PlcError as exc:
@@ -239,11 +266,12 @@ def _run(args: argparse.Namespace) -> int:
 
     console = Console()
     exercise = None
+    saved = _saved_scenario(args)
     if _is_rig(args.target):
         if not args.program:
             raise PlcError(f"running the bare rig {args.target} needs --program FILE.py")
-        sim = _rig_simulation(args)
-        scenario_name = None
+        sim = _rig_simulation(args, saved)
+        scenario_name = saved.name if saved else None
     else:
         from exercises import get
 
@@ -257,7 +285,10 @@ def _run(args: argparse.Namespace) -> int:
                 f"which program? plcsim run {args.target} --program FILE.py runs yours; "
                 f"--reference (or --solution NAME) runs a shipped one"
             )
-        scenario = exercise.scenario(args.scenario) if args.scenario else exercise.scenarios[0]
+        if saved is not None:
+            scenario = saved
+        else:
+            scenario = exercise.scenario(args.scenario) if args.scenario else exercise.scenarios[0]
         scenario_name = scenario.name
         options = {"cycle": args.cycle} if args.cycle else {}
         sim = exercise.simulation(program, scenario, seed=args.seed, pacing=_pacing(args), **options)
@@ -286,6 +317,8 @@ def _run(args: argparse.Namespace) -> int:
             error = exc
     wall = time.perf_counter() - wall0
     print_run_summary(sim, wall, console)
+    if saved is not None:  # the live page shows the same digest for the same session
+        console.print(f"seed {args.seed}, trace digest {sim.trace.digest()[:16]}")
     if error is not None:
         console.print(Text.assemble(("the run stopped:", "bold red"), f" {error}"))
     if args.rrd:
@@ -319,11 +352,7 @@ def _run(args: argparse.Namespace) -> int:
     points = sum(c.weight for c, v in results if v.passed)
     total = sum(c.weight for c, _ in results)
     console.print(f"[bold]grade of this run[/] (scenario {scenario_name!r}, seed {args.seed}):")
-    for check, verdict in results:
-        mark = "[green]✓[/]" if verdict.passed else "[red]✗[/]"
-        console.print(
-            f"  {mark} {check.title}" + ("" if verdict.passed else f"\n      {verdict.message}"), highlight=False
-        )
+    _print_verdicts(results, console)
     console.print(
         f"[bold]{points:g} / {total:g}[/] points, {passed}/{len(results)} checks passed  "
         f"(grade every scenario with: plcsim grade {exercise.number} FILE.py)"
@@ -331,34 +360,41 @@ def _run(args: argparse.Namespace) -> int:
     return 0 if passed == len(results) else EXIT_FAILED
 
 
-def _rig_simulation(args: argparse.Namespace) -> Any:
+def _print_verdicts(results: list[Any], console: Any) -> None:
+    for check, verdict in results:
+        mark = "[green]✓[/]" if verdict.passed else "[red]✗[/]"
+        console.print(
+            f"  {mark} {check.title}" + ("" if verdict.passed else f"\n      {verdict.message}"), highlight=False
+        )
+
+
+def _rig_simulation(args: argparse.Namespace, scenario: Any = None) -> Any:
     from plants import RIGS
-    from plcsim.cpu import CPU
     from plcsim.frontends import read_program
-    from plcsim.sim import Simulation
-    from plcsim.tags import Tag
-    from plcsim.wiring import Wire
+    from plcsim.live.build import rig_simulation
 
     factory = next(v for k, v in RIGS.items() if k.upper() == args.target.upper())
-    plant = factory()
-    tags: dict[str, Tag] = {}
-    wires = []
-    n_in = n_out = 0
-    for name, spec in plant.signals.items():
-        if spec.kind != "bool":
-            continue
-        if spec.direction == "sensor":
-            tags[name] = Tag(f"%I{n_in // 8}.{n_in % 8}")
-            n_in += 1
-        else:
-            tags[name] = Tag(f"%Q{n_out // 8}.{n_out % 8}")
-            n_out += 1
-        wires.append(Wire(name, name))
-    options = {"cycle": args.cycle} if args.cycle else {}
-    cpu = CPU(
-        tags, read_program(args.program), clock_memory_byte=100, system_memory_byte=101, seed=args.seed, **options
-    )
-    return Simulation(cpu, plant, wires, seed=args.seed, pacing=_pacing(args))
+    program = read_program(args.program)
+    return rig_simulation(factory(), program, scenario, seed=args.seed, cycle=args.cycle, pacing=_pacing(args))
+
+
+def _saved_scenario(args: argparse.Namespace) -> Any:
+    """``--scenario FILE.toml|.py``: a saved live session (its seed unless --seed says otherwise); else None."""
+    if not (args.scenario and args.scenario.endswith((".toml", ".py"))):
+        args.seed = 1 if args.seed is None else args.seed
+        return None
+    from plcsim.live.recording import load_scenario_file
+
+    base = None if _is_rig(args.target) else _exercise_scenario(args.target)
+    scenario, seed = load_scenario_file(args.scenario, base=base)
+    args.seed = args.seed if args.seed is not None else (seed if seed is not None else 1)
+    return scenario
+
+
+def _exercise_scenario(target: str) -> Any:
+    from exercises import get
+
+    return get(target).scenario
 
 
 def _pacing(args: argparse.Namespace) -> Any:
@@ -464,6 +500,61 @@ def _grade(args: argparse.Namespace) -> int:
         written = write_gradescope(report, args.gradescope, visibility=visibility)
         console.print(f"Gradescope results: {written}", markup=False)
     return _exit_code([report])
+
+
+def _live(args: argparse.Namespace) -> int:
+    import webbrowser
+
+    from rich.console import Console
+
+    from plcsim.live.server import open_live
+
+    console = Console()
+    if args.save_scenario and not args.save_scenario.endswith((".toml", ".py")):
+        raise PlcError(f"--save-scenario {args.save_scenario}: save as .toml (exact replay) or .py (a scenario)")
+    panel = open_live(
+        args.target,
+        args.program,
+        scenario=args.scenario,
+        seed=args.seed,
+        port=args.port,
+        speed=_speed(args.speed),
+        paused=args.paused,
+        save_scenario=args.save_scenario,
+    )
+    console.print(f"live panel of {panel.session.target.name}: [bold]{panel.url}[/]  (Ctrl-C or 'End session' ends it)")
+    if not args.no_browser:
+        webbrowser.open(panel.url)
+    try:
+        while not panel.runner.finished.wait(0.5):
+            pass
+    except KeyboardInterrupt:
+        console.print("ending the session")
+    panel.stop()
+    session = panel.session
+    saved = panel.runner.save()
+    ran = f"simulated {saved['t_ns'] / 1e9:g} s, {len(session.recorded)} actions"
+    console.print(f"{ran}; trace digest {saved['digest'][:16]}")
+    if saved["path"]:
+        console.print(f"scenario: {saved['path']}  (replay: {session.recording().replay_command()})", highlight=False)
+    if args.rrd:
+        Path(args.rrd).parent.mkdir(parents=True, exist_ok=True)
+        console.print(f"recording: {session.write_rrd(args.rrd)}  (open it with: rerun {args.rrd})", highlight=False)
+    _print_verdicts(session.grade(), console)
+    return 0
+
+
+def _speed(text: str) -> float | None:
+    """``--speed``: a factor from 0.1 to 10, or ``max`` (None: as fast as possible)."""
+    if text.strip().lower() == "max":
+        return None
+    try:
+        speed = float(text)
+    except ValueError:
+        speed = 0.0
+    if not 0.1 <= speed <= 10:
+        raise PlcError(f"--speed {text}: give a factor from 0.1 to 10, or max")
+    return speed
 
 
 def _shipped(exercise: Any, name: str | None) -> Any:

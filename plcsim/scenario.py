@@ -110,6 +110,8 @@ class Action:
             "release": f"release {self.target}",
             "switch": f"switch {self.target} {'on' if self.args.get('on') else 'off'}",
             "write": f"write {self.target} = {self.args.get('value')!r}",
+            "force": f"force {self.target} = {self.args.get('value')!r}",
+            "unforce": f"remove the force on {self.target}",
             "remove": f"remove {self.target!r}",
             "jam": f"jam {self.target!r}",
             "unjam": f"free {self.target!r}",
@@ -153,6 +155,8 @@ TARGET_ROLES = {
     "release": "button or switch",
     "switch": "button or switch",
     "write": "tag",
+    "force": "tag",
+    "unforce": "tag",
     "remove": "part or station",
     "jam": "part",
     "unjam": "part",
@@ -219,6 +223,16 @@ def switch(name: str, on: bool, t: Any = None, *, when: Trigger | None = None, d
 def write(tag: str, value: Any, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
     """Write a tag once, as an HMI button or a watch table does (``ACK``, ``DATA.x``, ``NULUJ``)."""
     return _action("write", tag, t, when, delay, value=value)
+
+
+def force(tag: str, value: Any, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Force a tag, as a force table does: the value holds at every image update, whatever the program writes."""
+    return _action("force", tag, t, when, delay, value=value)
+
+
+def unforce(tag: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Remove the force on a tag (it keeps the forced value until something writes it)."""
+    return _action("unforce", tag, t, when, delay)
 
 
 def place(

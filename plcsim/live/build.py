@@ -1,0 +1,94 @@
+"""The simulation a live session (or its replay) runs: an exercise's, or a bare rig wired by signal name."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from plcsim.clock import NEVER
+from plcsim.cpu import CPU
+from plcsim.errors import PlcError
+from plcsim.frontends import read_program
+from plcsim.loaded import SourceProgram
+from plcsim.plant import Plant
+from plcsim.scenario import Scenario
+from plcsim.sim import Pacing, Simulation
+from plcsim.tags import Tag
+from plcsim.wiring import Wire
+
+LIVE = "live"
+"""The scenario name of a live session with no base scenario."""
+
+
+@dataclass
+class Target:
+    """What a session runs on: an exercise (with its checks and scenarios) or a bare rig."""
+
+    name: str
+    exercise: Any = None
+    rig: Any = None
+
+    @classmethod
+    def find(cls, name: str) -> Target:
+        """An exercise by number, slug or file, or a rig by its id (``PANEL``, ``CONV1``)."""
+        from plants import RIGS  # the rigs and exercises are found when asked for, as the CLI does
+
+        key = next((k for k in RIGS if k.upper() == name.upper()), None)
+        if key is not None:
+            return cls(key, rig=RIGS[key])
+        from exercises import get
+
+        exercise = get(name)
+        return cls(exercise.number, exercise=exercise)
+
+    def base(self, name: str | None) -> Scenario | None:
+        """The exercise's scenario ``name`` (None: none); a rig has none."""
+        if name is None:
+            return None
+        if self.exercise is None:
+            raise PlcError(f"the rig {self.name} has no scenarios; a live session on it starts from nothing")
+        return self.exercise.scenario(name)
+
+    def simulation(
+        self, program: SourceProgram | str | Path, scenario: Scenario, *, seed: int, pacing: Pacing | None = None
+    ) -> Simulation:
+        """A simulation of ``program`` (a file or a read program) on this target, running ``scenario``."""
+        source = read_program(program) if isinstance(program, (str, Path)) else program
+        if self.exercise is not None:
+            return self.exercise.simulation(source, scenario, seed=seed, pacing=pacing)
+        return rig_simulation(self.rig(), source, scenario, seed=seed, pacing=pacing)
+
+
+def rig_simulation(
+    plant: Plant,
+    program: SourceProgram,
+    scenario: Scenario | None = None,
+    *,
+    seed: int = 1,
+    cycle: str | None = None,
+    pacing: Pacing | None = None,
+) -> Simulation:
+    """A bare rig wired by name: each Bool sensor a tag ``%I`` and each Bool actuator a tag ``%Q`` of the same
+    name, in the order the plant declares them (``S1`` → ``%I0.0``, ``S2`` → ``%I0.1``, ``D1`` → ``%Q0.0``)."""
+    tags: dict[str, Tag] = {}
+    wires = []
+    n_in = n_out = 0
+    for name, spec in plant.signals.items():
+        if spec.kind != "bool":
+            continue
+        if spec.direction == "sensor":
+            tags[name] = Tag(f"%I{n_in // 8}.{n_in % 8}")
+            n_in += 1
+        else:
+            tags[name] = Tag(f"%Q{n_out // 8}.{n_out % 8}")
+            n_out += 1
+        wires.append(Wire(name, name))
+    options = {"cycle": cycle} if cycle else {}
+    cpu = CPU(tags, program, clock_memory_byte=100, system_memory_byte=101, seed=seed, **options)
+    return Simulation(cpu, plant, wires, scenario, seed=seed, pacing=pacing)
+
+
+def open_ended(name: str, base: Scenario | None) -> Scenario:
+    """The scenario a live session starts with: ``base``'s actions and no end (the student ends it)."""
+    return Scenario(name, *(base.actions if base is not None else ()), duration=NEVER, description="live session")

@@ -1,0 +1,155 @@
+"""The live panel in a real browser: headless Chromium (Debian's, driven by playwright; no browser download).
+
+A click on the PANEL rig's button TL lights the lamp within the next frames; letting go puts it out; the saved
+scenario replays to the trace digest the page showed. Where no browser can be had, the test says so and is skipped.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+
+import pytest
+
+from plcsim.live import Recording
+from plcsim.live.build import Target
+from plcsim.live.session import PANEL_DEMO
+
+CHROMIUM_ARGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+LAMP = 'circle[data-path="panel/lamps/LED"]'
+LAMP_OFF = "rgb(70,70,70)"  # plants.components.draw.LAMP_OFF
+FRAMES = 2
+"""The lamp must be drawn lit within this many frames after the first frame that shows the press recorded (the
+press is applied at the next step, 20 ms of wall time at most later; frames go out at 25 a second)."""
+WATCH_FRAMES = f"""() => {{
+    window.plcsimLive.seen = [];
+    window.plcsimLive.onFrame = (s) => window.plcsimLive.seen.push(
+        [s.actions.length, document.querySelector('{LAMP}').getAttribute('fill') !== '{LAMP_OFF}']);
+}}"""
+
+
+def _chromium() -> str:
+    path = os.environ.get("PLCSIM_CHROMIUM") or shutil.which("chromium") or shutil.which("chromium-browser")
+    if path is None:
+        pytest.skip("no Chromium on this machine (Debian: apt-get install chromium; or set PLCSIM_CHROMIUM)")
+    return path
+
+
+@pytest.fixture
+def browser():
+    executable = _chromium()
+    sync_api = pytest.importorskip("playwright.sync_api", reason="playwright is not installed (the test extra has it)")
+    with sync_api.sync_playwright() as p:
+        try:
+            chromium = p.chromium.launch(executable_path=executable, args=CHROMIUM_ARGS)
+        except sync_api.Error as exc:
+            pytest.skip(f"Chromium at {executable} does not start headless: {str(exc).splitlines()[0]}")
+        yield chromium
+        chromium.close()
+
+
+def test_a_click_lights_the_lamp_and_the_saved_session_replays(browser, tmp_path):
+    from plcsim.live.server import open_live
+
+    program = tmp_path / "lamp.py"
+    program.write_text(PANEL_DEMO, encoding="utf-8")
+    panel = open_live("PANEL", program, port=0)
+    try:
+        page = browser.new_page(viewport={"width": 1400, "height": 900})
+        errors: list[str] = []
+        page.on("pageerror", lambda exc: errors.append(str(exc)))
+        page.goto(panel.url)
+        page.wait_for_selector(LAMP)
+        assert page.get_attribute(LAMP, "fill") == LAMP_OFF
+        button = page.locator('#controls button[data-control="TL"]')
+        box = button.bounding_box()
+        page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+        page.evaluate(WATCH_FRAMES)
+        page.mouse.down()
+        page.wait_for_function(
+            f"document.querySelector('{LAMP}').getAttribute('fill') !== '{LAMP_OFF}'", timeout=10_000
+        )
+        seen = page.evaluate("window.plcsimLive.seen")
+        recorded = next(i for i, (actions, _) in enumerate(seen) if actions)
+        lit = next(i for i, (_, on) in enumerate(seen) if on)
+        assert lit - recorded <= FRAMES, f"the lamp was drawn lit {lit - recorded} frames after the press: {seen}"
+        assert page.locator('tr[data-tag="LED"] .dot.true').count() == 1  # the watch table shows LED TRUE
+        page.mouse.up()
+        page.wait_for_function(
+            f"document.querySelector('{LAMP}').getAttribute('fill') === '{LAMP_OFF}'", timeout=10_000
+        )
+        page.click("#save")
+        page.wait_for_function("window.plcsimLive.lastSaved !== null", timeout=10_000)
+        saved = page.evaluate("window.plcsimLive.lastSaved")
+        shown = page.inner_text("#digest")
+        page.screenshot(path=str(tmp_path / "panel.png"))
+    finally:
+        panel.stop()
+    assert errors == []
+    assert saved["digest"][:16] in shown
+    rec = Recording.from_toml(saved["toml"], "saved from the page")
+    assert [(a.verb, a.target) for a in rec.actions] == [("press", "TL"), ("release", "TL")]
+    sim = Target.find("PANEL").simulation(program, rec.scenario(), seed=rec.seed)
+    sim.run()
+    assert sim.now == saved["t_ns"]
+    assert sim.trace.digest() == saved["digest"]
+    lit = sim.trace.intervals("LED")
+    assert len(lit) == 1 and lit[0][0] >= rec.actions[0].t.lo_ns  # the replay lights the lamp once, after the press
+
+
+def test_parts_faults_and_the_watch_table_from_the_page_replay(browser, tmp_path):
+    from plcsim.live.server import open_live
+
+    program = tmp_path / "belt.py"
+    program.write_text("def OB1(t):\n    if t.S1:\n        t.D1 = True\n    if t.S2:\n        t.D1 = False\n")
+    panel = open_live("CONV1", program, port=0, speed=2.0)
+    try:
+        page = browser.new_page(viewport={"width": 1400, "height": 900})
+        errors: list[str] = []
+        page.on("pageerror", lambda exc: errors.append(str(exc)))
+        page.goto(panel.url)
+        page.click('[data-station="S1"]')  # the station's marker on the drawing
+        part = page.locator('#machine [data-part="p1"]')
+        part.wait_for(timeout=10_000)
+        page.wait_for_function("window.plcsimLive.state.watch.D1 === true", timeout=10_000)  # S1 started the belt
+        part.click()  # the part's menu
+        page.click('#part-menu button:text("jam")')
+        page.wait_for_function("window.plcsimLive.state.events.some((e) => e.includes('scenario jam p1'))")
+        page.select_option("#fault-verb", "stick")
+        page.select_option("#fault-signal", "S2")
+        page.select_option("#fault-value", "true")
+        page.click("#fault-apply")
+        page.locator('#faults .chip:text("S2")').wait_for(timeout=10_000)
+        page.wait_for_function("window.plcsimLive.state.watch.D1 === false", timeout=10_000)  # S2 'seen': stop
+        page.fill('tr[data-tag="D1"] input', "1")
+        page.click('tr[data-tag="D1"] button:text("force")')
+        page.locator('tr[data-tag="D1"].forced').wait_for(timeout=10_000)
+        page.click("#run")  # pause, then save: the digest is of a standing simulation
+        page.wait_for_function("window.plcsimLive.state.paused === true")
+        page.click("#save")
+        page.wait_for_function("window.plcsimLive.lastSaved !== null", timeout=10_000)
+        saved = page.evaluate("window.plcsimLive.lastSaved")
+        page.screenshot(path=str(tmp_path / "conv1.png"))
+    finally:
+        panel.stop()
+    assert errors == []
+    rec = Recording.from_toml(saved["toml"], "saved from the page")
+    assert [(a.verb, a.target) for a in rec.actions] == [
+        ("place", "p1"),
+        ("jam", "p1"),
+        ("stick", "S2"),
+        ("force", "D1"),
+    ]
+    sim = Target.find("CONV1").simulation(program, rec.scenario(), seed=rec.seed)
+    sim.run()
+    assert sim.trace.digest() == saved["digest"]
+    assert sim.cpu.forces == {"D1": True}
