@@ -10,7 +10,9 @@ byte LDC and byte LET leave A0H = 0 (G36); STK replaces A0 by the OR-fold with A
 NEG is A0 := NOT A0 (G21); S1.4 is ANL, which equals N4 OR ANL (G5); a comparison sets S0.0..S0.2 and
 leaves the other S0 bits (G43); ADD sets S0.0..S0.2 and leaves S0.3, so a program that never sets the
 carry-in adds with CI = 0 (G35); calls and returns leave the stack alone, a ninth nested call stops the CPU
-(G37); ED/EC inside a subroutine end the calling process.
+(G37); ED/EC inside a subroutine end the calling process; BP n runs P(50 + n) on the program's stack
+and flags and restores them afterwards, so a debugging handler never changes what the program computes
+(a BP without its handler does nothing).
 """
 
 from __future__ import annotations
@@ -441,10 +443,14 @@ def _bp(m: Machine, index: int, instr: Instruction) -> Code:
     if handler not in m.asm.processes:
         return lambda: nxt
 
-    def breakpoint_() -> int:
+    def breakpoint_() -> int:  # the handler sees the stack and flags; the program goes on with them as they were
         calls, m.calls = m.calls, []
+        active, levels, flags = m.active, list(m.st), bytes(m.pad.areas["S"][0:2])
         result = m.run_process(handler)
         m.calls = calls
+        m.select(active)
+        m.st[:] = levels
+        m.pad.areas["S"][0:2] = flags
         return END_CYCLE if result == END_CYCLE else nxt
 
     return breakpoint_
