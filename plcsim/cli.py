@@ -319,7 +319,7 @@ def _run(args: argparse.Namespace) -> int:
 
 def _rig_simulation(args: argparse.Namespace) -> Any:
     from plants import RIGS
-    from plcsim.cpu import CPU
+    from plcsim.controller import controller_for
     from plcsim.frontends import read_program
     from plcsim.sim import Simulation
     from plcsim.tags import Tag
@@ -341,8 +341,8 @@ def _rig_simulation(args: argparse.Namespace) -> Any:
             n_out += 1
         wires.append(Wire(name, name))
     options = {"cycle": args.cycle} if args.cycle else {}
-    cpu = CPU(
-        tags, read_program(args.program), clock_memory_byte=100, system_memory_byte=101, seed=args.seed, **options
+    cpu = controller_for(
+        read_program(args.program), tags, clock_memory_byte=100, system_memory_byte=101, seed=args.seed, **options
     )
     return Simulation(cpu, plant, wires, seed=args.seed, pacing=_pacing(args))
 

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import difflib
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -145,15 +146,23 @@ class _Raw:
     process: int
 
 
-def assemble(source: str, filename: str = "<il>", *, r_size: int = 8192) -> Assembly:
-    """Read ``.il`` source text into an :class:`Assembly` (AssemblyError names the place and the fix)."""
-    return _Assembler(source, filename, r_size).run()
+def assemble(
+    source: str, filename: str = "<il>", *, r_size: int = 8192, predefined: Mapping[str, Operand] | None = None
+) -> Assembly:
+    """Read ``.il`` source text into an :class:`Assembly` (AssemblyError names the place and the fix).
+
+    ``predefined`` names operands before the program does (an exercise's I/O table: ``TLACIDLO`` = X0.0);
+    the program's own ``#def`` of a name replaces it."""
+    return _Assembler(source, filename, r_size, predefined or {}).run()
 
 
 class _Assembler:
-    def __init__(self, source: str, filename: str, r_size: int):
+    def __init__(self, source: str, filename: str, r_size: int, predefined: Mapping[str, Operand]):
         self.source, self.filename, self.r_size = source, filename, r_size
         self.asm = Assembly(filename)
+        self.predefined = {name.lower(): operand for name, operand in predefined.items()}
+        for name, operand in predefined.items():
+            self.asm.symbols[name.lower()] = Symbol(name, operand, None, 0, "I/O table")
         self.raw: list[_Raw] = []
         self.defs: dict[str, tuple[str, str, int, int]] = {}
         self.regs: list[tuple[str, str, str, int, int, int]] = []
@@ -415,6 +424,9 @@ class _Assembler:
             other = self.defs[value.lower()]
             target = self._resolve_def(value.lower(), *other, (*seen, key))
             return Symbol(name, target.operand, target.value, lineno, "#def")
+        given = self.predefined.get(value.lower())
+        if given is not None:  # another name for an I/O table entry
+            return Symbol(name, given, None, lineno, "#def")
         try:
             return Symbol(name, None, expression(value, self._constants()), lineno, "#def")
         except NumberError:

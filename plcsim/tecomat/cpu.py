@@ -37,6 +37,7 @@ from plcsim.literals import to_ns
 from plcsim.loaded import LoadedProgram, ProgramFacts
 from plcsim.observers import Subscribers, assigned_hook
 from plcsim.tags import Tag, TagTable
+from plcsim.tecomat.analysis import IlAnalysis, IlCompiled
 from plcsim.tecomat.assembler import Assembly, assemble
 from plcsim.tecomat.machine import END_CYCLE, Machine, TecomatRuntimeError
 from plcsim.tecomat.memory import Operand, OperandError, Scratchpad, parse_address, read, write
@@ -102,6 +103,8 @@ class TecomatCPU:
         self.table = TagTable()
         self.program: Assembly | None = None
         self.loaded: LoadedProgram | None = None
+        self.compiled: IlCompiled | None = None
+        """What the program uses, for an exercise's static checks (``program_uses_no("SET")``)."""
         self.machine: Machine | None = None
         self.warnings: list[str] = []
         self.events_raised: set[int] = set()
@@ -124,6 +127,7 @@ class TecomatCPU:
         self.stop(reason="download")
         self.program, self.warnings = asm, list(asm.warnings)
         self.machine = Machine(asm, self.config)
+        self.compiled = IlCompiled(IlAnalysis.of(asm))
         self.terminals = Scratchpad({"X": bytearray(self.config.x_size)})
         """The input terminals as the plant drives them; the turnaround samples them into X and U."""
         self.symbols = self._symbol_table(asm)
