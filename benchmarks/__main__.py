@@ -23,6 +23,7 @@ GROUPS: dict[str, str] = {  # group name -> module with run(settings)
     "load": "benchmarks.program_load",
     "mutation": "benchmarks.mutation",
     "recording": "benchmarks.recording",
+    "tecomat": "benchmarks.tecomat",
 }
 
 

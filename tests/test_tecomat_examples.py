@@ -10,10 +10,19 @@ from pathlib import Path
 
 import pytest
 
+from plcsim.tecomat import instructions
 from plcsim.tecomat.assembler import assemble
 from plcsim.tecomat.cpu import TecomatCPU, load_file
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples" / "tecomat"
+
+
+@pytest.fixture(autouse=True, params=["fused", "closures"])
+def linking(request, monkeypatch):
+    """Every test runs on the fast path (fused runs) and on the plain closures: the same behaviour."""
+    if request.param == "closures":
+        monkeypatch.setattr(instructions, "fuse", lambda m, code: code)
+    return request.param
 
 
 def cpu_of(name: str, **options) -> TecomatCPU:

@@ -5,9 +5,18 @@ from __future__ import annotations
 
 import pytest
 
+from plcsim.tecomat import instructions
 from plcsim.tecomat.assembler import AssemblyError, assemble
 from plcsim.tecomat.cpu import TecomatCPU
 from plcsim.tecomat.mnemonics import DEFINED, NAMED_ONLY
+
+
+@pytest.fixture(autouse=True, params=["fused", "closures"])
+def linking(request, monkeypatch):
+    """Every test runs on the fast path (fused runs) and on the plain closures: the same behaviour."""
+    if request.param == "closures":
+        monkeypatch.setattr(instructions, "fuse", lambda m, code: code)
+    return request.param
 
 
 def run(text: str, scans: int = 1, **options) -> TecomatCPU:

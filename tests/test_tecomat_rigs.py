@@ -104,3 +104,12 @@ def test_a_program_error_stops_the_controller_and_the_trace_says_where():
     event = next(e for e in sim.trace.events if e.kind == "error in the program")
     assert event.t_ns == 20_000_000 and event.detail.startswith("bad.il, line 4: RET outside a subroutine")
     assert sim.trace.column("LED").max() == 0 and sim.trace.tasks[-1] == 0  # STOP rows after the fault
+
+
+def test_io_names_spelt_like_addresses_shadow_them_and_the_address_stays_reachable():
+    tags = {"S1": Tag("%I0.3"), "D1": Tag("%Q0.1")}
+    cpu = controller_for(program_text("LD S1\nWR D1\nLD 1\nFLG\nLD S 1\nWR R0\n"), tags)
+    cpu.set_input("S1", True)
+    cpu.scan()
+    assert cpu.outputs["D1"] is True and cpu.peek("Y0.1") == 1 and cpu.peek("R0") == 0x41
+    assert any("the I/O name S1 is X0.3 in this program" in w for w in cpu.warnings)

@@ -163,6 +163,11 @@ class _Assembler:
         self.predefined = {name.lower(): operand for name, operand in predefined.items()}
         for name, operand in predefined.items():
             self.asm.symbols[name.lower()] = Symbol(name, operand, None, 0, "I/O table")
+            if _ADDRESSLIKE.match(name):
+                self.asm.warnings.append(
+                    f"{filename}: the I/O name {name} is {operand} in this program; the address {name} is "
+                    f"written with a space ({name[0]} {name[1:]})"
+                )
         self.raw: list[_Raw] = []
         self.defs: dict[str, tuple[str, str, int, int]] = {}
         self.regs: list[tuple[str, str, str, int, int, int]] = []
@@ -415,6 +420,9 @@ class _Assembler:
     def _resolve_def(self, key: str, name: str, value: str, lineno: int, column: int, seen: tuple[str, ...]) -> Symbol:
         if key in seen:
             raise self.fail(lineno, column, f"#def {name} refers to itself through {' -> '.join(seen)}")
+        given = self.predefined.get(value.lower())
+        if given is not None:  # another name for an I/O table entry
+            return Symbol(name, given, None, lineno, "#def")
         try:
             return Symbol(name, parse_address(value), None, lineno, "#def")
         except OperandError as exc:
@@ -424,9 +432,6 @@ class _Assembler:
             other = self.defs[value.lower()]
             target = self._resolve_def(value.lower(), *other, (*seen, key))
             return Symbol(name, target.operand, target.value, lineno, "#def")
-        given = self.predefined.get(value.lower())
-        if given is not None:  # another name for an I/O table entry
-            return Symbol(name, given, None, lineno, "#def")
         try:
             return Symbol(name, None, expression(value, self._constants()), lineno, "#def")
         except NumberError:
@@ -474,14 +479,14 @@ class _Assembler:
                     return low_high(self.operand(r, text[len(prefix) :].strip()), high)
                 except OperandError as exc:
                     raise self.fail(r.line, r.op_column, str(exc)) from None
+        symbol = self.asm.symbols.get(lowered)  # an I/O name spelt like an address (S1, D1) shadows it
+        if symbol is not None:
+            return symbol.operand if symbol.operand is not None else immediate(symbol.value)  # type: ignore[arg-type]
         try:
             return parse_address(text)
         except OperandError as exc:
             if _ADDRESSLIKE.match(text):
                 raise self.fail(r.line, r.op_column, str(exc)) from None
-        symbol = self.asm.symbols.get(lowered)
-        if symbol is not None:
-            return symbol.operand if symbol.operand is not None else immediate(symbol.value)  # type: ignore[arg-type]
         constants = {k: s.value for k, s in self.asm.symbols.items() if s.value is not None}
         try:
             value = expression(text, constants)

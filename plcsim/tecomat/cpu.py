@@ -27,6 +27,7 @@ from __future__ import annotations
 import datetime as _dt
 from collections import deque
 from collections.abc import Mapping
+from operator import itemgetter
 from pathlib import Path
 from typing import Any
 
@@ -42,6 +43,7 @@ from plcsim.tecomat.assembler import Assembly, assemble
 from plcsim.tecomat.machine import END_CYCLE, Machine, TecomatRuntimeError
 from plcsim.tecomat.memory import Operand, OperandError, Scratchpad, parse_address, read, write
 from plcsim.tecomat.settings import TecomatConfig
+from plcsim.tecomat.symbols import reader
 from plcsim.types import Bool, Byte, Word
 
 CLOCK_PERIODS_NS = tuple(
@@ -112,6 +114,7 @@ class TecomatCPU:
         self._next_start = 0
         self._restart: str | None = None
         self._rtc_base = _parse_rtc(self.config.rtc_start)
+        self._rtc_until = 0
         if program is not None:
             self.load(program, filename)
             if start:
@@ -170,6 +173,14 @@ class TecomatCPU:
         self.outputs = {n: self._off(n) for n in self.output_names}
         self.t.__dict__.clear()
         self.t.__dict__.update({n: self._off(n) for n in self.symbols})
+        pad = self.machine.pad  # type: ignore[union-attr]
+        self._traced_names = [n for n in self.symbols if n not in self.inputs]
+        self._read_traced = reader(pad, [self.symbols[n] for n in self._traced_names])
+        self._read_outputs = reader(pad, [self.symbols[n] for n in self.output_names])
+        self._read_terminals = reader(self.terminals, [self.symbols[n] for n in self.input_names])
+        self._input_levels = itemgetter(*self.input_names) if self.input_names else (lambda d: ())
+        self._last_inputs = self._input_levels(self.inputs)
+        self._last_outputs = self._read_outputs()
 
     def _off(self, name: str) -> Any:
         return False if self.symbols[name].width == "bit" else 0
@@ -190,7 +201,10 @@ class TecomatCPU:
         self.mode = RUN
         self._pending = None
         self._next_start = self.clock.now
-        self._due = [self.clock.now + p for p in self.config.p5_p9_ns]
+        self._periods = self.config.p5_p9_ns
+        self._due = [self.clock.now + p for p in self._periods]
+        self._only_p0 = set(self.machine.asm.processes) <= {0, 60}
+        self._cycle_ns = self.config.cycle_ns
         self.events_raised.clear()
         self._diag("STOP->RUN", f"{restart} restart: the CPU switched to RUN")
 
@@ -234,10 +248,10 @@ class TecomatCPU:
 
     def _refresh_inputs(self) -> None:
         """Every input symbol as the terminals hold it (two names on one terminal agree)."""
-        for name in self.input_names:
-            op = self.symbols[name]
-            level = read(self.terminals, op)
-            self.inputs[name] = self.image_in[name] = bool(level) if op.width == "bit" else level
+        levels = dict(zip(self.input_names, self._read_terminals(), strict=True))
+        self.inputs.update(levels)
+        self.image_in.update(levels)
+        self._last_inputs = self._input_levels(self.inputs)
 
     def write(self, name: str, value: Any) -> None:
         """Write a symbol or an address (``"R10"``, ``"RW0"``) in the scratchpad now (an HMI write)."""
@@ -258,6 +272,7 @@ class TecomatCPU:
     def set_clock(self, moment: _dt.datetime) -> None:
         """Set the real-time clock (S5..S12) to ``moment`` now; it runs on with the simulated time."""
         self._rtc_base = moment - _dt.timedelta(microseconds=self.clock.now // 1000)
+        self._rtc_until = 0
 
     def local_time(self) -> _dt.datetime:
         """The real-time clock now."""
@@ -313,24 +328,18 @@ class TecomatCPU:
             self._fault(exc)
             return
         self.scan_start_ns = t0
-        self._pending = t0 + self.config.cycle_ns
+        self._pending = t0 + self._cycle_ns
 
     def _end(self) -> None:
         end = self._pending
         assert end is not None and self.machine is not None
         self._pending = None
         self.clock.now = max(self.clock.now, end)
-        pad = self.machine.pad
-        values = self.t.__dict__
-        changed = False
-        for name, op in self.symbols.items():
-            value = read(pad, op)
-            values[name] = bool(value) if op.width == "bit" else value
-        for name in self.output_names:
-            if self.outputs[name] != values[name]:
-                self.outputs[name] = values[name]
-                changed = True
-        if changed:
+        self.t.__dict__.update(zip(self._traced_names, self._read_traced(), strict=True))
+        outputs = self._read_outputs()
+        if outputs != self._last_outputs:
+            self._last_outputs = outputs
+            self.outputs.update(zip(self.output_names, outputs, strict=True))
             self.output_version += 1
         self.scan_end_ns = end
         self.scan_count += 1
@@ -345,11 +354,13 @@ class TecomatCPU:
         assert m is not None
         pad = m.pad
         m.turnaround(t0)
-        terminals, inputs, seen = self.terminals, self.inputs, self.image_in
-        for name in self.input_names:  # what the wiring (or set_input) changed since the last sample
-            if inputs[name] != seen[name]:
-                write(terminals, self.symbols[name], int(inputs[name]))
-        self._refresh_inputs()
+        terminals, inputs = self.terminals, self.inputs
+        if self._input_levels(inputs) != self._last_inputs:  # the wiring (or set_input) changed some
+            seen = self.image_in
+            for name in self.input_names:
+                if inputs[name] != seen[name]:
+                    write(terminals, self.symbols[name], int(inputs[name]))
+            self._refresh_inputs()
         pad.areas["X"][:] = terminals.areas["X"]
         pad.areas["U"][:] = terminals.areas["X"]
         self._system_registers(pad.areas["S"], t0)
@@ -358,9 +369,11 @@ class TecomatCPU:
         first = self.machine.pass_no == 1  # type: ignore[union-attr]
         restart = self._restart if first else None
         s[2] = 1 | 1 << 2 | 1 << 5 | (restart == "warm") << 3 | (restart == "cold") << 4
-        now = self.local_time_at(t0)
-        s[5], s[6], s[7], s[8] = now.microsecond // 10_000, now.second, now.minute, now.hour
-        s[9], s[10], s[11], s[12] = now.isoweekday(), now.day, now.month, now.year % 100
+        if t0 >= self._rtc_until or first:  # S5 counts 10 ms: the clock changes at most that often
+            now = self.local_time_at(t0)
+            s[5], s[6], s[7], s[8] = now.microsecond // 10_000, now.second, now.minute, now.hour
+            s[9], s[10], s[11], s[12] = now.isoweekday(), now.day, now.month, now.year % 100
+            self._rtc_until = t0 - now.microsecond % 10_000 * 1000 + 10_000_000
         bits = 0
         for k, period in enumerate(CLOCK_PERIODS_NS):
             bits |= (t0 // (period // 2) & 1) << k
@@ -376,6 +389,9 @@ class TecomatCPU:
         m = self.machine
         assert m is not None
         defined = m.asm.processes
+        if self._only_p0 and not (m.pass_no == 1 or self.events_raised):
+            m.run_process(0)
+            return
         s = m.pad.areas["S"]
         plan: list[int] = []
         if m.pass_no == 1 and self._restart is not None:
@@ -388,7 +404,7 @@ class TecomatCPU:
         if self.config.p1_p4_rotation:
             plan.append(1 + (m.pass_no - 1) % 4)
         t0 = m.t0
-        for k, period in enumerate(self.config.p5_p9_ns):
+        for k, period in enumerate(self._periods):
             if t0 >= self._due[k]:
                 plan.append(5 + k)
                 self._due[k] += ((t0 - self._due[k]) // period + 1) * period

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING
 
 from plcsim.tecomat.assembler import Instruction, Label
 from plcsim.tecomat.blocks import BLOCKS
+from plcsim.tecomat.fused import fuse
 from plcsim.tecomat.machine import END, END_CYCLE, MAX_NESTING, STACKS, TecomatRuntimeError
 from plcsim.tecomat.memory import Operand
 from plcsim.tecomat.tables import TABLES
@@ -39,7 +40,7 @@ def link(m: Machine) -> list[Code]:
     for index, instr in enumerate(m.asm.code):
         builder = BUILDERS.get(instr.mnemonic) or BLOCKS.get(instr.mnemonic) or TABLES[instr.mnemonic]
         code.append(builder(m, index, instr))
-    return code
+    return fuse(m, code) if m.config.fuse else code
 
 
 def _push(m: Machine) -> Callable[[int], None]:

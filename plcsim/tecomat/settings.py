@@ -59,6 +59,9 @@ class TecomatConfig:
     """Whether P64 (the final process) still runs when EOC ended the cycle early (not stated)."""
     watchdog_instructions: int = 1_000_000
     """Instructions one cycle may execute before the cycle-time watchdog stops the CPU (a jump loop)."""
+    fuse: bool = True
+    """Run straight-line instruction runs as one generated function each (:mod:`plcsim.tecomat.fused`);
+    False runs every instruction's closure (same results, slower)."""
     rtc_start: str = "2024-07-01-08:00:00"
     """The real-time clock at power-on (S5..S12), a Monday."""
 
