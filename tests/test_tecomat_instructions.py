@@ -435,3 +435,16 @@ def test_reg_avoids_registers_the_program_names_by_address():
 def test_data_area_is_read_only_program_data():
     cpu = run("#data word limits = 1000, 2000\nLD limits\nLD DW2\n")
     assert cpu.stack[:2] == [2000, 1000]
+
+
+def test_a_mode_switch_is_a_warm_restart_the_first_start_a_cold_one():
+    cpu = TecomatCPU("LD R0\nADD 1\nWR R0\n", retentive_r=(0, 1))
+    cpu.scan(3)
+    cpu.stop()
+    cpu.start()
+    cpu.scan()
+    assert cpu.peek("R0") == 4 and cpu.peek("S2.3") == 1  # warm: the retentive R0 kept, HOT set
+    cpu.load("LD R0\nADD 1\nWR R0\n")
+    cpu.start()
+    cpu.scan()
+    assert cpu.peek("R0") == 1 and cpu.peek("S2.4") == 1  # after a download: cold, RST set

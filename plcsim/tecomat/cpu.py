@@ -113,6 +113,7 @@ class TecomatCPU:
         self._pending: int | None = None
         self._next_start = 0
         self._restart: str | None = None
+        self._started = False
         self._rtc_base = _parse_rtc(self.config.rtc_start)
         self._rtc_until = 0
         if program is not None:
@@ -129,6 +130,7 @@ class TecomatCPU:
         asm = program if isinstance(program, Assembly) else assemble(program, filename, r_size=self.config.r_size)
         self.stop(reason="download")
         self.program, self.warnings = asm, list(asm.warnings)
+        self._started = False
         self.machine = Machine(asm, self.config)
         self.compiled = IlCompiled(IlAnalysis.of(asm))
         self.terminals = Scratchpad({"X": bytearray(self.config.x_size)})
@@ -187,17 +189,21 @@ class TecomatCPU:
 
     # -- modes ----------------------------------------------------------------------------------
 
-    def start(self, restart: str = "cold") -> None:
+    def start(self, restart: str | None = None) -> None:
         """STOP -> RUN by a ``cold`` restart (R cleared, P63 in the first cycle) or a ``warm`` one
-        (the retentive part of R kept, P62 in the first cycle)."""
+        (the retentive part of R kept, P62 in the first cycle). By default the first start after a
+        download is cold and a later one (a mode switch) warm, as an S7 keeps its retain tags."""
         if self.machine is None:
             raise ConfigurationError("no program is loaded; call cpu.load(program) first")
+        if restart is None:
+            restart = "warm" if self._started else "cold"
         if restart not in ("cold", "warm"):
             raise ConfigurationError(f"restart {restart!r}: use 'cold' or 'warm'")
         if self.mode == RUN:
             return
         getattr(self.machine, restart)()
         self._restart = restart
+        self._started = True
         self.mode = RUN
         self._pending = None
         self._next_start = self.clock.now
@@ -219,8 +225,12 @@ class TecomatCPU:
             self._diag("RUN->STOP", f"the CPU switched to STOP ({reason})")
 
     def power_cycle(self) -> None:
-        """Power off and on: a warm restart (the retentive part of R survives)."""
+        """Power off and on: a warm restart (the retentive part of R survives). A cycle the cut
+        interrupts keeps what it did; :attr:`cut` reports it, so the trace has its row."""
+        interrupted = self.scan_start_ns if self._pending is not None else None
         self.stop(reason="power off")
+        if interrupted is not None and self.cut.call is not None:
+            self.cut.call(self, TASK, interrupted)
         self.start("warm")
 
     def raise_event(self, source: int) -> None:
