@@ -11,7 +11,7 @@ import exercises
 from plants import Panel
 from plcsim import CPU, Program, Simulation, Tag
 from plcsim.controller import controller_for, program_text
-from plcsim.errors import ProgramError
+from plcsim.errors import ConfigurationError, ProgramError
 from plcsim.frontends import read_program
 from plcsim.frontends.il import IlProgram
 from plcsim.grade_report import Report
@@ -113,3 +113,26 @@ def test_io_names_spelt_like_addresses_shadow_them_and_the_address_stays_reachab
     cpu.scan()
     assert cpu.outputs["D1"] is True and cpu.peek("Y0.1") == 1 and cpu.peek("R0") == 0x41
     assert any("the I/O name S1 is X0.3 in this program" in w for w in cpu.warnings)
+
+
+def test_markers_of_the_io_table_live_in_r_and_an_hmi_write_reaches_them():
+    tags = {"AUTO": Tag("%M10.1"), "LED": Tag("%Q0.0")}
+    cpu = controller_for(program_text("LD AUTO\nWR LED\n"), tags)
+    cpu.write("AUTO", 1)
+    cpu.scan()
+    assert cpu.peek("R10") == 0b10 and cpu.outputs["LED"] is True
+    with pytest.raises(ConfigurationError, match="cannot write R9000: R9000 is outside the user registers"):
+        cpu.write("R9000", 1)
+
+
+def test_the_manual_s_pulse_filter_on_the_panel_rig_wired_by_its_own_names():
+    program = read_program(Path(__file__).resolve().parent.parent / "examples" / "tecomat" / "ex18_pulse_filter.il")
+    plant = Panel(buttons=("signal",), switches=(), lamps=("vystup",))
+    scenario = Scenario(
+        "pulses", *press("signal", t="100ms", hold="200ms"), *press("signal", t="1s", hold="1s"), duration="2.5s"
+    )
+    sim = Simulation(controller_for(program), plant, [NO("signal"), NO("vystup")], scenario)
+    sim.run()
+    assert sim.trace.names == ["signal", "vystup", "casovac"]
+    ms = [(a // 1_000_000, b // 1_000_000) for a, b in sim.trace.intervals("vystup")]
+    assert ms == [(1251, 2001)]  # the 200 ms pulse is suppressed; the 1 s one passes, 250 ms late

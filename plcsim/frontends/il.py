@@ -81,8 +81,12 @@ class IlProgram:
         return self.declare_into(target.table)
 
 
+AREAS = {"I": "X", "Q": "Y", "M": "R"}
+
+
 def io_symbols(tags: TagTable | Mapping[str, Any] | None) -> dict[str, Operand]:
-    """The I/O table's bit, byte and word inputs and outputs as X/Y operands (%I0.1 -> X0.1, %QW2 -> YW2)."""
+    """The I/O table's bit, byte and word tags as operands: inputs in X, outputs in Y, markers in R
+    (%I0.1 -> X0.1, %QW2 -> YW2, %M10.0 -> R10.0); data blocks have no place in the Tecomat's scratchpad."""
     if tags is None:
         return {}
     if not isinstance(tags, TagTable):
@@ -94,10 +98,10 @@ def io_symbols(tags: TagTable | Mapping[str, Any] | None) -> dict[str, Operand]:
     out = {}
     for entry in tags:
         addr = entry.address
-        if addr is None or addr.area not in ("I", "Q") or addr.bits not in (1, 8, 16):
+        if addr is None or addr.area not in AREAS or addr.bits not in (1, 8, 16):
             continue
         width = {1: "bit", 8: "byte", 16: "word"}[addr.bits]
-        out[entry.name] = Operand("X" if addr.area == "I" else "Y", width, addr.byte, addr.bit if addr.bits == 1 else 0)
+        out[entry.name] = Operand(AREAS[addr.area], width, addr.byte, addr.bit if addr.bits == 1 else 0)
     return out
 
 

@@ -265,7 +265,12 @@ class TecomatCPU:
 
     def write(self, name: str, value: Any) -> None:
         """Write a symbol or an address (``"R10"``, ``"RW0"``) in the scratchpad now (an HMI write)."""
-        write(self.machine.pad, self._operand(name), int(value))  # type: ignore[union-attr]
+        op = self._operand(name)
+        try:
+            self.machine.pad.check(op)  # type: ignore[union-attr]
+        except OperandError as exc:
+            raise ConfigurationError(f"cannot write {name}: {exc}") from None
+        write(self.machine.pad, op, int(value))  # type: ignore[union-attr]
 
     def peek(self, name: str) -> int:
         """A symbol's or an address's value in the scratchpad now (a bit as 0/1)."""
