@@ -11,6 +11,9 @@ One cycle (manual §2, §4.1.1, Fig. 2 and 5), on the one integer clock:
    ``final_after_eoc`` is off); P50..P57 run when BP calls them, P60 holds subroutines;
 3. **end at t0 + cycle**: Y goes to the outputs, the trace row is written, the next cycle starts.
 
+Direct inputs U read the terminals as the wiring delivers them; all instructions of a cycle run at its
+start instant, so U differs from X only where the program wrote X.
+
 The controller offers what :class:`plcsim.sim.Simulation` needs from a CPU (see
 :mod:`plcsim.controller`): inputs and outputs by the program's symbol names (``#def START x0.0``),
 ``run_until``, the scan hooks the recorder subscribes to, and a tag table so that the wiring and the
