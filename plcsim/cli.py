@@ -386,9 +386,11 @@ def _grade(args: argparse.Namespace) -> int:
     else:
         raise PlcError("give a submission file or folder, or --reference / --solution NAME")
     if Path(target).is_dir():
-        files = sorted(p for p in Path(target).glob("*.py") if p.is_file())
+        from plcsim.frontends import suffixes
+
+        files = sorted(p for p in Path(target).iterdir() if p.is_file() and p.suffix.lower() in suffixes())
         if not files:
-            raise PlcError(f"no .py files in {target}")
+            raise PlcError(f"no program files ({', '.join(sorted(suffixes()))}) in {target}")
         with Progress(
             TextColumn("grading"), BarColumn(), MofNCompleteColumn(), TextColumn("{task.description}"), console=console
         ) as progress:
