@@ -46,12 +46,14 @@ from plcsim.tecomat.assembler import Assembly, assemble
 from plcsim.tecomat.machine import END_CYCLE, Machine, TecomatRuntimeError
 from plcsim.tecomat.memory import Operand, OperandError, Scratchpad, parse_address, read, write
 from plcsim.tecomat.settings import TecomatConfig
-from plcsim.tecomat.symbols import reader
+from plcsim.tecomat.symbols import loader, overlapping, reader, storer
 from plcsim.types import Bool, Byte, Word
 
 CLOCK_PERIODS_NS = tuple(
     to_ns(p) for p in ("100ms", "500ms", "1s", "10s", "1min", "10min", "1h", "24h")
 )  # S13.0 .. S13.7
+S2_RUNNING = 1 | 1 << 2 | 1 << 5
+"""S2 in RUN: SP (external start), RUN, ON (outputs active); MS, MEZ and the first-cycle flags clear."""
 TASK = "cycle"
 """The trace's name of a program cycle (all its processes together make one row)."""
 
@@ -179,10 +181,20 @@ class TecomatCPU:
         self.t.__dict__.clear()
         self.t.__dict__.update({n: self._off(n) for n in self.symbols})
         pad = self.machine.pad  # type: ignore[union-attr]
-        self._traced_names = [n for n in self.symbols if n not in self.inputs]
-        self._read_traced = reader(pad, [self.symbols[n] for n in self._traced_names])
+        traced = [n for n in self.symbols if n not in self.inputs]
+        self._store_traced = storer(pad, traced, [self.symbols[n] for n in traced])
         self._read_outputs = reader(pad, [self.symbols[n] for n in self.output_names])
-        self._read_terminals = reader(self.terminals, [self.symbols[n] for n in self.input_names])
+        inputs = [self.symbols[n] for n in self.input_names]
+        self._read_terminals = reader(self.terminals, inputs)
+        self._load_terminals = loader(self.terminals, "X", self.input_names, inputs)
+        self._aliased_inputs = overlapping(inputs)
+        self._writes_x = any(
+            i.mnemonic in ("WR", "WRC", "PUT", "SET", "RES", "LET") and getattr(i.arg, "area", "") == "X"
+            for i in self.machine.asm.code  # type: ignore[union-attr]
+        )
+        """The program writes X: the turnaround must restore the image from the terminals every cycle."""
+        self._fresh_terminals = True
+        """Two input names share a terminal: only the one the wiring changed may write it."""
         self._input_levels = itemgetter(*self.input_names) if self.input_names else (lambda d: ())
         self._last_inputs = self._input_levels(self.inputs)
         self._last_outputs = self._read_outputs()
@@ -205,6 +217,7 @@ class TecomatCPU:
         if self.mode == RUN:
             return
         getattr(self.machine, restart)()
+        self._fresh_terminals = True  # the restart cleared X and U: sample them in the first cycle
         self._restart = restart
         self._started = True
         self.mode = RUN
@@ -258,6 +271,7 @@ class TecomatCPU:
         self.terminals.check(op)
         write(self.terminals, op, int(value))
         self._refresh_inputs()
+        self._fresh_terminals = True
 
     def _refresh_inputs(self) -> None:
         """Every input symbol as the terminals hold it (two names on one terminal agree)."""
@@ -353,7 +367,7 @@ class TecomatCPU:
         assert end is not None and self.machine is not None
         self._pending = None
         self.clock.now = max(self.clock.now, end)
-        self.t.__dict__.update(zip(self._traced_names, self._read_traced(), strict=True))
+        self._store_traced(self.t.__dict__)
         outputs = self._read_outputs()
         if outputs != self._last_outputs:
             self._last_outputs = outputs
@@ -373,25 +387,35 @@ class TecomatCPU:
         pad = m.pad
         m.turnaround(t0)
         terminals, inputs = self.terminals, self.inputs
-        if self._input_levels(inputs) != self._last_inputs:  # the wiring (or set_input) changed some
-            seen = self.image_in
-            for name in self.input_names:
-                if inputs[name] != seen[name]:
-                    write(terminals, self.symbols[name], int(inputs[name]))
-            self._refresh_inputs()
-        pad.areas["X"][:] = terminals.areas["X"]
-        pad.areas["U"][:] = terminals.areas["X"]
+        levels = self._input_levels(inputs)
+        sampled = self._writes_x or levels != self._last_inputs
+        if levels != self._last_inputs:  # the wiring (or set_input) changed some
+            if self._aliased_inputs:
+                seen = self.image_in
+                for name in self.input_names:
+                    if inputs[name] != seen[name]:
+                        write(terminals, self.symbols[name], int(inputs[name]))
+                self._refresh_inputs()
+            else:
+                self._load_terminals(inputs)
+                self.image_in.update(inputs)
+                self._last_inputs = levels
+        if sampled or self._fresh_terminals:  # else X and U still hold what the terminals hold
+            self._fresh_terminals = False
+            pad.areas["X"][:] = terminals.areas["X"]
+            pad.areas["U"][:] = terminals.areas["X"]
         self._system_registers(pad.areas["S"], t0)
 
     def _system_registers(self, s: bytearray, t0: int) -> None:
         first = self.machine.pass_no == 1  # type: ignore[union-attr]
         restart = self._restart if first else None
-        s[2] = 1 | 1 << 2 | 1 << 5 | (restart == "warm") << 3 | (restart == "cold") << 4
-        if t0 >= self._rtc_until or first:  # S5 counts 10 ms: the clock changes at most that often
-            now = self.local_time_at(t0)
-            s[5], s[6], s[7], s[8] = now.microsecond // 10_000, now.second, now.minute, now.hour
-            s[9], s[10], s[11], s[12] = now.isoweekday(), now.day, now.month, now.year % 100
-            self._rtc_until = t0 - now.microsecond % 10_000 * 1000 + 10_000_000
+        s[2] = S2_RUNNING | (restart == "warm") << 3 | (restart == "cold") << 4
+        if t0 < self._rtc_until and not first:  # nothing below changes faster than every 10 ms
+            return
+        now = self.local_time_at(t0)
+        s[5], s[6], s[7], s[8] = now.microsecond // 10_000, now.second, now.minute, now.hour
+        s[9], s[10], s[11], s[12] = now.isoweekday(), now.day, now.month, now.year % 100
+        self._rtc_until = min(t0 - now.microsecond % 10_000 * 1000, t0 - t0 % 10_000_000) + 10_000_000
         bits = 0
         for k, period in enumerate(CLOCK_PERIODS_NS):
             bits |= (t0 // (period // 2) & 1) << k

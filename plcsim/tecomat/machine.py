@@ -29,6 +29,7 @@ END_CYCLE = -2
 """``EOC``: the cycle ends early."""
 MAX_NESTING = 8
 STACKS = "ABCDEFGH"
+ZEROS = (0,) * 8
 
 
 class TecomatRuntimeError(PlcError):
@@ -83,9 +84,11 @@ class Machine:
         self.pass_no += 1
         self.jumps = 0
         self.calls.clear()
-        for k, stack in enumerate(self.stacks):
-            if k == 0 or self.config.clear_all_stacks:
-                stack[:] = [0] * 8
+        if self.config.clear_all_stacks:
+            for stack in self.stacks:
+                stack[:] = ZEROS
+        else:
+            self.stacks[0][:] = ZEROS
         self.active = 0
         self.st = self.stacks[0]
 
