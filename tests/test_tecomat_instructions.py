@@ -370,7 +370,7 @@ def test_clock_bits_and_unit_counters():
 
 
 def test_a_jump_loop_trips_the_watchdog_and_names_the_line():
-    cpu = run("P 0\nloop:\nJMP loop\nE 0\n", watchdog_instructions=1000)
+    cpu = run("P 0\nloop:\nJMP loop\nE 0\n", watchdog_jumps=1000)
     assert cpu.mode == "STOP" and cpu.error.line == 3 and "watchdog" in cpu.error.message
 
 
@@ -410,6 +410,10 @@ def test_the_instruction_inventory():
         ("#table byte t = 300\n", r"does not fit a byte"),
         ("ANC\n", r"ANC needs an operand"),
         ("AND XW0\n", r"a word operand is in the extended set"),
+        ("#table byte t = 0[1000000000]\n", r"#table t: more than 256 items"),
+        ("#data byte d = 0[1000000000]\n", r"#data d: more than 65536 items"),
+        ("#reg word w[1000000000]\nLD w\n", r"no room left in R"),
+        ("LD " + " " * 2000 + "1\n", r"longer than 1000 characters"),
     ],
 )
 def test_errors_name_the_line_and_column_and_the_fix(text, message):

@@ -32,6 +32,10 @@ from plcsim.tecomat.memory import Operand, OperandError, immediate, low_high, pa
 from plcsim.tecomat.mnemonics import DEFINED, NAMED_ONLY, WITHOUT_OPERAND_FORM, refusal
 from plcsim.tecomat.numbers import NumberError, expression
 
+MAX_LINE = 1000
+"""Longest source line (the manual's are short; a longer one is a mistake or an attack on the grader)."""
+MAX_DATA = 65_536
+"""Most bytes of program data (#data) one program may declare."""
 PROCESSES = frozenset([*range(0, 49), *range(50, 58), 60, 62, 63, 64])
 TABLE_MAX = {"bit": 256, "byte": 256, "word": 128}
 ITEM_MAX = {"bit": 1, "byte": 0xFF, "word": 0xFFFF}
@@ -202,6 +206,8 @@ class _Assembler:
         return len(words) >= 2 and words[0].upper() == "P" and words[1].isdigit()
 
     def _line(self, lineno: int, raw: str) -> None:
+        if len(raw) > MAX_LINE:
+            raise self.fail(lineno, MAX_LINE, f"the line is longer than {MAX_LINE} characters; split it")
         text = raw.split(";", 1)[0].rstrip()
         stripped = text.strip()
         if not stripped:
@@ -365,6 +371,7 @@ class _Assembler:
             raise self.fail(lineno, column, f"write #{key} {width} name = item, item, ...")
         self._name(lineno, column, name)
         values: list[int] = []
+        limit = TABLE_MAX[width] if key == "table" else MAX_DATA // (2 if width == "word" else 1)
         for item in items.split(","):
             match = _ITEM.match(item.strip())
             text_value, repeat = (match.group(1), int(match.group(2))) if match else (item.strip(), 1)
@@ -376,6 +383,8 @@ class _Assembler:
                 raise self.fail(
                     lineno, column, f"table item {item.strip()!r} does not fit a {width} (0..{ITEM_MAX[width]})"
                 )
+            if len(values) + repeat > limit:
+                raise self.fail(lineno, column, f"#{key} {name}: more than {limit} items")
             values += [value] * repeat
         if key == "data":
             offset = len(self.asm.data)
@@ -458,6 +467,8 @@ class _Assembler:
         return used
 
     def _free(self, used: set[int], start: int, size: int, lineno: int, column: int) -> int:
+        if start + size > self.r_size:
+            raise self.fail(lineno, column, f"#reg: no room left in R (R0..R{self.r_size - 1})")
         while any(b in used for b in range(start, start + size)):
             start += 1
         if start + size > self.r_size:

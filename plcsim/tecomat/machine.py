@@ -110,9 +110,9 @@ class Machine:
     def tick(self) -> None:
         """A backward jump: the cycle watchdog counts them (a jump loop never hangs the simulation)."""
         self.jumps += 1
-        if self.jumps > self.config.watchdog_instructions:
+        if self.jumps > self.config.watchdog_jumps:
             raise TecomatRuntimeError(
-                f"the cycle did not end: more than {self.config.watchdog_instructions} backward jumps in one cycle "
+                f"the cycle did not end: more than {self.config.watchdog_jumps} backward jumps in one cycle "
                 f"(a jump loop?); the cycle-time watchdog stopped the CPU"
             )
 

@@ -57,8 +57,9 @@ class TecomatConfig:
     (Fig. 5 shows S29.0 beside source 1); a source with its bit cleared is ignored."""
     final_after_eoc: bool = True
     """Whether P64 (the final process) still runs when EOC ended the cycle early (not stated)."""
-    watchdog_instructions: int = 1_000_000
-    """Instructions one cycle may execute before the cycle-time watchdog stops the CPU (a jump loop)."""
+    watchdog_jumps: int = 1_000_000
+    """Backward jumps one cycle may make before the cycle-time watchdog stops the CPU (a jump loop;
+    code without backward jumps always ends, so only they are counted)."""
     fuse: bool = True
     """Run straight-line instruction runs as one generated function each (:mod:`plcsim.tecomat.fused`);
     False runs every instruction's closure (same results, slower)."""
