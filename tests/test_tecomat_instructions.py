@@ -452,3 +452,9 @@ def test_a_mode_switch_is_a_warm_restart_the_first_start_a_cold_one():
     cpu.start()
     cpu.scan()
     assert cpu.peek("R0") == 1 and cpu.peek("S2.4") == 1  # after a download: cold, RST set
+
+
+@pytest.mark.parametrize("keep, a7", [(False, 0), (True, 1)])
+def test_a_pop_fills_a7_with_zero_or_keeps_it(keep, a7):
+    cpu = run("".join(f"LD {n}\n" for n in range(1, 9)) + "OR\nOR\n", pop_fill_keeps_a7=keep)
+    assert cpu.stack == [8 | 7 | 6, 5, 4, 3, 2, 1, a7, a7]
