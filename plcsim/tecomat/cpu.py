@@ -183,7 +183,8 @@ class TecomatCPU:
         pad = self.machine.pad  # type: ignore[union-attr]
         traced = [n for n in self.symbols if n not in self.inputs]
         self._store_traced = storer(pad, traced, [self.symbols[n] for n in traced])
-        self._read_outputs = reader(pad, [self.symbols[n] for n in self.output_names])
+        self._read_outputs = _tuple_getter(self.output_names)
+        """The outputs from the traced values (stored at each cycle's end), as a tuple."""
         inputs = [self.symbols[n] for n in self.input_names]
         self._read_terminals = reader(self.terminals, inputs)
         self._load_terminals = loader(self.terminals, "X", self.input_names, inputs)
@@ -195,9 +196,9 @@ class TecomatCPU:
         """The program writes X: the turnaround must restore the image from the terminals every cycle."""
         self._fresh_terminals = True
         """Two input names share a terminal: only the one the wiring changed may write it."""
-        self._input_levels = itemgetter(*self.input_names) if self.input_names else (lambda d: ())
+        self._input_levels = _tuple_getter(self.input_names)
         self._last_inputs = self._input_levels(self.inputs)
-        self._last_outputs = self._read_outputs()
+        self._last_outputs = self._read_outputs(self.t.__dict__)
 
     def _off(self, name: str) -> Any:
         return False if self.symbols[name].width == "bit" else 0
@@ -350,12 +351,16 @@ class TecomatCPU:
             self.clock.now = until_ns
 
     def _begin(self, t0: int) -> None:
-        self.clock.now = max(self.clock.now, t0)
+        if self.clock.now < t0:
+            self.clock.now = t0
         m = self.machine
         assert m is not None
         self._turnaround(t0)
         try:
-            self._processes()
+            if self._only_p0 and m.pass_no != 1 and not self.events_raised:
+                m.run_process(0)  # the process plan of a program that has only P0 (and P60)
+            else:
+                self._processes()
         except TecomatRuntimeError as exc:
             self._fault(exc)
             return
@@ -367,8 +372,9 @@ class TecomatCPU:
         assert end is not None and self.machine is not None
         self._pending = None
         self.clock.now = max(self.clock.now, end)
-        self._store_traced(self.t.__dict__)
-        outputs = self._read_outputs()
+        values = self.t.__dict__
+        self._store_traced(values)
+        outputs = self._read_outputs(values)
         if outputs != self._last_outputs:
             self._last_outputs = outputs
             self.outputs.update(zip(self.output_names, outputs, strict=True))
@@ -404,14 +410,16 @@ class TecomatCPU:
             self._fresh_terminals = False
             pad.areas["X"][:] = terminals.areas["X"]
             pad.areas["U"][:] = terminals.areas["X"]
-        self._system_registers(pad.areas["S"], t0)
+        s = pad.areas["S"]
+        if t0 < self._rtc_until and m.pass_no != 1:  # S5..S19 change at most every 10 ms
+            s[2] = S2_RUNNING
+        else:
+            self._system_registers(s, t0)
 
     def _system_registers(self, s: bytearray, t0: int) -> None:
         first = self.machine.pass_no == 1  # type: ignore[union-attr]
         restart = self._restart if first else None
         s[2] = S2_RUNNING | (restart == "warm") << 3 | (restart == "cold") << 4
-        if t0 < self._rtc_until and not first:  # nothing below changes faster than every 10 ms
-            return
         now = self.local_time_at(t0)
         s[5], s[6], s[7], s[8] = now.microsecond // 10_000, now.second, now.minute, now.hour
         s[9], s[10], s[11], s[12] = now.isoweekday(), now.day, now.month, now.year % 100
@@ -431,9 +439,6 @@ class TecomatCPU:
         m = self.machine
         assert m is not None
         defined = m.asm.processes
-        if self._only_p0 and not (m.pass_no == 1 or self.events_raised):
-            m.run_process(0)
-            return
         s = m.pad.areas["S"]
         plan: list[int] = []
         if m.pass_no == 1 and self._restart is not None:
@@ -501,6 +506,14 @@ class TecomatCPU:
     def __repr__(self) -> str:
         prog = self.program.filename if self.program else "no program"
         return f"<TecomatCPU {self.mode} t={self.clock.now}ns cycles={self.scan_count} {prog}>"
+
+
+def _tuple_getter(names: list[str]) -> Any:
+    """``d -> (d[n1], d[n2], ...)`` at C speed, a tuple also for one name (or none)."""
+    if len(names) == 1:
+        name = names[0]
+        return lambda d: (d[name],)
+    return itemgetter(*names) if names else (lambda d: ())
 
 
 def _parse_rtc(text: str) -> _dt.datetime:
