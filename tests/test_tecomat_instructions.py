@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import pytest
 
+from plcsim.errors import ConfigurationError
 from plcsim.tecomat import instructions
 from plcsim.tecomat.assembler import AssemblyError, assemble
 from plcsim.tecomat.cpu import TecomatCPU
@@ -458,3 +459,17 @@ def test_a_mode_switch_is_a_warm_restart_the_first_start_a_cold_one():
 def test_a_pop_fills_a7_with_zero_or_keeps_it(keep, a7):
     cpu = run("".join(f"LD {n}\n" for n in range(1, 9)) + "OR\nOR\n", pop_fill_keeps_a7=keep)
     assert cpu.stack == [8 | 7 | 6, 5, 4, 3, 2, 1, a7, a7]
+
+
+@pytest.mark.parametrize(
+    "option, message",
+    [
+        ({"timer_ticks": "wall"}, "use 'per_timer' or 'global'"),
+        ({"cycle": "0ms"}, "must be positive"),
+        ({"retentive_r": (10, 5)}, "a range"),
+        ({"p5_p9_periods": ("soon",)}, "soon"),
+    ],
+)
+def test_settings_are_checked(option, message):
+    with pytest.raises(ConfigurationError, match=message):
+        TecomatCPU("LD 1\n", **option)

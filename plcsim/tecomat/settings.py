@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from plcsim.errors import ConfigurationError, LiteralError
 from plcsim.literals import to_ns
 
 TIME_BASES_NS = (10_000_000, 100_000_000, 1_000_000_000, 10_000_000_000)
@@ -65,6 +66,21 @@ class TecomatConfig:
     False runs every instruction's closure (same results, slower)."""
     rtc_start: str = "2024-07-01-08:00:00"
     """The real-time clock at power-on (S5..S12), a Monday."""
+
+    def __post_init__(self) -> None:
+        if self.timer_ticks not in ("per_timer", "global"):
+            raise ConfigurationError(f"timer_ticks {self.timer_ticks!r}: use 'per_timer' or 'global'")
+        if self.cycle_ns <= 0:
+            raise ConfigurationError(f"cycle {self.cycle!r} must be positive")
+        lo, hi = self.retentive_r
+        if not 0 <= lo <= hi <= self.r_size:
+            raise ConfigurationError(
+                f"retentive_r {self.retentive_r}: a range [start, end) inside R0..R{self.r_size - 1}"
+            )
+        try:
+            self.p5_p9_ns  # noqa: B018 - the periods must be durations
+        except LiteralError as exc:
+            raise ConfigurationError(f"p5_p9_periods: {exc}") from None
 
     @property
     def timer_dialect(self) -> str:
