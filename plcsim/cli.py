@@ -68,7 +68,7 @@ def _parser() -> argparse.ArgumentParser:
         "target", help="an exercise (4.3.7, or an exercise file) or a rig (PANEL, CONV1, CONV3, CONV2x2, MACHINE)"
     )
     which = run.add_mutually_exclusive_group()
-    which.add_argument("--program", metavar="FILE.py", help="the PLC program to run")
+    which.add_argument("--program", metavar="FILE", help="the PLC program to run (.py; .il for the Tecomat)")
     which.add_argument("--reference", action="store_true", help="run the exercise's shipped reference solution")
     which.add_argument("--solution", metavar="NAME", help="run a shipped solution by name (see `plcsim show`)")
     run.add_argument(
@@ -99,7 +99,7 @@ def _parser() -> argparse.ArgumentParser:
         description="Grade PLC programs: every scenario × every check, in a sandboxed child process.",
     )
     grade.add_argument("exercise", help="textbook number (4.3.6), slug, or an exercise file (my_course/runon.py)")
-    grade.add_argument("submission", nargs="?", help="a program file or a folder of .py files")
+    grade.add_argument("submission", nargs="?", help="a program file or a folder of them (.py, .il)")
     grade.add_argument("--reference", action="store_true", help="grade the shipped reference solution")
     grade.add_argument("--solution", metavar="NAME", help="grade a shipped solution by name")
     grade.add_argument("--seed", type=int, default=1, help="scenario seed (instructors: use a secret one)")
@@ -447,9 +447,11 @@ def _grade(args: argparse.Namespace) -> int:
     else:
         raise PlcError("give a submission file or folder, or --reference / --solution NAME")
     if Path(target).is_dir():
-        files = sorted(p for p in Path(target).glob("*.py") if p.is_file())
+        from plcsim.frontends import suffixes
+
+        files = sorted(p for p in Path(target).iterdir() if p.is_file() and p.suffix.lower() in suffixes())
         if not files:
-            raise PlcError(f"no .py files in {target}")
+            raise PlcError(f"no program files ({', '.join(sorted(suffixes()))}) in {target}")
         with Progress(
             TextColumn("grading"), BarColumn(), MofNCompleteColumn(), TextColumn("{task.description}"), console=console
         ) as progress:

@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from plcsim.check import Check
-from plcsim.cpu import CPU, CPUConfig
+from plcsim.controller import controller_for
 from plcsim.errors import ConfigurationError, ExerciseError, defined_at
 from plcsim.frontends import read_program
 from plcsim.loaded import SourceProgram
@@ -201,7 +201,7 @@ class Exercise:
         if isinstance(scenario, str):
             scenario = self.scenario(scenario)
         options = {**self.cpu, **self.scenario_cpu.get(scenario.name, {}), **cpu_options}
-        cpu = CPU(self.tag_table(), program, CPUConfig(seed=seed, **options))
+        cpu = controller_for(program, self.tag_table(), seed=seed, **options)
         plant = self.rig() if self.rig is not None else None
         wires = self.wires() if plant is not None else None
         return Simulation(

@@ -401,11 +401,12 @@ def parent_analysis(exercise: Exercise, path: Path) -> Any:
 
     This loads the program (parse, subset check, declarations) and compiles it against the exercise's
     tag table without running any network; it relies on the program loader evaluating module-level
-    declarations without running submission code. Static checks read the Python front end's analysis;
-    another front end's program has none (None)."""
+    declarations without running submission code. Static checks read the Python front end's analysis,
+    or another front end's ``analysis(tags)`` (None without one)."""
     program = read_program(path)
     if not isinstance(program, Program):
-        return None
+        analyse = getattr(program, "analysis", None)  # another front end's own analysis (it runs nothing)
+        return analyse(exercise.tag_table()) if analyse is not None else None
     table = program.declare_into(exercise.tag_table())
     return program.compile(table).analysis
 

@@ -32,7 +32,8 @@ from typing import Any, Protocol
 
 from plcsim.actions import ActionRunner
 from plcsim.clock import NEVER
-from plcsim.cpu import CPU, RUN
+from plcsim.config import RUN
+from plcsim.controller import Controller
 from plcsim.errors import ConfigurationError, PlcError
 from plcsim.literals import format_ns, to_ns
 from plcsim.plant import Plant
@@ -50,7 +51,7 @@ class Simulation:
     """Run a CPU against a plant on one clock.
 
     Args:
-        cpu: the CPU, with its program loaded.
+        cpu: the CPU (any :class:`~plcsim.controller.Controller`: the S7-1200, the Tecomat), its program loaded.
         plant: the machine (None: PLC only, inputs driven by the scenario or by hand).
         wiring: a :class:`Wiring`, or the wires to build one.
         scenario: the operator's actions and the faults.
@@ -66,7 +67,7 @@ class Simulation:
 
     def __init__(
         self,
-        cpu: CPU,
+        cpu: Controller,
         plant: Plant | None = None,
         wiring: Wiring | Sequence[Wire] | None = None,
         scenario: Scenario | None = None,

@@ -17,7 +17,7 @@ import pytest
 
 import exercises
 from plants import Panel
-from plcsim import CPU, Program, Simulation, Tag
+from plcsim import CPU, Program, Simulation, Tag, frontends
 from plcsim.compiler import STORE
 from plcsim.errors import ConfigurationError, ProgramError, UnknownTagError
 from plcsim.frontends import read_program, register, suffixes, unregister
@@ -111,9 +111,13 @@ def _network(ops: list[tuple[int, str, str]], store) -> object:
 
 @pytest.fixture
 def il_suffix():
+    before = frontends._READERS.get(".il")  # the Tecomat front end, put back afterwards
     register(".il", lambda path: TinyIL(path.read_text(), str(path)))
     yield ".il"
-    unregister(".il")
+    if before is None:
+        unregister(".il")
+    else:
+        register(".il", before)
 
 
 def test_the_front_end_is_chosen_by_the_file_suffix(tmp_path: Path, il_suffix):

@@ -5,7 +5,7 @@
 :func:`read_program` accepts it.
 
 >>> sorted(suffixes())
-['.py']
+['.il', '.py']
 """
 
 from __future__ import annotations
@@ -54,3 +54,12 @@ def _read_python(path: Path) -> SourceProgram:
 
 
 register(".py", _read_python)
+
+
+def _read_il(path: Path) -> SourceProgram:
+    from plcsim.frontends.il import read_il
+
+    return read_il(path)  # type: ignore[return-value]
+
+
+register(".il", _read_il)

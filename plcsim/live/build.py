@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from plcsim.clock import NEVER
-from plcsim.cpu import CPU
+from plcsim.controller import controller_for
 from plcsim.errors import PlcError
 from plcsim.frontends import read_program
 from plcsim.loaded import SourceProgram
@@ -85,7 +85,7 @@ def rig_simulation(
             n_out += 1
         wires.append(Wire(name, name))
     options = {"cycle": cycle} if cycle else {}
-    cpu = CPU(tags, program, clock_memory_byte=100, system_memory_byte=101, seed=seed, **options)
+    cpu = controller_for(program, tags, clock_memory_byte=100, system_memory_byte=101, seed=seed, **options)
     return Simulation(cpu, plant, wires, scenario, seed=seed, pacing=pacing)
 
 

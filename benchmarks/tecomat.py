@@ -1,0 +1,63 @@
+"""Group ``tecomat``: the Tecomat NS950 controller alone on the 25-network workload, beside the S7 CPU.
+
+Figures:
+
+* ``tecomat_scans_per_s`` -- program cycles per second of wall time of ``benchmarks/workload.il`` (the
+  workload network by network in instruction list), best of ``--repeats`` runs, driven exactly as the
+  ``plc`` group drives the S7 CPU (same input schedule through ``cpu.inputs``, same scan budget). The S7
+  figure of the same run is in ``s7_scans_per_s``. Budget (issue 15): >= 50 k scans/s.
+* ``tecomat_assemble_ms`` -- assembling and linking the workload into a fresh controller.
+"""
+
+from __future__ import annotations
+
+import gc
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+from benchmarks import plc, workload
+from benchmarks.harness import Figure, Settings, drive, figure, measure, progress
+
+SOURCE = (Path(__file__).parent / "workload.il").read_text(encoding="utf-8")
+
+
+def new_controller():
+    from plcsim.controller import controller_for, program_text
+
+    return controller_for(program_text(SOURCE, "workload.il"), workload.tags())
+
+
+def _run_once(n: int, max_s: float, sched: list) -> tuple[int, float]:
+    cpu = new_controller()
+    return drive(cpu.inputs.update, cpu.scan, sched, n, max_s)
+
+
+def run(settings: Settings) -> Iterator[Figure]:
+    n = settings.size(200_000, 2_000)
+    max_s = settings.size(plc.MAX_S, 2.0)
+    sched = workload.build_schedule(n)
+    progress(f"tecomat: {settings.repeats} x {n} scans")
+    rates = measure(lambda k, s: _run_once(k, s, sched), n, max_s, settings.repeats)
+    s7, _, _ = plc.throughput(settings)
+    yield figure(
+        "tecomat_scans_per_s",
+        round(rates.best),
+        "scans/s",
+        median=round(rates.median),
+        s7_scans_per_s=round(s7.best),
+        ratio_to_s7=round(rates.best / s7.best, 3),
+        stat="best",
+        repeats=settings.repeats,
+        scans=rates.best_scans,
+        networks=workload.NETWORKS,
+        instructions=SOURCE.count("\n") - sum(1 for line in SOURCE.splitlines() if line.startswith((";", "#"))),
+    )
+    times = []
+    for _ in range(max(settings.repeats, 5) + 1):
+        gc.collect()
+        t0 = time.perf_counter()
+        new_controller()
+        times.append((time.perf_counter() - t0) * 1e3)
+    times = sorted(times[1:])
+    yield figure("tecomat_assemble_ms", round(times[0], 3), "ms", median=round(times[len(times) // 2], 3))

@@ -1,0 +1,346 @@
+"""Function blocks on register pairs RW0..RW254: counters, shift registers, timers (manual §7.5).
+
+Inputs come from stack levels (a binary input is the OR of its level), outputs go back into them. The
+word is read from R at every execution, so ordinary instructions may change it (EX-16 clears a counter
+with ``res low citac``). Each block also keeps hidden state, keyed by its kind and word (G39): the edge
+memories ("dynamic control variables") and a timer's phase. A cold restart initialises them as the
+manual's H7 describes: the word cleared and the dynamic variables *set*, so a control input already at 1
+when a block first runs is not a rising edge (TOF's falling edge likewise needs a 1 seen first).
+
+Choices (G33, G38, G40, G41): carries UPC/DOWNC and DATAO are masks valid for the execution that made
+them, else 0; RESET dominates an edge and the edge memory is updated during reset; a timer counts past
+its preset up to ``timer_max`` units (S0.4 for the activation, S0.5 for the cycle it got there);
+RTO's YT = content >= preset also while waiting, YC = the overflow mask. Time: a timer adds the units of
+the interval between the previous turnaround and this one, only if it ran (and was timing) in the
+previous cycle too ("otherwise its time stops"); ``per_timer`` keeps each timer's remainder from its
+start, ``global`` counts the ticks of the time base.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+from plcsim.tecomat.assembler import Instruction
+from plcsim.tecomat.settings import TIME_BASES_NS
+
+if TYPE_CHECKING:
+    from plcsim.tecomat.machine import Machine
+
+FFFF = 0xFFFF
+Code = Callable[[], int]
+
+
+class BlockState:
+    """The hidden state of one block: edge memories, timing phase, remainder, overflow."""
+
+    __slots__ = ("index", "kind", "prev", "prev2", "timing", "acc", "last_pass", "overflow", "initial")
+
+    def __init__(self, kind: str, index: int, initial: bool):
+        self.kind, self.index, self.initial = kind, index, initial
+        self.reset()
+
+    def reset(self) -> None:
+        self.prev = self.prev2 = self.initial
+        self.timing = False
+        self.acc = 0
+        self.last_pass = -10
+        self.overflow = False
+
+
+def _state(m: Machine, kind: str, index: int, initial: bool = True) -> BlockState:
+    for block in m.blocks:
+        if block.kind == kind and block.index == index:
+            return block
+    block = BlockState(kind, index, initial)
+    m.blocks.append(block)
+    return block
+
+
+def _word(m: Machine, instr: Instruction) -> tuple[bytearray, int]:
+    op = instr.arg.word if hasattr(instr.arg, "word") else instr.arg
+    return m.pad.areas["R"], op.index
+
+
+# -- counters -----------------------------------------------------------------------------------------
+
+
+def _counter_flags(flags: bytearray, value: int, carry: int) -> None:
+    flags[0] = (value == 0) | bool(carry) << 1 | (value == 0 or bool(carry)) << 2
+
+
+def _ctu_ctd(m: Machine, index: int, instr: Instruction) -> Code:
+    nxt, up = index + 1, instr.mnemonic == "CTU"
+    data, i = _word(m, instr)
+    flags = m.pad.areas["S"]
+    st = _state(m, instr.mnemonic, i)
+    preset = m.config.ctd_set_value
+
+    def counter() -> int:  # A1 count input, A0 reset/set -> A2 carry, A1 reset/set, A0 value
+        s = m.st
+        count, clear = s[1] != 0, s[0] != 0
+        edge = count and not st.prev
+        st.prev = count
+        value = data[i] | data[i + 1] << 8
+        carry = 0
+        if clear:
+            value = 0 if up else preset
+        elif edge:
+            value += 1 if up else -1
+            if not 0 <= value <= FFFF:
+                value &= FFFF
+                carry = FFFF
+        data[i], data[i + 1] = value & 0xFF, value >> 8
+        _counter_flags(flags, value, carry)
+        s.insert(0, value)
+        del s[8]
+        s[2] = carry
+        return nxt
+
+    return counter
+
+
+def _cnt(m: Machine, index: int, instr: Instruction) -> Code:
+    nxt = index + 1
+    data, i = _word(m, instr)
+    flags = m.pad.areas["S"]
+    st = _state(m, "CNT", i)
+
+    def cnt() -> int:  # A2 UP, A1 DOWN, A0 RESET -> A3 UPC, A2 DOWNC, A1 RESET, A0 VAL
+        s = m.st
+        up, down, clear = s[2] != 0, s[1] != 0, s[0] != 0
+        rise_up, rise_down = up and not st.prev, down and not st.prev2
+        st.prev, st.prev2 = up, down
+        value = data[i] | data[i + 1] << 8
+        upc = downc = 0
+        if clear:
+            value = 0
+        elif rise_up and not rise_down:
+            value += 1
+            if value > FFFF:
+                value, upc = 0, FFFF
+        elif rise_down and not rise_up:
+            value -= 1
+            if value < 0:
+                value, downc = FFFF, FFFF
+        data[i], data[i + 1] = value & 0xFF, value >> 8
+        _counter_flags(flags, value, upc | downc)
+        s.insert(0, value)
+        del s[8]
+        s[2], s[3] = downc, upc
+        return nxt
+
+    return cnt
+
+
+# -- shift registers ----------------------------------------------------------------------------------
+
+
+def _shift(m: Machine, index: int, instr: Instruction) -> Code:
+    nxt, left = index + 1, instr.mnemonic == "SFL"
+    data, i = _word(m, instr)
+    st = _state(m, instr.mnemonic, i)
+
+    def shift() -> int:  # A1 CLK, A0 DATAI -> A2 CLK, A1 DATAO, A0 VAL
+        s = m.st
+        clock, serial = s[1] != 0, s[0] != 0
+        edge = clock and not st.prev
+        st.prev = clock
+        value = data[i] | data[i + 1] << 8
+        out = 0
+        if edge:
+            if left:
+                out = FFFF if value & 0x8000 else 0
+                value = value << 1 & FFFF | serial
+            else:
+                out = FFFF if value & 1 else 0
+                value = value >> 1 | serial << 15
+            data[i], data[i + 1] = value & 0xFF, value >> 8
+        s.insert(0, value)
+        del s[8]
+        s[1] = out
+        return nxt
+
+    return shift
+
+
+# -- timers -------------------------------------------------------------------------------------------
+
+
+def _clock(m: Machine, st: BlockState, unit: int) -> Callable[[bool], int]:
+    """Whole time units to add in this execution (0 unless the timer ran and timed in the last cycle
+    and, with ``count``, times in this one: a waiting RTO keeps its remainder)."""
+    per_timer = m.config.timer_ticks == "per_timer"
+
+    def units(count: bool = True) -> int:
+        ran_last = st.last_pass == m.pass_no - 1
+        st.last_pass = m.pass_no
+        if not (count and st.timing and ran_last):
+            return 0
+        if per_timer:
+            acc = st.acc + m.t0 - m.prev_t0
+            st.acc = acc % unit
+            return acc // unit
+        return m.t0 // unit - m.prev_t0 // unit
+
+    return units
+
+
+def _timer_parts(
+    m: Machine, instr: Instruction
+) -> tuple[bytearray, int, bytearray, BlockState, Callable[[bool], int], int]:
+    data, i = _word(m, instr)
+    initial = instr.mnemonic != "TOF"
+    st = _state(m, instr.mnemonic, i, initial)
+    return data, i, m.pad.areas["S"], st, _clock(m, st, TIME_BASES_NS[instr.arg.code]), m.config.timer_max
+
+
+def _advance(data: bytearray, i: int, st: BlockState, units: int, top: int) -> tuple[int, bool]:
+    """The word plus ``units``, held at ``top``; whether it reached ``top`` in this execution."""
+    value = data[i] | data[i + 1] << 8
+    now_over = False
+    if units:
+        value += units
+        if value >= top:
+            value = top
+            now_over = not st.overflow
+            st.overflow = True
+        data[i], data[i + 1] = value & 0xFF, value >> 8
+    return value, now_over
+
+
+def _timer_flags(flags: bytearray, preset: int, value: int, st: BlockState, now_over: bool) -> None:
+    flags[0] = (preset == value) | (preset < value) << 1 | (preset <= value) << 2 | st.overflow << 4 | now_over << 5
+
+
+def _clear(data: bytearray, i: int, st: BlockState, flags: bytearray) -> None:
+    data[i] = data[i + 1] = 0
+    st.acc = 0
+    st.overflow = False
+    flags[0] = 0
+
+
+def _ton(m: Machine, index: int, instr: Instruction) -> Code:
+    nxt = index + 1
+    data, i, flags, st, units, top = _timer_parts(m, instr)
+
+    def ton() -> int:  # A1 XT, A0 preset -> A1 XT, A0 YT
+        s = m.st
+        passed = units()
+        if not s[1]:
+            st.timing = False
+            _clear(data, i, st, flags)
+            s[0] = 0
+            return nxt
+        if not st.timing:  # the rising edge: timing starts at this turnaround
+            _clear(data, i, st, flags)
+            st.timing = True
+            passed = 0
+        value, now_over = _advance(data, i, st, passed, top)
+        preset = s[0]
+        _timer_flags(flags, preset, value, st, now_over)
+        s[0] = FFFF if value >= preset else 0
+        return nxt
+
+    return ton
+
+
+def _tof(m: Machine, index: int, instr: Instruction) -> Code:
+    nxt = index + 1
+    data, i, flags, st, units, top = _timer_parts(m, instr)
+
+    def tof() -> int:  # active while XT = 0, from its falling edge
+        s = m.st
+        passed = units()
+        xt = s[1] != 0
+        falling = not xt and st.prev
+        st.prev = xt
+        if xt:
+            st.timing = False
+            _clear(data, i, st, flags)
+            s[0] = FFFF
+            return nxt
+        if falling:
+            _clear(data, i, st, flags)
+            st.timing = True
+            passed = 0
+        if not st.timing:  # never switched on since the start: passive, YT = 0
+            s[0] = 0
+            return nxt
+        value, now_over = _advance(data, i, st, passed, top)
+        preset = s[0]
+        _timer_flags(flags, preset, value, st, now_over)
+        s[0] = FFFF if value < preset else 0
+        return nxt
+
+    return tof
+
+
+def _imp(m: Machine, index: int, instr: Instruction) -> Code:
+    nxt = index + 1
+    data, i, flags, st, units, top = _timer_parts(m, instr)
+
+    def imp() -> int:  # a pulse of the preset's length from a rising edge of XT
+        s = m.st
+        passed = units()
+        xt = s[1] != 0
+        rising = xt and not st.prev
+        st.prev = xt
+        preset = s[0]
+        if not st.timing:
+            if not rising:
+                s[0] = 0
+                return nxt
+            _clear(data, i, st, flags)
+            st.timing = True
+            passed = 0
+        value, now_over = _advance(data, i, st, passed, top)
+        _timer_flags(flags, preset, value, st, now_over)
+        if value >= preset:
+            st.timing = False
+            s[0] = 0
+        else:
+            s[0] = FFFF
+        return nxt
+
+    return imp
+
+
+def _rto(m: Machine, index: int, instr: Instruction) -> Code:
+    nxt = index + 1
+    data, i, flags, st, units, top = _timer_parts(m, instr)
+
+    def rto() -> int:  # A2 XT, A1 RT, A0 preset -> A2 YC, A1 RT, A0 YT
+        s = m.st
+        passed = units(s[2] != 0 and not s[1])
+        if s[1]:  # passive: RT = 1 clears
+            st.timing = False
+            _clear(data, i, st, flags)
+            s[0] = s[2] = 0
+            return nxt
+        preset = s[0]
+        if s[2]:
+            if not st.timing:
+                passed = 0
+            st.timing = True
+            value, now_over = _advance(data, i, st, passed, top)
+        else:  # waiting: the content and the flags stay
+            st.timing = False
+            value, now_over = data[i] | data[i + 1] << 8, False
+        _timer_flags(flags, preset, value, st, now_over)
+        s[0] = FFFF if value >= preset else 0
+        s[2] = FFFF if st.overflow else 0
+        return nxt
+
+    return rto
+
+
+BLOCKS: dict[str, Callable[[Machine, int, Instruction], Code]] = {
+    **dict.fromkeys(("CTU", "CTD"), _ctu_ctd),
+    "CNT": _cnt,
+    **dict.fromkeys(("SFL", "SFR"), _shift),
+    "TON": _ton,
+    "TOF": _tof,
+    "IMP": _imp,
+    "RTO": _rto,
+}
