@@ -1052,3 +1052,46 @@ def _relocate(copied: ast.AST, original: ast.AST) -> None:
     for new, old in zip(ast.walk(copied), ast.walk(original)):
         if hasattr(old, "lineno") and hasattr(new, "lineno"):
             ast.copy_location(new, old)
+
+
+def read_root_directly(merged: ast.FunctionDef, members: Iterable[str]) -> None:
+    """Let a merged function (after :class:`StoreRewriter`) read its tags from the tag dict: ``_t.S1``
+    becomes ``_t_dict["S1"]``, one dict lookup instead of an attribute read through the tag object.
+
+    Only for merged functions: the CPU alone calls them, always with its tags (their name starts with
+    ``_``, so a program cannot), so the hoisted dict needs no guard; every name was checked against the
+    tag table while rewriting, so the lookup cannot miss."""
+    reads = _RootReads(set(members))
+    merged.body = [reads.visit(stmt) for stmt in merged.body]
+    if not reads.used:
+        return
+    tags_dict = ast.Attribute(ast.Name(MERGED_ROOT, ast.Load()), "__dict__", ast.Load())
+    hoist = ast.Assign([ast.Name(ROOT_DICT, ast.Store())], tags_dict)
+    first = merged.body[0]
+    if isinstance(first, ast.Assign) and isinstance(first.targets[0], ast.Name) and first.targets[0].id == ROOT_DICT:
+        merged.body[0] = ast.copy_location(hoist, first)  # in place of the guard StoreRewriter hoisted
+    else:
+        merged.body.insert(0, ast.copy_location(hoist, merged))
+    ast.fix_missing_locations(merged)
+
+
+class _RootReads(ast.NodeTransformer):
+    """``_t.NAME`` (a load of a tag) -> ``_t_dict["NAME"]``."""
+
+    def __init__(self, members: set[str]):
+        self.members = members
+        self.used = False
+
+    def visit_Attribute(self, node: ast.Attribute) -> ast.AST:
+        self.generic_visit(node)
+        value = node.value
+        if (
+            isinstance(node.ctx, ast.Load)
+            and isinstance(value, ast.Name)
+            and value.id == MERGED_ROOT
+            and node.attr in self.members
+        ):
+            self.used = True
+            read = ast.Subscript(ast.Name(ROOT_DICT, ast.Load()), ast.Constant(node.attr), ast.Load())
+            return ast.copy_location(read, node)
+        return node

@@ -352,7 +352,7 @@ class CPU(TaskRunner, HostAccess):
         """Run ``count`` OB1 executions (scans), interrupts included; the clock stops at the last scan's end."""
         if self.mode == RUN:
             # a scan that run_until() left unfinished (its networks already ran) is finished, not counted
-            pending = any(ex.task is self._ob1 for ex in self._stack)
+            pending = bool(self._stack) and any(ex.task is self._ob1 for ex in self._stack)
             self._run(NEVER, self.scan_count + count + pending)
 
     def next_event_ns(self) -> int:
