@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from plcsim.errors import PlcError
+from plcsim.registry import is_rig, rig, rig_names
 
 EXIT_FAILED = 1
 EXIT_USAGE = 2
@@ -65,7 +66,7 @@ def _parser() -> argparse.ArgumentParser:
         description="Run a program against a rig and print a summary; on an exercise, also grade the run.",
     )
     run.add_argument(
-        "target", help="an exercise (4.3.7, or an exercise file) or a rig (PANEL, CONV1, CONV3, CONV2x2, MACHINE)"
+        "target", help=f"an exercise (4.3.7, or an exercise file) or a rig ({', '.join(rig_names()) or 'none'})"
     )
     which = run.add_mutually_exclusive_group()
     which.add_argument("--program", metavar="FILE.py", help="the PLC program to run")
@@ -174,7 +175,7 @@ def _list(args: argparse.Namespace) -> int:
     from rich.console import Console
     from rich.markup import escape
 
-    from exercises import all_exercises, broken_exercises, load_path
+    from plcsim.catalog import all_exercises, broken_exercises, load_path
     from plcsim.report import print_exercise_list
 
     if args.exercises:
@@ -189,7 +190,7 @@ def _list(args: argparse.Namespace) -> int:
 
 
 def _show(args: argparse.Namespace) -> int:
-    from exercises import get
+    from plcsim.catalog import get
     from plcsim.report import print_exercise
 
     print_exercise(get(args.exercise), solutions=not args.no_solutions)
@@ -208,12 +209,6 @@ def _reference(args: argparse.Namespace) -> int:
     return 0
 
 
-def _is_rig(name: str) -> bool:
-    from plants import RIGS
-
-    return name.upper() in {k.upper() for k in RIGS}
-
-
 def _run(args: argparse.Namespace) -> int:
     from rich.console import Console
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
@@ -225,13 +220,13 @@ def _run(args: argparse.Namespace) -> int:
 
     console = Console()
     exercise = None
-    if _is_rig(args.target):
+    if is_rig(args.target):
         if not args.program:
             raise PlcError(f"running the bare rig {args.target} needs --program FILE.py")
         sim = _rig_simulation(args)
         scenario_name = None
     else:
-        from exercises import get
+        from plcsim.catalog import get
 
         exercise = get(args.target)
         if args.program:
@@ -318,15 +313,13 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def _rig_simulation(args: argparse.Namespace) -> Any:
-    from plants import RIGS
     from plcsim.cpu import CPU
     from plcsim.frontends import read_program
     from plcsim.sim import Simulation
     from plcsim.tags import Tag
     from plcsim.wiring import Wire
 
-    factory = next(v for k, v in RIGS.items() if k.upper() == args.target.upper())
-    plant = factory()
+    plant = rig(args.target)()
     tags: dict[str, Tag] = {}
     wires = []
     n_in = n_out = 0
@@ -369,7 +362,7 @@ def _grade(args: argparse.Namespace) -> int:
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
-    from exercises import get
+    from plcsim.catalog import get
     from plcsim.grade_report import write_gradescope
     from plcsim.grading import Limits, grade, grade_batch, grade_sandboxed, write_gradebook, write_junit
     from plcsim.report import print_batch_line, print_report
@@ -459,7 +452,7 @@ def _mutate(args: argparse.Namespace) -> int:
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
-    from exercises import get
+    from plcsim.catalog import get
     from plcsim.mutate import mutate_exercise, print_mutation_report
 
     if args.seeds < 1 or args.jobs < 1:
