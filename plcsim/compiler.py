@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from plcsim.errors import ProgramError, SubsetError, UnknownTagError, did_you_mean
-from plcsim.instructions import BOOL_RESULTS, FB_BOXES, FB_MEMBERS, FB_WRITABLE
+from plcsim.instructions import BOOL_RESULTS, block_named
 from plcsim.literals import time_ms
 from plcsim.memory import parse_address
 from plcsim.safe_math import SAFE_FUNCTIONS
@@ -450,7 +450,7 @@ class Typing:
                 return Bool
             if isinstance(func, ast.Attribute):
                 base = self.type_of(func.value, env)
-                if isinstance(base, FBType) and func.attr in FB_BOXES.get(base.name, ()):
+                if isinstance(base, FBType) and func.attr in _boxes(base):
                     return Bool
         return None
 
@@ -465,11 +465,12 @@ class Typing:
                 )
             return member.type
         if isinstance(base, FBType):
-            members = FB_MEMBERS.get(base.name, {})
-            if attr in FB_BOXES.get(base.name, ()):
+            block = block_named(base.name)
+            members = block.readable if block is not None else {}
+            if attr in _boxes(base):
                 return None
             if attr not in members:
-                boxes = sorted(FB_BOXES.get(base.name, ()))
+                boxes = sorted(_boxes(base))
                 raise UnknownTagError(
                     f"{_where(self.filename, node)}: a {base.name} instance has no member {attr!r}"
                     f"{did_you_mean(attr, list(members) + boxes)} (members: {', '.join(members)}; "
@@ -513,6 +514,12 @@ _BOX_TYPES = {
     "R_TRIG": "R_TRIG",
     "F_TRIG": "F_TRIG",
 }
+
+
+def _boxes(fb: FBType) -> tuple[str, ...]:
+    """The box methods of an instance type (none for a type plcsim does not describe)."""
+    block = block_named(fb.name)
+    return block.boxes if block is not None else ()
 
 
 def coerce_name(dtype: ElementaryType) -> str:
@@ -770,9 +777,9 @@ class StoreRewriter(ast.NodeTransformer):
         base = self.typing.type_of(base_node, self.env)
         key = target.attr
         if isinstance(base, FBType):
-            if key not in FB_WRITABLE.get(base.name, set()):
-                members = FB_MEMBERS.get(base.name, {})
-                if key in members:
+            block = block_named(base.name)
+            if block is None or key not in block.writable:
+                if block is not None and key in block.readable:
                     raise ProgramError(
                         f"{_where(self.typing.filename, node)}: {key} of a {base.name} is computed by its box; "
                         f"it cannot be written" + (" (reset a timer with RT(...))" if base.name == "IEC_TIMER" else "")
@@ -880,7 +887,8 @@ class Analysis:
 
     def unused_timers(self) -> set[str]:
         """Timer instances whose box runs but whose Q and ET are used nowhere (textbook §3.6.1)."""
-        called = {inst for inst, box, _ in self.box_calls if box in FB_BOXES["IEC_TIMER"]}
+        timer_boxes = block_named("IEC_TIMER").boxes  # type: ignore[union-attr]
+        called = {inst for inst, box, _ in self.box_calls if box in timer_boxes}
         return called - self.timer_reads
 
     def uses(self, instruction: str) -> bool:
@@ -938,7 +946,7 @@ def analyse(tree: ast.Module, typing: Typing) -> Analysis:
                         facts.jumps.append((node.args[0].value, node.lineno))
                 elif isinstance(func, ast.Attribute):
                     base = _safe_type(typing, func.value, env)
-                    if isinstance(base, FBType) and func.attr in FB_BOXES.get(base.name, ()):
+                    if isinstance(base, FBType) and func.attr in _boxes(base):
                         path = ast.unparse(func.value)
                         result.box_calls.append((path, func.attr, node.lineno))
                         if id(node) not in bare:

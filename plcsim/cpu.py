@@ -217,7 +217,7 @@ class CPU(TaskRunner, HostAccess):
         for path in loaded.inert_timers:
             timer = self._resolve_value(path.split(".", 1)[1] if "." in path else path)
             if isinstance(timer, IecTimer):
-                timer._inert = True
+                timer.make_inert()
         _check_task_numbers(loaded)
         tasks = [self._running_task(task) for task in loaded.tasks]
         self._ob1 = next((t for t in tasks if t.kind == "cyclic"), None) or RunningTask(
