@@ -113,3 +113,14 @@ def test_an_instance_is_described_by_its_class_and_nothing_else_reads_its_privat
         if re.search(r"\._(q|et|inert)\b", line)
     ]
     assert outside == []
+
+
+def test_every_function_instruction_is_described_once_and_in_the_reference():
+    from plcsim.instructions import BOOL_RESULTS, CPU_BOUND, FUNCTIONS, PURE_INSTRUCTIONS
+    from plcsim.reference import network_instructions
+
+    assert set(network_instructions()) == set(FUNCTIONS)
+    assert sorted(CPU_BOUND) == ["MOVE", "N", "N_COIL", "N_TRIG", "P", "P_COIL", "P_TRIG", "RD_LOC_T"]
+    assert sorted(BOOL_RESULTS) == ["IN_RANGE", "N", "N_COIL", "N_TRIG", "OUT_RANGE", "P", "P_COIL", "P_TRIG"]
+    assert all(FUNCTIONS[name].run is PURE_INSTRUCTIONS[name] for name in PURE_INSTRUCTIONS)
+    assert all(FUNCTIONS[name].run is None for name in CPU_BOUND)

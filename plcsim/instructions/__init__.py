@@ -6,6 +6,7 @@ Function-block instance types are declared in a program (``TON_A = IEC_TIMER()``
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -171,18 +172,48 @@ def block_named(name: str) -> Block | None:
     return BLOCKS.get(name)
 
 
-PURE_INSTRUCTIONS: dict[str, Any] = {**MATH_FUNCTIONS, "RT": RT, "PT": PT, "JMP": JMP, "RET": RET}
-"""Instructions that need no CPU: they are the same for every program."""
+@dataclass(frozen=True)
+class Function:
+    """One instruction a network calls as a function (``P``, ``DIV``, ``MOVE`` ...).
 
-BOOL_RESULTS = {"P", "N", "P_TRIG", "N_TRIG", "P_COIL", "N_COIL", "IN_RANGE", "OUT_RANGE"}
-"""Instruction functions whose result is a Bool (used by the compiler's static typing)."""
+    ``run`` is its implementation when it is the same for every program; an instruction that reads or
+    writes a CPU's memory or clock (``needs_cpu``) is built by each CPU instead."""
 
-CPU_BOUND = {"P", "N", "P_TRIG", "N_TRIG", "P_COIL", "N_COIL", "MOVE", "RD_LOC_T"}
-"""Instructions built per CPU (they read or write its memory or clock)."""
+    name: str
+    run: Callable[..., Any] | None = None
+    returns_bool: bool = False
+    """Its result is a Bool (the compiler's static typing: storing it into a BOOL needs no check)."""
+    needs_cpu: bool = False
+
+
+def _functions() -> dict[str, Function]:
+    boolean = {"IN_RANGE", "OUT_RANGE"}
+    pure = {**MATH_FUNCTIONS, "RT": RT, "PT": PT, "JMP": JMP, "RET": RET}
+    found = {name: Function(name, run, returns_bool=name in boolean) for name, run in pure.items()}
+    for name in ("P", "N", "P_TRIG", "N_TRIG", "P_COIL", "N_COIL"):
+        found[name] = Function(name, returns_bool=True, needs_cpu=True)
+    for name in ("MOVE", "RD_LOC_T"):
+        found[name] = Function(name, needs_cpu=True)
+    return found
+
+
+FUNCTIONS: dict[str, Function] = _functions()
+"""The instructions of networks by name."""
+
+PURE_INSTRUCTIONS: dict[str, Any] = {f.name: f.run for f in FUNCTIONS.values() if not f.needs_cpu}
+"""Instructions that need no CPU, name -> implementation (from :data:`FUNCTIONS`)."""
+
+BOOL_RESULTS = frozenset(f.name for f in FUNCTIONS.values() if f.returns_bool)
+"""Instruction functions whose result is a Bool (from :data:`FUNCTIONS`)."""
+
+CPU_BOUND = frozenset(f.name for f in FUNCTIONS.values() if f.needs_cpu)
+"""Instructions built per CPU (from :data:`FUNCTIONS`)."""
 
 __all__ = [
     "BLOCKS",
+    "FUNCTIONS",
     "Block",
+    "Function",
     "BlockMember",
     "block_named",
     "block_of",
