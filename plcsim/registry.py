@@ -13,19 +13,17 @@ Groups (``[project.entry-points."plcsim.rigs"]`` in a package's ``pyproject.toml
 
 A module is imported only when what it registers is asked for (``plcsim --help`` lists the rigs from the
 names alone). A file in the working folder never stands in for a registered module: a student's
-``exercises.py`` beside their program does not replace the course (:func:`load`).
+``exercises.py`` beside their program does not replace the course (:func:`installed_only`).
 """
 
 from __future__ import annotations
 
-import importlib.machinery
 import importlib.metadata
 import os
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 from plcsim.errors import ConfigurationError, did_you_mean
@@ -44,7 +42,6 @@ def entry_points(group: str) -> list[importlib.metadata.EntryPoint]:
 def load(ep: importlib.metadata.EntryPoint) -> Any:
     """What an entry point names, imported from its installed package, never from the working folder."""
     with installed_only():
-        _refuse_shadow(ep.module.partition(".")[0])
         try:
             return ep.load()
         except ConfigurationError:
@@ -108,19 +105,6 @@ def frontend_suffixes() -> list[str]:
 # -- a file in the working folder does not stand in for an installed module ---------------------------
 
 
-def _refuse_shadow(name: str) -> None:
-    """Refuse a module ``name`` imported earlier from the working folder in place of the installed one."""
-    module = sys.modules.get(name)
-    if module is None or not _in_working_folder(getattr(module, "__file__", None)):
-        return
-    installed = _installed_spec(name, _working_folder_entries())
-    if installed is not None and _origin(installed) != _file(module):
-        raise ConfigurationError(
-            f"{_file(module)} in the working folder has the name of the installed module {name!r} "
-            f"({_origin(installed)}) and was imported in its place; rename the file"
-        )
-
-
 def _working_folder_entries() -> set[str]:
     cwd = os.getcwd()
     return {p for p in sys.path if p in ("", ".") or _same_folder(p, cwd)}
@@ -131,37 +115,6 @@ def _same_folder(a: str, b: str) -> bool:
         return Path(a).resolve() == Path(b).resolve()
     except OSError:
         return False
-
-
-def _installed_spec(name: str, skip: set[str]) -> importlib.machinery.ModuleSpec | None:
-    """Where ``name`` is found with the working folder left out of the search."""
-    path = [p for p in sys.path if p not in skip]
-    for finder in sys.meta_path:
-        if finder is importlib.machinery.PathFinder:
-            spec = importlib.machinery.PathFinder.find_spec(name, path)
-        else:
-            find = getattr(finder, "find_spec", None)
-            spec = find(name, None) if find is not None else None
-        if spec is not None:
-            return spec
-    return None
-
-
-def _origin(spec: importlib.machinery.ModuleSpec) -> str | None:
-    return str(Path(spec.origin).resolve()) if spec.origin and spec.has_location else spec.origin
-
-
-def _file(module: ModuleType) -> str | None:
-    where = getattr(module, "__file__", None)
-    return str(Path(where).resolve()) if where else None
-
-
-def _in_working_folder(origin: str | None) -> bool:
-    if not origin or not os.path.isabs(origin):  # "built-in", "frozen": no file
-        return False
-    cwd = Path.cwd().resolve()
-    path = Path(origin).resolve()
-    return path.parent == cwd or (path.name == "__init__.py" and path.parent.parent == cwd)
 
 
 __all__ = [
