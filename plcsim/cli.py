@@ -227,8 +227,15 @@ def _run(args: argparse.Namespace) -> int:
         scenario_name = None
     else:
         from plcsim.catalog import get
+        from plcsim.errors import ConfigurationError, did_you_mean
 
-        exercise = get(args.target)
+        try:
+            exercise = get(args.target)
+        except ConfigurationError as exc:  # neither an exercise nor a rig: name the rigs too
+            rigs = rig_names()
+            raise ConfigurationError(
+                f"{exc}; the rigs are {', '.join(rigs)}{did_you_mean(args.target.upper(), rigs)}"
+            ) from None
         if args.program:
             program = read_program(args.program)
         elif args.reference or args.solution:

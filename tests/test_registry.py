@@ -219,3 +219,14 @@ def test_a_shadowing_module_the_session_imported_itself_is_named_by_its_file(tmp
     message = " ".join(done.stderr.split())
     assert "no exercise '4.3.1'" in message
     assert f"(not loaded: {tmp_path / 'exercises.py'}:1: the module defines no EXERCISE = Exercise(...))" in message
+
+
+def test_run_of_neither_an_exercise_nor_a_rig_names_the_rigs(tmp_path, capsys):
+    program = tmp_path / "p.py"
+    program.write_text("def OB1(t):\n    pass\n")
+    assert main(["run", "PANELX", "--program", str(program)]) == 2
+    err = " ".join(capsys.readouterr().err.split())
+    assert (
+        "no exercise 'PANELX'" in err
+        and "the rigs are CONV1, CONV2x2, CONV3, MACHINE, PANEL; did you mean 'PANEL'?" in err
+    )
