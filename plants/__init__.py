@@ -1,21 +1,33 @@
 """Machine models (plants) of the training rigs, built from ``plants.components`` on the ``plcsim.plant`` protocol.
 
-``RIGS`` maps the plant ids of ``spec/exercises.md`` §0.5 to factories: ``RIGS["CONV1"](end="stop")`` builds a rig.
+The rigs are registered with plcsim by their plant ids of ``spec/exercises.md`` §0.5 (``pyproject.toml``,
+``[project.entry-points."plcsim.rigs"]``); ``RIGS`` is that registry: ``RIGS["CONV1"](end="stop")`` builds a rig.
 """
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterator, Mapping
 
 from plants.components import StationOccupiedError
 from plants.conveyors import Conv1, Conv2x2, Conv3, ConveyorLine
 from plants.machine import Machine
 from plants.panel import Panel
+from plcsim import registry
 
-RIGS: dict[str, Callable[..., object]] = {
-    "PANEL": Panel,
-    "CONV1": Conv1,
-    "CONV3": Conv3,
-    "CONV2x2": Conv2x2,
-    "MACHINE": Machine,
-}
+
+class _Registered(Mapping[str, Callable[..., object]]):
+    """The registered rigs by id, each factory imported when it is asked for."""
+
+    def __getitem__(self, name: str) -> Callable[..., object]:
+        if name not in registry.rig_names():
+            raise KeyError(name)
+        return registry.rig(name)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(registry.rig_names())
+
+    def __len__(self) -> int:
+        return len(registry.rig_names())
+
+
+RIGS: Mapping[str, Callable[..., object]] = _Registered()
 
 __all__ = ["RIGS", "Conv1", "Conv2x2", "Conv3", "ConveyorLine", "Machine", "Panel", "StationOccupiedError"]

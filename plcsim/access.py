@@ -6,10 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from plcsim.errors import PlcTypeError, UnknownTagError, did_you_mean
-from plcsim.instructions import FB_WRITABLE
-from plcsim.instructions.counters import IecCounter
-from plcsim.instructions.edges import EdgeTrigger
-from plcsim.instructions.timers import IecTimer, preset_ms
+from plcsim.instructions import block_of
 from plcsim.memory import Address, parse_address
 from plcsim.tags import PlcArray, PlcStruct, store
 from plcsim.types import ElementaryType
@@ -43,8 +40,9 @@ class HostAccess:
                 raise UnknownTagError(f"{path}: an array needs an index, e.g. {text}[0]")
             container._index(last)
             return container, last
-        if isinstance(container, (IecTimer, IecCounter, EdgeTrigger)):
-            if not isinstance(last, str) or last.startswith("_") or not hasattr(container, last):
+        block = block_of(container)
+        if block is not None:  # a member the description names (hasattr would refresh a timer)
+            if not isinstance(last, str) or block.member(last) is None:
                 raise UnknownTagError(f"{path}: an instance of {type(container).__name__} has no member {last!r}")
             return container, last
         if not isinstance(container, PlcStruct):
@@ -56,7 +54,7 @@ class HostAccess:
 
     def _resolve_value(self, path: str) -> Any:
         container, key = self.resolve_path(path)
-        if isinstance(container, (IecTimer, IecCounter, EdgeTrigger)):
+        if block_of(container) is not None:
             return getattr(container, key)
         return container[key]
 
@@ -68,12 +66,11 @@ class HostAccess:
             return self.peek(text)
         head, _, member = text.rpartition(".")
         owner = self._resolve_value(head) if head and "[" not in member else None
-        if isinstance(owner, (IecTimer, IecCounter, EdgeTrigger)):  # "TON_1.ET", "C1.CV": instance members
-            if isinstance(owner, IecTimer) and member in ("Q", "ET"):
-                return owner.peek()[member == "ET"]
-            if member.startswith("_") or not hasattr(owner, member):
+        block = block_of(owner)
+        if block is not None:  # "TON_1.ET", "C1.CV": instance members, as last computed
+            if block.member(member) is None:
                 raise UnknownTagError(f"{head} has no member {member!r}")
-            return getattr(owner, member)
+            return getattr(owner, owner.trace_source(member))
         return self._resolve_value(text)
 
     def peek(self, address: str | Address) -> Any:
@@ -93,7 +90,7 @@ class HostAccess:
         container, key = self.resolve_path(name)
         if isinstance(container, PlcArray):
             container[key] = value
-        elif isinstance(container, (IecTimer, IecCounter)):
+        elif block_of(container) is not None:
             store_instance_member(container, key, value)
         else:
             store(container, key, value)
@@ -149,12 +146,11 @@ def store_into(container: Any, key: str, value: Any) -> None:
 
 
 def store_instance_member(instance: Any, key: str, value: Any) -> None:
-    if isinstance(instance, IecTimer) and key == "PT":
-        instance.PT = preset_ms(value, f"{instance._path}.PT")
-    elif isinstance(instance, IecCounter) and key in FB_WRITABLE["IEC_COUNTER"]:
-        setattr(instance, key, instance._type.coerce(value, f"{instance._path}.{key}"))
-    else:
+    """Write a writable member of an instance (a timer's PT, a counter's CV or PV), converted."""
+    block = block_of(instance)
+    if block is None or key not in block.writable:
         raise PlcTypeError(f"{key} of {instance!r} cannot be written by the program")
+    instance.write_member(key, value)
 
 
 def _split_path(text: str) -> list[Any]:

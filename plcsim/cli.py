@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from plcsim.errors import PlcError
+from plcsim.registry import is_rig, rig, rig_names
 
 EXIT_FAILED = 1
 EXIT_USAGE = 2
@@ -65,7 +66,7 @@ def _parser() -> argparse.ArgumentParser:
         description="Run a program against a rig and print a summary; on an exercise, also grade the run.",
     )
     run.add_argument(
-        "target", help="an exercise (4.3.7, or an exercise file) or a rig (PANEL, CONV1, CONV3, CONV2x2, MACHINE)"
+        "target", help=f"an exercise (4.3.7, or an exercise file) or a rig ({', '.join(rig_names()) or 'none'})"
     )
     which = run.add_mutually_exclusive_group()
     which.add_argument("--program", metavar="FILE", help="the PLC program to run (.py; .il for the Tecomat)")
@@ -215,7 +216,7 @@ def _list(args: argparse.Namespace) -> int:
     from rich.console import Console
     from rich.markup import escape
 
-    from exercises import all_exercises, broken_exercises, load_path
+    from plcsim.catalog import all_exercises, broken_exercises, load_path
     from plcsim.report import print_exercise_list
 
     if args.exercises:
@@ -230,7 +231,7 @@ def _list(args: argparse.Namespace) -> int:
 
 
 def _show(args: argparse.Namespace) -> int:
-    from exercises import get
+    from plcsim.catalog import get
     from plcsim.report import print_exercise
 
     print_exercise(get(args.exercise), solutions=not args.no_solutions)
@@ -249,12 +250,6 @@ def _reference(args: argparse.Namespace) -> int:
     return 0
 
 
-def _is_rig(name: str) -> bool:
-    from plants import RIGS
-
-    return name.upper() in {k.upper() for k in RIGS}
-
-
 def _run(args: argparse.Namespace) -> int:
     from rich.console import Console
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
@@ -267,15 +262,22 @@ def _run(args: argparse.Namespace) -> int:
     console = Console()
     exercise = None
     saved = _saved_scenario(args)
-    if _is_rig(args.target):
+    if is_rig(args.target):
         if not args.program:
             raise PlcError(f"running the bare rig {args.target} needs --program FILE.py")
         sim = _rig_simulation(args, saved)
         scenario_name = saved.name if saved else None
     else:
-        from exercises import get
+        from plcsim.catalog import get
+        from plcsim.errors import ConfigurationError, did_you_mean
 
-        exercise = get(args.target)
+        try:
+            exercise = get(args.target)
+        except ConfigurationError as exc:  # neither an exercise nor a rig: name the rigs too
+            rigs = rig_names()
+            raise ConfigurationError(
+                f"{exc}; the rigs are {', '.join(rigs)}{did_you_mean(args.target.upper(), rigs)}"
+            ) from None
         if args.program:
             program = read_program(args.program)
         elif args.reference or args.solution:
@@ -369,13 +371,11 @@ def _print_verdicts(results: list[Any], console: Any) -> None:
 
 
 def _rig_simulation(args: argparse.Namespace, scenario: Any = None) -> Any:
-    from plants import RIGS
     from plcsim.frontends import read_program
     from plcsim.live.build import rig_simulation
 
-    factory = next(v for k, v in RIGS.items() if k.upper() == args.target.upper())
     program = read_program(args.program)
-    return rig_simulation(factory(), program, scenario, seed=args.seed, cycle=args.cycle, pacing=_pacing(args))
+    return rig_simulation(rig(args.target)(), program, scenario, seed=args.seed, cycle=args.cycle, pacing=_pacing(args))
 
 
 def _saved_scenario(args: argparse.Namespace) -> Any:
@@ -385,14 +385,14 @@ def _saved_scenario(args: argparse.Namespace) -> Any:
         return None
     from plcsim.live.recording import load_scenario_file
 
-    base = None if _is_rig(args.target) else _exercise_scenario(args.target)
+    base = None if is_rig(args.target) else _exercise_scenario(args.target)
     scenario, seed = load_scenario_file(args.scenario, base=base)
     args.seed = args.seed if args.seed is not None else (seed if seed is not None else 1)
     return scenario
 
 
 def _exercise_scenario(target: str) -> Any:
-    from exercises import get
+    from plcsim.catalog import get
 
     return get(target).scenario
 
@@ -430,7 +430,7 @@ def _grade(args: argparse.Namespace) -> int:
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
-    from exercises import get
+    from plcsim.catalog import get
     from plcsim.grade_report import write_gradescope
     from plcsim.grading import Limits, grade, grade_batch, grade_sandboxed, write_gradebook, write_junit
     from plcsim.report import print_batch_line, print_report
@@ -579,7 +579,7 @@ def _mutate(args: argparse.Namespace) -> int:
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
-    from exercises import get
+    from plcsim.catalog import get
     from plcsim.mutate import mutate_exercise, print_mutation_report
 
     if args.seeds < 1 or args.jobs < 1:

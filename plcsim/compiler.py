@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from plcsim.errors import ProgramError, SubsetError, UnknownTagError, did_you_mean
-from plcsim.instructions import BOOL_RESULTS, FB_BOXES, FB_MEMBERS, FB_WRITABLE
+from plcsim.instructions import BOOL_RESULTS, block_named
 from plcsim.literals import time_ms
 from plcsim.memory import parse_address
 from plcsim.safe_math import SAFE_FUNCTIONS
@@ -495,7 +495,7 @@ class Typing:
                 return Bool
             if isinstance(func, ast.Attribute):
                 base = self.type_of(func.value, env)
-                if isinstance(base, FBType) and func.attr in FB_BOXES.get(base.name, ()):
+                if isinstance(base, FBType) and func.attr in _boxes(base):
                     return Bool
         return None
 
@@ -510,11 +510,12 @@ class Typing:
                 )
             return member.type
         if isinstance(base, FBType):
-            members = FB_MEMBERS.get(base.name, {})
-            if attr in FB_BOXES.get(base.name, ()):
+            block = block_named(base.name)
+            members = block.readable if block is not None else {}
+            if attr in _boxes(base):
                 return None
             if attr not in members:
-                boxes = sorted(FB_BOXES.get(base.name, ()))
+                boxes = sorted(_boxes(base))
                 raise UnknownTagError(
                     f"{_where(self.filename, node)}: a {base.name} instance has no member {attr!r}"
                     f"{did_you_mean(attr, list(members) + boxes)} (members: {', '.join(members)}; "
@@ -558,6 +559,12 @@ _BOX_TYPES = {
     "R_TRIG": "R_TRIG",
     "F_TRIG": "F_TRIG",
 }
+
+
+def _boxes(fb: FBType) -> tuple[str, ...]:
+    """The box methods of an instance type (none for a type plcsim does not describe)."""
+    block = block_named(fb.name)
+    return block.boxes if block is not None else ()
 
 
 def coerce_name(dtype: ElementaryType) -> str:
@@ -815,9 +822,9 @@ class StoreRewriter(ast.NodeTransformer):
         base = self.typing.type_of(base_node, self.env)
         key = target.attr
         if isinstance(base, FBType):
-            if key not in FB_WRITABLE.get(base.name, set()):
-                members = FB_MEMBERS.get(base.name, {})
-                if key in members:
+            block = block_named(base.name)
+            if block is None or key not in block.writable:
+                if block is not None and key in block.readable:
                     raise ProgramError(
                         f"{_where(self.typing.filename, node)}: {key} of a {base.name} is computed by its box; "
                         f"it cannot be written" + (" (reset a timer with RT(...))" if base.name == "IEC_TIMER" else "")
@@ -925,7 +932,8 @@ class Analysis:
 
     def unused_timers(self) -> set[str]:
         """Timer instances whose box runs but whose Q and ET are used nowhere (textbook §3.6.1)."""
-        called = {inst for inst, box, _ in self.box_calls if box in FB_BOXES["IEC_TIMER"]}
+        timer_boxes = block_named("IEC_TIMER").boxes  # type: ignore[union-attr]
+        called = {inst for inst, box, _ in self.box_calls if box in timer_boxes}
         return called - self.timer_reads
 
     def uses(self, instruction: str) -> bool:
@@ -983,7 +991,7 @@ def analyse(tree: ast.Module, typing: Typing) -> Analysis:
                         facts.jumps.append((node.args[0].value, node.lineno))
                 elif isinstance(func, ast.Attribute):
                     base = _safe_type(typing, func.value, env)
-                    if isinstance(base, FBType) and func.attr in FB_BOXES.get(base.name, ()):
+                    if isinstance(base, FBType) and func.attr in _boxes(base):
                         path = ast.unparse(func.value)
                         result.box_calls.append((path, func.attr, node.lineno))
                         if id(node) not in bare:
@@ -1097,3 +1105,46 @@ def _relocate(copied: ast.AST, original: ast.AST) -> None:
     for new, old in zip(ast.walk(copied), ast.walk(original)):
         if hasattr(old, "lineno") and hasattr(new, "lineno"):
             ast.copy_location(new, old)
+
+
+def read_root_directly(merged: ast.FunctionDef, members: Iterable[str]) -> None:
+    """Let a merged function (after :class:`StoreRewriter`) read its tags from the tag dict: ``_t.S1``
+    becomes ``_t_dict["S1"]``, one dict lookup instead of an attribute read through the tag object.
+
+    Only for merged functions: the CPU alone calls them, always with its tags (their name starts with
+    ``_``, so a program cannot), so the hoisted dict needs no guard; every name was checked against the
+    tag table while rewriting, so the lookup cannot miss."""
+    reads = _RootReads(set(members))
+    merged.body = [reads.visit(stmt) for stmt in merged.body]
+    if not reads.used:
+        return
+    tags_dict = ast.Attribute(ast.Name(MERGED_ROOT, ast.Load()), "__dict__", ast.Load())
+    hoist = ast.Assign([ast.Name(ROOT_DICT, ast.Store())], tags_dict)
+    first = merged.body[0]
+    if isinstance(first, ast.Assign) and isinstance(first.targets[0], ast.Name) and first.targets[0].id == ROOT_DICT:
+        merged.body[0] = ast.copy_location(hoist, first)  # in place of the guard StoreRewriter hoisted
+    else:
+        merged.body.insert(0, ast.copy_location(hoist, merged))
+    ast.fix_missing_locations(merged)
+
+
+class _RootReads(ast.NodeTransformer):
+    """``_t.NAME`` (a load of a tag) -> ``_t_dict["NAME"]``."""
+
+    def __init__(self, members: set[str]):
+        self.members = members
+        self.used = False
+
+    def visit_Attribute(self, node: ast.Attribute) -> ast.AST:
+        self.generic_visit(node)
+        value = node.value
+        if (
+            isinstance(node.ctx, ast.Load)
+            and isinstance(value, ast.Name)
+            and value.id == MERGED_ROOT
+            and node.attr in self.members
+        ):
+            self.used = True
+            read = ast.Subscript(ast.Name(ROOT_DICT, ast.Load()), ast.Constant(node.attr), ast.Load())
+            return ast.copy_location(read, node)
+        return node

@@ -217,7 +217,7 @@ class CPU(TaskRunner, HostAccess):
         for path in loaded.inert_timers:
             timer = self._resolve_value(path.split(".", 1)[1] if "." in path else path)
             if isinstance(timer, IecTimer):
-                timer._inert = True
+                timer.make_inert()
         _check_task_numbers(loaded)
         tasks = [self._running_task(task) for task in loaded.tasks]
         self._ob1 = next((t for t in tasks if t.kind == "cyclic"), None) or RunningTask(
@@ -352,7 +352,7 @@ class CPU(TaskRunner, HostAccess):
         """Run ``count`` OB1 executions (scans), interrupts included; the clock stops at the last scan's end."""
         if self.mode == RUN:
             # a scan that run_until() left unfinished (its networks already ran) is finished, not counted
-            pending = any(ex.task is self._ob1 for ex in self._stack)
+            pending = bool(self._stack) and any(ex.task is self._ob1 for ex in self._stack)
             self._run(NEVER, self.scan_count + count + pending)
 
     def next_event_ns(self) -> int:

@@ -6,17 +6,19 @@ its module docstring).
 from __future__ import annotations
 
 import operator
+import random
 import traceback
 from bisect import bisect_left
 from collections.abc import Callable
 from typing import Any
 
-from plcsim.clock import NEVER
-from plcsim.config import CLOCK_BITS, RUN
+from plcsim.clock import NEVER, Clock
+from plcsim.config import CLOCK_BITS, RUN, CPUConfig
 from plcsim.errors import PlcError
 from plcsim.instructions.system import JumpTo, ReturnFromBlock
-from plcsim.loaded import TaskSpec
-from plcsim.tags import store
+from plcsim.loaded import SourceProgram, TaskSpec
+from plcsim.observers import Subscribers
+from plcsim.tags import PlcStruct, store
 
 
 class CycleWatchdog(Exception):  # noqa: N818 - it is the S7 name of the event
@@ -99,7 +101,47 @@ class Execution:
 
 
 class TaskRunner:
-    """The scheduling methods of the CPU (a mixin: the state lives in :class:`plcsim.cpu.CPU`)."""
+    """The scheduling methods of the CPU (a mixin: the state lives in :class:`plcsim.cpu.CPU`, which sets
+    every attribute declared here in its ``__init__`` and ``load``)."""
+
+    # the CPU's public state this half reads and writes
+    config: CPUConfig
+    clock: Clock
+    mode: str
+    t: PlcStruct
+    inputs: dict[str, Any]
+    outputs: dict[str, Any]
+    forces: dict[str, Any]
+    image_in: dict[str, Any]
+    input_names: list[str]
+    output_names: list[str]
+    scan_end: Subscribers
+    task_end: Subscribers
+    scan_count: int
+    scan_start_ns: int
+    scan_end_ns: int
+    output_version: int
+    program: SourceProgram | None
+    # the CPU's private state: executions, the plan of OB1's fast path, the output image's last values
+    _stack: list[Execution]
+    _ob1: RunningTask
+    _interrupts: list[RunningTask]
+    _next_irq: int
+    _ob1_next: int
+    _first_scan: bool
+    _diag_changed: bool
+    _clock_next: int
+    _ticks: list[int]
+    _cyclic_plan: tuple[int, Callable[[Any], None] | None, bool]
+    _out_getter: Callable[[dict[str, Any]], tuple[Any, ...]]
+    _last_out: tuple[Any, ...]
+    _aliased_inputs: list[str]
+    _plain_inputs: list[str]
+    _rng: random.Random
+    # the CPU's methods it calls (annotations only: a stub here would hide HostAccess's)
+    stop: Callable[..., None]
+    resolve_path: Callable[[str], tuple[Any, Any]]
+    _diag: Callable[..., None]
 
     def _run(self, until_ns: int, scan_target: int | None) -> None:
         if not self._interrupts:

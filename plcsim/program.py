@@ -55,6 +55,7 @@ from plcsim.compiler import (
     coerce_name,
     merge_networks,
     parse,
+    read_root_directly,
 )
 from plcsim.errors import DeclarationError, NoOB1Error, PlcError, ProgramError, SubsetError
 from plcsim.instructions import BOOL_RESULTS, CPU_BOUND, FB_TYPES, PURE_INSTRUCTIONS
@@ -417,6 +418,9 @@ class Program:
                     merged[task.name] = combined.name
         rewriter = StoreRewriter(typing)
         tree = ast.fix_missing_locations(rewriter.visit(tree))
+        for stmt in tree.body:
+            if isinstance(stmt, ast.FunctionDef) and stmt.name in merged.values():
+                read_root_directly(stmt, typing.root.members)
         code = compile(tree, self.filename, "exec")
         warnings = list(analysis.warnings)
         for line, name in self._input_stores(table, root_params):

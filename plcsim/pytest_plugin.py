@@ -277,7 +277,7 @@ def _exercise(exercise: Any) -> Any:
 
     if isinstance(exercise, Exercise):
         return exercise
-    from exercises import get
+    from plcsim.catalog import get
 
     try:
         return get(str(exercise))

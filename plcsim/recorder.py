@@ -17,9 +17,7 @@ from typing import Any
 
 from plcsim.cpu import CLOCK_BITS, CPU, SYSTEM_BITS
 from plcsim.errors import UnknownTagError, did_you_mean
-from plcsim.instructions.counters import IecCounter
-from plcsim.instructions.edges import EdgeTrigger
-from plcsim.instructions.timers import IecTimer
+from plcsim.instructions import block_of
 from plcsim.observers import Subscribers
 from plcsim.tags import PlcStruct
 from plcsim.trace import BLOCK, Trace
@@ -46,14 +44,11 @@ def default_signals(cpu: CPU) -> list[str]:
             continue
         if entry.name in _SYSTEM_NAMES and entry.name not in used:
             continue
+        block = block_of(value)
         if isinstance(entry.member.type, ElementaryType):
             names.append(entry.name)
-        elif isinstance(value, IecTimer):
-            names += [f"{entry.name}.Q", f"{entry.name}.ET"]
-        elif isinstance(value, IecCounter):
-            names += [f"{entry.name}.CV", f"{entry.name}.QU", f"{entry.name}.QD"]
-        elif isinstance(value, EdgeTrigger):
-            names.append(f"{entry.name}.Q")
+        elif block is not None:
+            names += [f"{entry.name}.{member}" for member in block.traced]
         elif isinstance(value, PlcStruct):
             names += _struct_members(value, entry.name)
     return names
@@ -109,17 +104,12 @@ class Recorder:
             area = entry.address.area if entry.address is not None else "M"
             kind = {"I": "input", "Q": "output"}.get(area, "memory")
             return kind, _type_name(entry.member.type), f"{'i' if kind == 'input' else 'd'}[{head!r}]"
-        if isinstance(value, IecTimer):
-            member = {"Q": "_q", "ET": "_et", "PT": "PT", "IN": "IN"}.get(rest)
-            if member is None:
-                raise UnknownTagError(f"cannot trace {name!r}: a timer has Q, ET, PT and IN")
-            return "timer", "bool" if rest in ("Q", "IN") else "int", f"d[{head!r}].{member}"
-        if isinstance(value, IecCounter):
-            if rest not in ("CV", "PV", "QU", "QD", "CU", "CD", "R", "LD"):
-                raise UnknownTagError(f"cannot trace {name!r}: a counter has CV, PV, QU, QD, CU, CD, R, LD")
-            return "counter", "int" if rest in ("CV", "PV") else "bool", f"d[{head!r}].{rest}"
-        if isinstance(value, EdgeTrigger):
-            return "memory", "bool", f"d[{head!r}].{rest}"
+        block = block_of(value)
+        if block is not None:
+            if block.member(rest) is None:
+                members = ", ".join(block.readable)
+                raise UnknownTagError(f"cannot trace {name!r}: an instance of {block.name} has {members}")
+            return block.trace_kind, block.trace_type(rest), f"d[{head!r}].{value.trace_source(rest)}"
         container, key = cpu.resolve_path(name)
         if not isinstance(container, PlcStruct):
             raise UnknownTagError(f"cannot trace {name!r}: array elements are not traced; copy it to a tag")

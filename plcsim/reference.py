@@ -16,17 +16,13 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 from plcsim.compiler import ALLOWED_BUILTINS
-from plcsim.instructions import FB_BOXES, FB_TYPES, PURE_INSTRUCTIONS
-from plcsim.instructions.counters import IecCounter
-from plcsim.instructions.edges import EdgeTrigger, make_edge_instructions
+from plcsim.instructions import BLOCKS, FB_TYPES, PURE_INSTRUCTIONS, Block
+from plcsim.instructions.edges import make_edge_instructions
 from plcsim.instructions.system import make_move, make_rd_loc_t
-from plcsim.instructions.timers import IecTimer
 from plcsim.program import DECLARATION_NAMES, DECLARATION_ONLY, TYPE_NAMES
 
 PAGE = "docs/instructions.md"
 """Where the generated page lives in the repository."""
-
-_BOX_CLASSES = {"IEC_TIMER": IecTimer, "IEC_COUNTER": IecCounter, "R_TRIG": EdgeTrigger, "F_TRIG": EdgeTrigger}
 
 
 def _unbound(path: str) -> Any:  # the per-CPU instructions are built only to read their docstrings
@@ -69,6 +65,18 @@ def _rows(items: Iterable[tuple[str, str]]) -> list[str]:
     return [f"| {name} | {text.replace('|', bar)} |" for name, text in items]
 
 
+def _member_line(block: Block) -> str:
+    """``Members: `Q` Bool, `PT` Time (writable: ...)``, as the compiler types them."""
+    shown = []
+    for member in block.members:
+        text = f"`{member.name}` {'the count type' if member.type == 'value' else member.type}"
+        if member.writable:
+            text += f" (writable: `t.NAME.{member.name} = ...`)"
+        shown.append(text)
+    traced = ", ".join(f"`{name}`" for name in block.traced)
+    return "Members: " + ", ".join(shown) + f". The trace records {traced} unless told otherwise."
+
+
 def instruction_reference() -> str:
     """The Markdown page: declarations, data types, instance types with their boxes, the instructions of
     networks and the Python builtins a program may call."""
@@ -105,11 +113,10 @@ def instruction_reference() -> str:
         '(`t.TON_A.TON(IN=t.D1, PT="10s")`); every box returns a Bool.',
         "",
     ]
-    for name, fb in sorted(FB_TYPES.items()):
-        out += [f"### `{name}()`", "", fb.__doc__ or "", ""]
-        cls = _BOX_CLASSES[name]
-        for box in sorted(FB_BOXES[name]):
-            method = getattr(cls, box)
+    for name, block in sorted(BLOCKS.items()):
+        out += [f"### `{name}()`", "", block.fb.__doc__ or "", "", _member_line(block), ""]
+        for box in sorted(block.boxes):
+            method = getattr(block.instance, box)
             out.append(f"- `t.NAME.{_signature(box, method).replace('(self, ', '(').replace('(self)', '()')}`: ")
             out[-1] += _first_paragraph(method)
         out.append("")

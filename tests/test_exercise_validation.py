@@ -12,6 +12,7 @@ import sys
 import pytest
 
 import exercises
+import plcsim.catalog
 from exercises import all_exercises, broken_exercises, load_package
 from plants import Conv1, Panel
 from plcsim import CPU, Simulation, Tag
@@ -516,7 +517,7 @@ def test_a_broken_module_beside_good_ones(package):
 def test_the_cli_lists_the_good_and_names_the_broken_without_a_traceback(package, monkeypatch, capsys):
     name, root = package
     loaded, broken = load_package(name)
-    monkeypatch.setattr(exercises, "_catalog", lambda: (tuple(loaded), tuple(broken)))
+    monkeypatch.setattr(plcsim.catalog, "_catalog", lambda: (tuple(loaded), tuple(broken)))
     assert main(["list"]) == 2
     out, err = capsys.readouterr()
     assert "9.9.1" in out and "9.9.2" in out and "good-2" in out
@@ -533,7 +534,7 @@ def test_the_cli_lists_the_good_and_names_the_broken_without_a_traceback(package
 def test_an_unknown_exercise_mentions_the_modules_that_did_not_load(package, monkeypatch):
     name, _root = package
     loaded, broken = load_package(name)
-    monkeypatch.setattr(exercises, "_catalog", lambda: (tuple(loaded), tuple(broken)))
+    monkeypatch.setattr(plcsim.catalog, "_catalog", lambda: (tuple(loaded), tuple(broken)))
     with pytest.raises(ConfigurationError) as info:
         exercises.get("9.9.9")
     message = str(info.value)

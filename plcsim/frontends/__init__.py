@@ -1,7 +1,8 @@
 """Front ends, chosen by file suffix: each reads a source file into a program the CPU can load.
 
 ``.py`` (the Python subset, :class:`plcsim.program.Program`) is the one today; another registers with
-:func:`register` (``register(".il", read_il)``) and every tool that reads a program file through
+:func:`register` (``register(".il", read_il)``), or from another package through the entry-point group
+``plcsim.frontends`` (:mod:`plcsim.registry`), and every tool that reads a program file through
 :func:`read_program` accepts it.
 
 >>> sorted(suffixes())
@@ -13,6 +14,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
+from plcsim import registry
 from plcsim.errors import ProgramError
 from plcsim.loaded import SourceProgram
 
@@ -33,16 +35,17 @@ def unregister(suffix: str) -> None:
 
 
 def suffixes() -> list[str]:
-    """The file suffixes a front end is registered for."""
-    return list(_READERS)
+    """The file suffixes a front end is registered for (here, or by another package's entry point)."""
+    return list(dict.fromkeys([*_READERS, *registry.frontend_suffixes()]))
 
 
 def read_program(path: str | Path) -> SourceProgram:
     """Read a program file with the front end its suffix names (errors name the file and the fix)."""
     path = Path(path)
-    reader = _READERS.get(path.suffix.lower())
+    suffix = path.suffix.lower()
+    reader = _READERS.get(suffix) or (registry.frontend(suffix) if suffix else None)
     if reader is None:
-        known = ", ".join(sorted(_READERS))
+        known = ", ".join(sorted(suffixes()))
         raise ProgramError(f"{path}: no front end reads {path.suffix or 'files without a suffix'}; use {known}")
     return reader(path)
 

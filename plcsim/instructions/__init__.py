@@ -6,6 +6,8 @@ Function-block instance types are declared in a program (``TON_A = IEC_TIMER()``
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 from plcsim.clock import Clock
@@ -52,47 +54,169 @@ F_TRIG = FBType(
     doc="Falling-edge function block (CLK, Q, Stat_Bit).",
 )
 
-FB_TYPES = {fb.name: fb for fb in (IEC_TIMER, IEC_COUNTER, R_TRIG, F_TRIG)}
 
-FB_BOXES = {
-    "IEC_TIMER": {"TON", "TOF", "TP", "TONR"},
-    "IEC_COUNTER": {"CTU", "CTD", "CTUD"},
-    "R_TRIG": {"R_TRIG"},
-    "F_TRIG": {"F_TRIG"},
+@dataclass(frozen=True)
+class BlockMember:
+    """A member of an instance: its type (``Bool``, ``Time``, or ``value``, the counter's count type),
+    whether a program may assign it, and whether the trace records it by default."""
+
+    name: str
+    type: str
+    writable: bool = False
+    traced: bool = False
+
+
+@dataclass(frozen=True)
+class Block:
+    """Everything plcsim knows about one instance type (IEC_TIMER ...), read by the compiler's typing, the
+    host access, the recorder and the student reference: no parallel tables.
+
+    >>> timer = BLOCKS["IEC_TIMER"]
+    >>> timer.boxes, timer.readable["ET"], sorted(timer.writable), timer.traced
+    (('TON', 'TOF', 'TP', 'TONR'), 'Time', ['PT'], ('Q', 'ET'))
+    """
+
+    fb: FBType
+    instance: type
+    """The class of the instances; it reads a member as last computed with ``trace_source`` (no refresh)."""
+    boxes: tuple[str, ...]
+    """Its box methods; every box returns a Bool (its Q / QU)."""
+    members: tuple[BlockMember, ...]
+    trace_kind: str
+    """The trace's kind column for its members (``timer``, ``counter``, ``memory``)."""
+
+    @property
+    def name(self) -> str:
+        return self.fb.name
+
+    @property
+    def readable(self) -> dict[str, str]:
+        """Member name -> type, for every member a program may read, in the manual's order."""
+        return {m.name: m.type for m in self.members}
+
+    @property
+    def writable(self) -> frozenset[str]:
+        """Members a program may write directly (the rest are outputs the box computes)."""
+        return frozenset(m.name for m in self.members if m.writable)
+
+    @property
+    def traced(self) -> tuple[str, ...]:
+        """Members the trace records when no signals are chosen."""
+        return tuple(m.name for m in self.members if m.traced)
+
+    def member(self, name: str) -> BlockMember | None:
+        return next((m for m in self.members if m.name == name), None)
+
+    def trace_type(self, name: str) -> str:
+        """The trace column type of a member: ``bool`` or ``int`` (TIME in ms, counts)."""
+        member = self.member(name)
+        return "bool" if member is not None and member.type == "Bool" else "int"
+
+
+def _members(*specs: str, writable: tuple[str, ...] = (), traced: tuple[str, ...] = ()) -> tuple[BlockMember, ...]:
+    return tuple(
+        BlockMember(name, kind, name in writable, name in traced) for name, kind in (spec.split(":") for spec in specs)
+    )
+
+
+_EDGE_MEMBERS = _members("Q:Bool", "CLK:Bool", "Stat_Bit:Bool", traced=("Q",))
+BLOCKS: dict[str, Block] = {
+    block.name: block
+    for block in (
+        Block(
+            IEC_TIMER,
+            IecTimer,
+            ("TON", "TOF", "TP", "TONR"),
+            _members("Q:Bool", "ET:Time", "PT:Time", "IN:Bool", writable=("PT",), traced=("Q", "ET")),
+            "timer",
+        ),
+        Block(
+            IEC_COUNTER,
+            IecCounter,
+            ("CTU", "CTD", "CTUD"),
+            _members(
+                "CV:value",
+                "PV:value",
+                "QU:Bool",
+                "QD:Bool",
+                "Q:Bool",
+                "CU:Bool",
+                "CD:Bool",
+                "R:Bool",
+                "LD:Bool",
+                writable=("CV", "PV"),
+                traced=("CV", "QU", "QD"),
+            ),
+            "counter",
+        ),
+        Block(R_TRIG, EdgeTrigger, ("R_TRIG",), _EDGE_MEMBERS, "memory"),
+        Block(F_TRIG, EdgeTrigger, ("F_TRIG",), _EDGE_MEMBERS, "memory"),
+    )
 }
-"""Box methods each instance type offers; every box returns a Bool (its Q / QU)."""
+"""The instance types by name."""
 
-FB_MEMBERS: dict[str, dict[str, str]] = {
-    "IEC_TIMER": {"Q": "Bool", "ET": "Time", "PT": "Time", "IN": "Bool"},
-    "IEC_COUNTER": {
-        "CV": "value",
-        "PV": "value",
-        "QU": "Bool",
-        "QD": "Bool",
-        "Q": "Bool",
-        "CU": "Bool",
-        "CD": "Bool",
-        "R": "Bool",
-        "LD": "Bool",
-    },
-    "R_TRIG": {"Q": "Bool", "CLK": "Bool", "Stat_Bit": "Bool"},
-    "F_TRIG": {"Q": "Bool", "CLK": "Bool", "Stat_Bit": "Bool"},
-}
-"""Members a program may read; ``value`` means the counter's count type."""
+FB_TYPES = {name: block.fb for name, block in BLOCKS.items()}
+"""The declaration of each instance type (``TON_A = IEC_TIMER()``), from :data:`BLOCKS`."""
 
-FB_WRITABLE: dict[str, set[str]] = {"IEC_TIMER": {"PT"}, "IEC_COUNTER": {"CV", "PV"}, "R_TRIG": set(), "F_TRIG": set()}
-"""Members a program may write directly (the rest are outputs the box computes)."""
+_BY_CLASS = {block.instance: block for block in reversed(BLOCKS.values())}
 
-PURE_INSTRUCTIONS: dict[str, Any] = {**MATH_FUNCTIONS, "RT": RT, "PT": PT, "JMP": JMP, "RET": RET}
-"""Instructions that need no CPU: they are the same for every program."""
 
-BOOL_RESULTS = {"P", "N", "P_TRIG", "N_TRIG", "P_COIL", "N_COIL", "IN_RANGE", "OUT_RANGE"}
-"""Instruction functions whose result is a Bool (used by the compiler's static typing)."""
+def block_of(value: Any) -> Block | None:
+    """The description of an instance's type, or None if ``value`` is no instance (R_TRIG and F_TRIG
+    share one class and the same members: an edge instance is described as an R_TRIG)."""
+    return _BY_CLASS.get(type(value))
 
-CPU_BOUND = {"P", "N", "P_TRIG", "N_TRIG", "P_COIL", "N_COIL", "MOVE", "RD_LOC_T"}
-"""Instructions built per CPU (they read or write its memory or clock)."""
+
+def block_named(name: str) -> Block | None:
+    """The description of the instance type ``name`` (``"IEC_TIMER"``), or None."""
+    return BLOCKS.get(name)
+
+
+@dataclass(frozen=True)
+class Function:
+    """One instruction a network calls as a function (``P``, ``DIV``, ``MOVE`` ...).
+
+    ``run`` is its implementation when it is the same for every program; an instruction that reads or
+    writes a CPU's memory or clock (``needs_cpu``) is built by each CPU instead."""
+
+    name: str
+    run: Callable[..., Any] | None = None
+    returns_bool: bool = False
+    """Its result is a Bool (the compiler's static typing: storing it into a BOOL needs no check)."""
+    needs_cpu: bool = False
+
+
+def _functions() -> dict[str, Function]:
+    boolean = {"IN_RANGE", "OUT_RANGE"}
+    pure = {**MATH_FUNCTIONS, "RT": RT, "PT": PT, "JMP": JMP, "RET": RET}
+    found = {name: Function(name, run, returns_bool=name in boolean) for name, run in pure.items()}
+    for name in ("P", "N", "P_TRIG", "N_TRIG", "P_COIL", "N_COIL"):
+        found[name] = Function(name, returns_bool=True, needs_cpu=True)
+    for name in ("MOVE", "RD_LOC_T"):
+        found[name] = Function(name, needs_cpu=True)
+    return found
+
+
+FUNCTIONS: dict[str, Function] = _functions()
+"""The instructions of networks by name."""
+
+PURE_INSTRUCTIONS: dict[str, Any] = {f.name: f.run for f in FUNCTIONS.values() if not f.needs_cpu}
+"""Instructions that need no CPU, name -> implementation (from :data:`FUNCTIONS`)."""
+
+BOOL_RESULTS = frozenset(f.name for f in FUNCTIONS.values() if f.returns_bool)
+"""Instruction functions whose result is a Bool (from :data:`FUNCTIONS`)."""
+
+CPU_BOUND = frozenset(f.name for f in FUNCTIONS.values() if f.needs_cpu)
+"""Instructions built per CPU (from :data:`FUNCTIONS`)."""
 
 __all__ = [
+    "BLOCKS",
+    "FUNCTIONS",
+    "Block",
+    "Function",
+    "BlockMember",
+    "block_named",
+    "block_of",
     "IEC_TIMER",
     "IEC_COUNTER",
     "R_TRIG",

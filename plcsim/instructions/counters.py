@@ -49,6 +49,17 @@ class IecCounter:
         """QU for a CTU, QD for a CTD."""
         return self.QD if self._kind == "CTD" else self.QU
 
+    @staticmethod
+    def trace_source(member: str) -> str:
+        """The attribute holding ``member`` (a counter's members are plain attributes)."""
+        return member
+
+    def write_member(self, key: str, value: Any) -> None:
+        """A program's or an HMI's write of a writable member (CV, PV), converted to the count type."""
+        if key not in ("CV", "PV"):
+            raise PlcTypeError(f"{key} of {self!r} cannot be written by the program")
+        setattr(self, key, self._type.coerce(value, f"{self._path}.{key}"))
+
     def _step(self, cv: int, delta: int) -> int:
         cv += delta
         if self._lo <= cv <= self._hi:

@@ -34,6 +34,11 @@ class EdgeTrigger:
         """All members FALSE."""
         self.CLK = self.Q = self.Stat_Bit = False
 
+    @staticmethod
+    def trace_source(member: str) -> str:
+        """The attribute holding ``member`` (an edge instance's members are plain attributes)."""
+        return member
+
     def R_TRIG(self, CLK: bool) -> bool:
         """Q is TRUE for the one call in which CLK went from FALSE to TRUE."""
         if CLK is not True and CLK is not False:

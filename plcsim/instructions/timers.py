@@ -94,6 +94,27 @@ class IecTimer:
         """Q and ET as stored, without refreshing (what a watch table shows; observing changes nothing)."""
         return self._q, self._et
 
+    @staticmethod
+    def trace_source(member: str) -> str:
+        """The attribute holding ``member`` as last computed: reading it never refreshes the timer (the
+        recorder and the watch table observe without changing anything).
+
+        >>> IecTimer.trace_source("ET"), IecTimer.trace_source("PT")
+        ('_et', 'PT')
+        """
+        return {"Q": "_q", "ET": "_et"}.get(member, member)
+
+    def make_inert(self) -> None:
+        """The timer does not start from now on: on an S7-1200 a timer whose Q and ET are read nowhere does
+        not run (textbook §3.6.1, Fig. 3.197); its boxes return Q as it is."""
+        self._inert = True
+
+    def write_member(self, key: str, value: Any) -> None:
+        """A program's or an HMI's write of a writable member (PT), converted to ms."""
+        if key != "PT":
+            raise PlcTypeError(f"{key} of {self!r} cannot be written by the program")
+        self.PT = preset_ms(value, f"{self._path}.PT")
+
     # -- refresh -----------------------------------------------------------------------------
 
     def _refresh(self, now: int) -> None:

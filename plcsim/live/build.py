@@ -32,12 +32,12 @@ class Target:
     @classmethod
     def find(cls, name: str) -> Target:
         """An exercise by number, slug or file, or a rig by its id (``PANEL``, ``CONV1``)."""
-        from plants import RIGS  # the rigs and exercises are found when asked for, as the CLI does
+        from plcsim.catalog import get
+        from plcsim.registry import is_rig, rig, rig_names
 
-        key = next((k for k in RIGS if k.upper() == name.upper()), None)
-        if key is not None:
-            return cls(key, rig=RIGS[key])
-        from exercises import get
+        if is_rig(name):
+            key = next(k for k in rig_names() if k.upper() == name.upper())
+            return cls(key, rig=rig(key))
 
         exercise = get(name)
         return cls(exercise.number, exercise=exercise)

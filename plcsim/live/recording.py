@@ -205,7 +205,7 @@ class Recording:
         body = ["", f"SEED = {self.seed}"]
         items = [f"    {_py(self.name)},"]
         if self.base is not None:
-            head.append("from exercises import get")
+            head.append("from plcsim.catalog import get")
             body.append(f"BASE = get({_py(self.target)}).scenario({_py(self.base)})")
             items.append("    *BASE.actions,")
         items += [f"    {_call(a)}," for a in self.actions]
