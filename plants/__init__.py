@@ -5,6 +5,7 @@
 
 from collections.abc import Callable
 
+from plants.align import Align
 from plants.components import StationOccupiedError
 from plants.conveyors import Conv1, Conv2x2, Conv3, ConveyorLine
 from plants.machine import Machine
@@ -16,6 +17,7 @@ RIGS: dict[str, Callable[..., object]] = {
     "CONV3": Conv3,
     "CONV2x2": Conv2x2,
     "MACHINE": Machine,
+    "ALIGN": Align,
 }
 
-__all__ = ["RIGS", "Conv1", "Conv2x2", "Conv3", "ConveyorLine", "Machine", "Panel", "StationOccupiedError"]
+__all__ = ["RIGS", "Align", "Conv1", "Conv2x2", "Conv3", "ConveyorLine", "Machine", "Panel", "StationOccupiedError"]
