@@ -183,7 +183,7 @@ class Piston:
         at_rest = s <= RETRACTED_WITHIN and target < 0 and abs(v) < 1e-3
         if at_rest:
             body.velocity = (0.0, 0.0)
-        return not at_rest or self.due_ns is not None or self.jammed
+        return not at_rest or self.open or self.due_ns is not None or self.jammed  # open: waiting for pressure
 
     def _sense(self, host: Host, s: float) -> None:
         moved = abs(s - self.s) > 1e-9 or getattr(self, "_recheck", False)

@@ -6,8 +6,9 @@
   a ``GearJoint`` with ``max_force = μ·m·g·r`` (r = (length + depth)/6, about the mean lever arm of a uniformly
   loaded rectangle). A pushed part slides and stops as on a real table.
 * **Parts** are blocks ``length × depth`` (the :class:`~plants.components.workpiece.WorkpieceSpec`, seen from
-  above). Spot sensors (:class:`SpotSensor`) are sensor shapes: pymunk's ``begin``/``separate`` update the sensors
-  and give ``part entered`` / ``part left`` events, nothing is queried per step.
+  above). Spot sensors (:class:`SpotSensor`, a colour sensor) are sensor shapes: pymunk's ``begin``/``separate``
+  call their ``enter(host, part)`` / ``leave(host, part_id)``, which update the sensors (``part entered`` /
+  ``part left`` events); nothing is queried per step.
 * **Components** (piston, fence, sensors) plug in through :mod:`plants.components.component`; the rig steps the
   busy ones before each physics step.
 * **Still table, no physics.** After a step in which no part moves (speed < 1 µm/s) and no component is busy, the
@@ -88,7 +89,8 @@ class SpotSensor:
         host.space.add(shape)
         self.shape = shape
 
-    def enter(self, host: Any, pid: str) -> None:
+    def enter(self, host: Any, part: TopPart) -> None:
+        pid = part.id
         if pid not in self.parts:
             self.parts[pid] = None
             host.sensors[self.name] = True
@@ -348,7 +350,7 @@ class TopViewPlant:
     def _spot_begin(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data: Any) -> None:
         ps, ss = arbiter.shapes
         if ps.part is not None:
-            ss.owner.enter(self, ps.part.id)
+            ss.owner.enter(self, ps.part)
 
     def _spot_separate(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data: Any) -> None:
         ps, ss = arbiter.shapes
