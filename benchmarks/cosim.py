@@ -7,6 +7,7 @@ The workloads, each 1 ms scan, 1 ms physics, the trace on (one row per scan, pla
 * ``several`` (CONV1, 4.3.6's reference, its "five objects" scenario repeated): several parts on the belt
   at once, queued at S2 while the belt waits.
 * ``aligner`` (ALIGN, 4.3.12's reference): 60 s, a crooked part every 4 s, pushed flat, taken away.
+* ``sorter`` (SORT, 4.3.17's reference, its "six mixed" scenario): six parts of mixed colours on the belt.
 
 "Physics alone" replays, on a fresh plant and in the same process, exactly the plant calls the
 co-simulation made (actuator commands, parts placed and removed) at the same simulated times, and steps
@@ -23,11 +24,12 @@ from typing import Any
 from benchmarks.harness import Settings, figure, progress
 
 SIM_S = 60
-PLANT_CALLS = ("actuate", "place", "remove", "hold", "release", "knock_off", "operate", "jam_piston")
+PLANT_CALLS = ("actuate", "place", "remove", "hold", "release", "knock_off", "operate", "jam_piston", "set_ambient")
 WORKLOADS = (
     ("shuttle", "4.3.5 reference", "CONV1"),
     ("several", "4.3.6 reference", "CONV1"),
     ("aligner", "4.3.12 reference", "ALIGN"),
+    ("sorter", "4.3.17 reference", "SORT"),
 )
 
 
@@ -56,6 +58,9 @@ def _cosim(workload: str, seconds: int) -> tuple[float, Any, list[tuple[int, str
         exercise, scenario = get("4.3.5"), _scenario(seconds)
     elif workload == "aligner":
         exercise, scenario = get("4.3.12"), _aligner(seconds)
+    elif workload == "sorter":
+        exercise = get("4.3.17")
+        scenario = exercise.scenario("six mixed")
     else:
         exercise = get("4.3.6")
         scenario = exercise.scenario("five objects")

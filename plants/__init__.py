@@ -10,6 +10,7 @@ from plants.components import StationOccupiedError
 from plants.conveyors import Conv1, Conv2x2, Conv3, ConveyorLine
 from plants.machine import Machine
 from plants.panel import Panel
+from plants.sort import Sort
 
 RIGS: dict[str, Callable[..., object]] = {
     "PANEL": Panel,
@@ -18,6 +19,18 @@ RIGS: dict[str, Callable[..., object]] = {
     "CONV2x2": Conv2x2,
     "MACHINE": Machine,
     "ALIGN": Align,
+    "SORT": Sort,
 }
 
-__all__ = ["RIGS", "Align", "Conv1", "Conv2x2", "Conv3", "ConveyorLine", "Machine", "Panel", "StationOccupiedError"]
+__all__ = [
+    "RIGS",
+    "Align",
+    "Conv1",
+    "Conv2x2",
+    "Conv3",
+    "ConveyorLine",
+    "Machine",
+    "Panel",
+    "Sort",
+    "StationOccupiedError",
+]

@@ -1,6 +1,6 @@
 """Bins (magazines) beside a machine: zones that record every part that lands in them.
 
-A bin is a static sensor rectangle; a part whose centre enters it is **in** the bin: ``part in bin`` (subject: the
+A bin is a static sensor rectangle; a part that reaches it is **in** the bin: ``part in bin`` (subject: the
 bin, data: the part's properties worth grading, e.g. its ``colour``), once per part. The rig then takes the part
 out of the physics (it lies in the bin) with :meth:`Bins.landed`'s answer. ``contents`` keeps what each bin holds,
 in order, for the checks and the drawing.
@@ -18,7 +18,10 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+import pymunk
+
 from plants.components import draw
+from plants.components.collide import BEAM_CAT, CT_BEAM, PART_CAT
 from plants.components.component import Host
 from plcsim.plant import Drawable, SignalSpec
 
@@ -42,6 +45,14 @@ class Bins:
 
     def reset(self, host: Host) -> bool:
         self.contents: dict[str, list[str]] = {k: [] for k in self.bins}
+        if host.space is not None:  # in a space: each bin is a sensor zone; a part touching it has landed there
+            for k, (x0, y0, x1, y1) in self.bins.items():
+                shape = pymunk.Poly(host.space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+                shape.sensor = True
+                shape.collision_type = CT_BEAM
+                shape.filter = pymunk.ShapeFilter(categories=BEAM_CAT, mask=PART_CAT)
+                shape.owner = _Zone(self, k)
+                host.space.add(shape)
         return False
 
     def which(self, x: float, y: float) -> str | None:
@@ -52,7 +63,9 @@ class Bins:
         return None
 
     def landed(self, host: Host, bin_name: str, pid: str, props: Mapping[str, Any]) -> None:
-        """Record that part ``pid`` (with these properties) lies in ``bin_name``."""
+        """Record that part ``pid`` (with these properties) lies in ``bin_name`` (once per part)."""
+        if any(pid in parts for parts in self.contents.values()):
+            return
         self.contents[bin_name].append(pid)
         host.emit("part in bin", bin_name, pid, **{k: props[k] for k in GRADED if k in props})
 
@@ -74,3 +87,16 @@ class Bins:
             draw.label(f"bins/{k}/count", 0.5 * (x0 + x1), y1 - 8.0, str(len(self.contents[k])))
             for k, (x0, y0, x1, y1) in self.bins.items()
         ]
+
+
+class _Zone:
+    """The sensor zone of one bin: the top view's collision callback calls ``enter``/``leave``."""
+
+    def __init__(self, bins: Bins, name: str) -> None:
+        self.bins, self.name = bins, name
+
+    def enter(self, host: Host, part: Any) -> None:
+        self.bins.landed(host, self.name, part.id, part.props)
+
+    def leave(self, host: Host, pid: str) -> None:
+        """A part stays recorded where it landed."""

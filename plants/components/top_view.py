@@ -117,6 +117,34 @@ class SpotSensor:
         return [draw.circle(f"sensors/{self.name}", self.x + self.dx, self.y, self.radius, color, self.name)]
 
 
+class Beam(SpotSensor):
+    """A light barrier across a belt seen from above: True while a part interrupts the line x, y0..y1."""
+
+    def __init__(self, name: str, x: float, y0: float, y1: float, *, width: float = 2.0, doc: str = "") -> None:
+        super().__init__(name, x, 0.5 * (y0 + y1), 0.5 * width, doc or f"light barrier at x = {x:g} mm")
+        self.y0, self.y1 = float(y0), float(y1)
+
+    def _attach(self, host: Any) -> None:
+        x, hw = self.x + self.dx, self.radius
+        shape = pymunk.Poly(
+            host.space.static_body, [(x - hw, self.y0), (x + hw, self.y0), (x + hw, self.y1), (x - hw, self.y1)]
+        )
+        shape.sensor = True
+        shape.collision_type = CT_BEAM
+        shape.filter = pymunk.ShapeFilter(categories=BEAM_CAT, mask=PART_CAT)
+        shape.owner = self
+        host.space.add(shape)
+        self.shape = shape
+
+    def static_drawables(self) -> list[Drawable]:
+        return [draw.label(f"sensors/{self.name}/label", self.x, self.y1 + 6.0, self.name)]
+
+    def dynamic_drawables(self) -> list[Drawable]:
+        color = draw.BEAM_CUT if self.parts else draw.BEAM_FREE
+        x = self.x + self.dx
+        return [draw.line(f"sensors/{self.name}", [(x, self.y0 - 4.0), (x, self.y1 + 4.0)], color, self.name)]
+
+
 class Fence:
     """A fixed straight fence (a static segment) parts are pushed against."""
 
@@ -278,22 +306,39 @@ class TopViewPlant:
         spec = properties.pop("spec", self.workpiece)
         x, y, a = self.pose_at(st, float(offset_mm), float(angle_deg))
         p = TopPart(part, spec, x, y, a, properties)
+        bb = p.shape.cache_bb()
         for other in self.parts.values():
-            if p.shape.shapes_collide(other.shape).points:
+            if bb.intersects(other.shape.bb):  # the bounding boxes: an operator keeps a hand's width apart
                 raise ValueError(f"{self.name}: cannot place {part} at {station}: part {other.id} is there")
-        mass = spec.mass_g / 1000.0
-        pivot = pymunk.PivotJoint(self.space.static_body, p.body, (x, y))
-        pivot.max_bias, pivot.max_force = 0.0, self.friction * mass * G
-        gear = pymunk.GearJoint(self.space.static_body, p.body, 0.0, 1.0)
-        gear.max_bias, gear.max_force = 0.0, self.friction * mass * G * (spec.length + spec.depth) / 6.0
-        self.space.add(p.body, p.shape, pivot, gear)
+        self.space.add(p.body, p.shape)
         self.parts[part] = p
-        self._joints[part] = (pivot, gear)
+        self._tie(p, self.support_at(x, y))
         self._still = False
         data = {"x": x, "y": y, "angle_deg": float(angle_deg), "offset_mm": float(offset_mm)}
         data.update({k: v for k, v in properties.items() if isinstance(v, int | float | str)})
         self.emit("part placed", station, part, **data)
         return part
+
+    def support_at(self, x: float, y: float) -> pymunk.Body:
+        """The body a part placed at (x, y) rests on: the table here; a rig with a belt gives the belt's."""
+        return self.space.static_body
+
+    def support(self, pid: str, body: pymunk.Body) -> None:
+        """Part ``pid`` now rests on ``body`` (it slid off a belt onto the table)."""
+        p = self.parts.get(pid)
+        if p is not None:
+            self.space.remove(*self._joints.pop(pid))
+            self._tie(p, body)
+
+    def _tie(self, p: TopPart, body: pymunk.Body) -> None:
+        """The friction joints between a part and what it rests on."""
+        mass, spec = p.spec.mass_g / 1000.0, p.spec
+        pivot = pymunk.PivotJoint(body, p.body, tuple(p.body.position))
+        pivot.max_bias, pivot.max_force = 0.0, self.friction * mass * G
+        gear = pymunk.GearJoint(body, p.body, 0.0, 1.0)
+        gear.max_bias, gear.max_force = 0.0, self.friction * mass * G * (spec.length + spec.depth) / 6.0
+        self.space.add(pivot, gear)
+        self._joints[p.id] = (pivot, gear)
 
     def remove(self, target: str) -> None:
         """Take a part away (by id, or the part nearest the station)."""
