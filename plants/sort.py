@@ -30,6 +30,10 @@ Stations: ``OS1`` (a part centred on the entry barrier, ``offset_mm`` along the 
 
 from __future__ import annotations
 
+from typing import Any
+
+import pymunk
+
 from plants.components.bins import Bins
 from plants.components.colour_sensor import ColourSensor
 from plants.components.compressor import Compressor
@@ -45,6 +49,7 @@ BELT_LENGTH, HALF_WIDTH = 500.0, 30.0
 BARRIERS = {"OS1_Vstup": 30.0, "OS2_Detekcia": 120.0, "OS3_Farba1": 210.0, "OS4_Farba2": 310.0, "OS5_Farba3": 410.0}
 PISTONS = {"Piest1_Farba1": 245.0, "Piest2_Farba2": 345.0, "Piest3_Farba3": 445.0}
 COLOURS = {1: 5000.0, 2: 13000.0, 3: 21000.0}
+RGB = {1: (245, 245, 240), 2: (215, 45, 40), 3: (40, 80, 215)}  # white, red, blue: how a part is drawn
 
 SET_AMBIENT = RigVerb(
     "set_ambient",
@@ -100,7 +105,14 @@ class Sort(TopViewPlant):
             seed=seed,
         )
 
-    def support_at(self, x: float, y: float):
+    def place(self, station: str, **kw: Any) -> str:
+        """Put a part at ``station`` (``colour=1|2|3``: drawn white, red or blue)."""
+        colour = kw.get("colour")
+        if colour in RGB:
+            kw.setdefault("color", RGB[colour])
+        return super().place(station, **kw)
+
+    def support_at(self, x: float, y: float) -> pymunk.Body:
         """A part placed on the belt rides on it."""
         x0, y0, x1, y1 = self.belt.area
         return self.belt.body if x0 <= x <= x1 and y0 <= y <= y1 else self.space.static_body

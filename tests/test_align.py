@@ -1,5 +1,6 @@
-"""ALIGN (plants/align.py) and exercise 4.3.12: the physics the grading relies on, and every shipped solution on
-seeds 1..20 (the reference and solution 2 pass; each wrong one fails on the check that explains its flaw)."""
+"""ALIGN (plants/align.py) and exercise 4.3.12: the physics the grading relies on.
+
+Every shipped solution of 4.3.12 is graded on the seeds 1..20 by tests/test_seeds.py."""
 
 from __future__ import annotations
 
@@ -7,10 +8,8 @@ import pytest
 
 from exercises import get
 from plants.align import Align
-from plcsim.grading import grade
 
 MS = 1_000_000
-SEEDS = range(1, 21)
 
 
 def stroke(a: Align) -> tuple[int, int]:
@@ -77,19 +76,3 @@ def test_the_crooked_placement_is_drawn_from_the_seed():
     assert poses[1][0] == poses[1][1] != poses[2][0]
     offset, angle = poses[2][0]
     assert 0 <= offset <= 15 and -15 <= angle <= 15
-
-
-EXERCISE = get("4.3.12")
-
-
-@pytest.mark.parametrize("solution", EXERCISE.solutions, ids=[s.name for s in EXERCISE.solutions])
-def test_every_solution_on_twenty_seeds(solution):
-    for seed in SEEDS:
-        report = grade(EXERCISE, solution.path, seed=seed)
-        assert report.error is None, report.error
-        failed = {c.check for c in report.failed()}
-        if solution.kind == "wrong":
-            missing = set(solution.fails) - failed
-            assert not missing, f"seed {seed}: {solution.name} should fail {sorted(missing)}; failed {sorted(failed)}"
-        else:
-            assert report.passed, f"seed {seed}: " + "; ".join(f"{c.scenario}: {c.message}" for c in report.failed())
