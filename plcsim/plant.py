@@ -83,8 +83,10 @@ class PlantEvent:
     ``kind`` is one of a small vocabulary checks can rely on: ``part placed``, ``part removed``,
     ``part entered``, ``part left`` (a sensor zone, ``subject`` = the sensor), ``part fell off``,
     ``end stop hit``, ``part jammed``, ``part released``, ``part knocked off``, ``motor jammed``,
-    ``interlock violated``, ``button pressed``, ``button released``. A plant declares the kinds it can
-    emit as a class attribute ``EVENTS`` (a set of strings) and the subjects they can name (a part's id
+    ``interlock violated``, ``button pressed``, ``button released``; the component rigs add ``axis stalled``,
+    ``piston extended``, ``piston retracted``, ``piston jammed``, ``compressor failed``, ``part in bin`` and
+    ``alignment measured`` (``data`` carries what a check grades: ``event_data(kind, key)``). A plant declares
+    the kinds it can emit as a class attribute ``EVENTS`` (a set of strings) and the subjects they can name (a part's id
     aside) with a method ``event_subjects()``; an exercise then refuses, when it is loaded, a check or
     trigger waiting for an event the plant never emits, or for one about a name it does not have.
     """

@@ -23,7 +23,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from plcsim.errors import ExerciseError, PlcError, defined_at, did_you_mean
+from plcsim.errors import ConfigurationError, ExerciseError, PlcError, defined_at, did_you_mean
 from plcsim.literals import format_ns, to_ns
 from plcsim.plant import MOTOR_JAM, OPERATOR, PART_FAULTS, PARTS, SENSOR_SHIFT
 
@@ -587,6 +587,12 @@ def plant_vocabulary(plant: Any) -> dict[str, Any]:
     ``verbs`` (with their valid targets) arguments of :func:`name_problems` (all None for no plant)."""
     if plant is None:
         return {"events": None, "subjects": None, "capabilities": None, "verbs": None}
+    missing = [m for m in ("EVENTS", "CAPABILITIES", "VERBS", "event_subjects") if not hasattr(plant, m)]
+    if missing:
+        raise ConfigurationError(
+            f"the plant {getattr(plant, 'name', plant)!r} does not declare {missing}: a plant declares its event "
+            "kinds, capabilities and rig verbs (see plcsim.plant.Plant)"
+        )
     return {
         "events": sorted(plant.EVENTS),
         "subjects": sorted(plant.event_subjects()),

@@ -162,3 +162,14 @@ def test_a_piston_moves_out_only_once_the_compressor_has_built_30_percent():
     while not [e for e in plant.events if e.kind == "piston extended"]:
         plant.step(MS)
     assert plant.now_ns - t0 < 1000 * MS
+
+
+def test_a_plant_that_declares_nothing_is_refused_with_the_reason():
+    from types import SimpleNamespace
+
+    from plcsim.errors import ConfigurationError
+    from plcsim.scenario import plant_vocabulary
+
+    old = SimpleNamespace(name="OLD", VERBS={}, event_subjects=set)  # a plant of the old protocol
+    with pytest.raises(ConfigurationError, match=r"'OLD' does not declare \['EVENTS', 'CAPABILITIES'\]"):
+        plant_vocabulary(old)
