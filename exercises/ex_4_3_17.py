@@ -9,7 +9,7 @@ Where each object ends is the plant's record (``part in bin`` with the object's 
 from __future__ import annotations
 
 from exercises._common import solution
-from plants.sort import SET_AMBIENT, Sort
+from plants.sort import FAIL_COMPRESSOR, SET_AMBIENT, Sort
 from plcsim.check import all_of, any_of, count, durations, event, event_data, final, never, not_, off
 from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, place
@@ -28,6 +28,7 @@ ANY_OCCUPIED = any_of(*OCCUPANCY)
 THREE = "three colours"
 SIX = "six mixed"
 AMBIENT = "ambient light"
+NO_AIR = "compressor fails"
 SORTED = (THREE, SIX, AMBIENT)
 
 
@@ -96,6 +97,13 @@ EXERCISE = Exercise(
             duration="18s",
             description="daylight adds 1500 raw to every colour reading (the intervals must allow for it)",
         ),
+        Scenario(
+            NO_AIR,
+            FAIL_COMPRESSOR("Kompresor", t="0s"),
+            *loads((1,)),
+            duration="10s",
+            description="the compressor runs but builds no pressure: the piston cannot move, the object ends unsorted",
+        ),
     ],
     checks=[
         # criterion 1
@@ -103,6 +111,12 @@ EXERCISE = Exercise(
         only(event_data("part in bin", "colour", "bin2").equals(2).named("bin 2 receives colour 2 only"), *SORTED),
         only(event_data("part in bin", "colour", "bin3").equals(3).named("bin 3 receives colour 3 only"), *SORTED),
         only(count(event("part in bin", "unsorted")).equals(0).named("no object ends unsorted"), *SORTED),
+        only(
+            durations("Piest1_Farba1")
+            .between("1s - 2 scans", "1s + 2 scans")
+            .named("with no air the pulse is 1 s too"),
+            NO_AIR,
+        ),
         # criterion 2, within 1 scan (the compressor rung runs before the piston rungs)
         never(all_of(ANY_PISTON, off("Kompresor")))
         .for_more_than("1 scan")
@@ -150,6 +164,7 @@ EXERCISE = Exercise(
         "are used (D1_VPRED for 'Dopravník', OS3_Farba1… for 'OS2_Farba 1'…, names without spaces). Colour means and "
         "noise as §5.8 (σ 500 raw); the intervals of the reference are §5.8's. Criteria 2 and 4 are checked within 1 "
         "scan (spec §4 item 1). Criterion 5 (occupancy matches the objects) and 6 (one piston at a time) are not "
-        "graded yet; neither are the out-of-range colour, too small spacing and compressor-fault scenarios."
+        "graded yet; neither are the out-of-range colour and too-small spacing scenarios. With the compressor failed "
+        "the program cannot tell (the task gives no pressure switch): it is graded on its outputs only."
     ),
 )
