@@ -16,7 +16,8 @@ Parameters are the proposals of ``spec/exercises.md`` §5.8 (mm, y up, the belt 
   5 N at full pressure; they move only above 30 % of full pressure;
 * Kompresor: pressure τ 0.1 s up, 0.5 s down (the pistons' ``supply``); rig verb ``fail_compressor``;
 * bins bin1…bin3 beyond the belt's -y edge in front of each piston (x ± 40 mm), ``unsorted`` after the belt end:
-  ``part in bin`` (data ``colour``) when a part reaches one.
+  ``part in bin`` (data ``colour``) when a part reaches one; 0.6 s later it lies still there and leaves the physics
+  (it is still drawn).
 
 Stations: ``OS1`` (a part centred on the entry barrier, ``offset_mm`` along the belt).
 
@@ -49,6 +50,7 @@ BELT_LENGTH, HALF_WIDTH = 500.0, 30.0
 BARRIERS = {"OS1_Vstup": 30.0, "OS2_Detekcia": 120.0, "OS3_Farba1": 210.0, "OS4_Farba2": 310.0, "OS5_Farba3": 410.0}
 PISTONS = {"Piest1_Farba1": 245.0, "Piest2_Farba2": 345.0, "Piest3_Farba3": 445.0}
 COLOURS = {1: 5000.0, 2: 13000.0, 3: 21000.0}
+SETTLE_NS = 600_000_000  # a part that reached a bin has come to rest there after this long: it leaves the physics
 RGB = {1: (245, 245, 240), 2: (215, 45, 40), 3: (40, 80, 215)}  # white, red, blue: how a part is drawn
 
 SET_AMBIENT = RigVerb(
@@ -104,6 +106,23 @@ class Sort(TopViewPlant):
             workpiece=PIECE,
             seed=seed,
         )
+
+    def reset(self, *, seed: int | None = None) -> None:
+        super().reset(seed=seed)
+        self._settling: list[tuple[int, str]] = []  # (when, part): parts in a bin, taken out of the physics then
+
+    def emit(self, kind: str, subject: str, part: str | None = None, **data: Any) -> None:
+        super().emit(kind, subject, part, **data)
+        if kind == "part in bin" and part is not None:
+            self._settling.append((self.now_ns + SETTLE_NS, part))
+
+    def step(self, dt_ns: int) -> None:
+        """One step; parts that have lain in a bin for 0.6 s stop being simulated (they cost the solver)."""
+        super().step(dt_ns)
+        while self._settling and self._settling[0][0] <= self.now_ns:
+            _, pid = self._settling.pop(0)
+            if pid in self.parts:
+                self.retire(pid)
 
     def place(self, station: str, **kw: Any) -> str:
         """Put a part at ``station`` (``colour=1|2|3``: drawn white, red or blue)."""

@@ -35,9 +35,11 @@ def test_a_piston_fired_as_the_part_leaves_its_barrier_pushes_it_into_its_bin():
     run_until(s, "OS3_Farba1", False)  # "occupied and the sensor free": the part has just passed
     s.actuate("Kompresor", True)
     s.actuate("Piest1_Farba1", True)
-    for _ in range(1000):
+    for _ in range(2000):
         s.step(MS)
     assert [(e.subject, e.part, e.data) for e in s.events if e.kind == "part in bin"] == [("bin1", "p", {"colour": 1})]
+    # at rest in the bin it has left the physics, and is still drawn there
+    assert "p" not in s.parts and [d.path for d in s.dynamic_drawables() if d.path == "parts/p"] == ["parts/p"]
 
 
 def test_without_air_the_piston_stays_back_and_the_part_ends_unsorted():

@@ -251,6 +251,7 @@ class TopViewPlant:
         self.space.iterations = 10
         self.space.on_collision(CT_PART, CT_BEAM, begin=self._spot_begin, separate=self._spot_separate)
         self.parts: dict[str, TopPart] = {}
+        self.retired: dict[str, Drawable] = {}  # parts out of play (in a bin): drawn where they lie, not simulated
         self._joints: dict[str, tuple] = {}
         self._next_id = 1
         self._still = True
@@ -354,6 +355,16 @@ class TopViewPlant:
         del self.parts[p.id]
         self._still = False
 
+    def retire(self, pid: str) -> None:
+        """Take part ``pid`` out of the physics where it lies (it is done: in a bin); it is still drawn there."""
+        p = self.parts.pop(pid)
+        self.retired[pid] = Drawable(
+            f"parts/{pid}", "polygon", p.corners(), tuple(p.props.get("color", draw.PART)), text=pid
+        )
+        p.shape.part = None
+        self.space.remove(p.shape, p.body, *self._joints.pop(pid))
+        self._still = False
+
     def measure_part(self, p: TopPart) -> dict[str, float]:
         """The rig's measurement of a part (its pose here); a rig adds what its task grades."""
         x, y = p.body.position
@@ -421,4 +432,4 @@ class TopViewPlant:
             Drawable(f"parts/{pid}", "polygon", p.corners(), tuple(p.props.get("color", draw.PART)), text=pid)
             for pid, p in self.parts.items()
         ]
-        return out + self.assembly.dynamic_drawables()
+        return [*self.retired.values(), *out, *self.assembly.dynamic_drawables()]
