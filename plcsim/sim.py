@@ -227,6 +227,7 @@ class Simulation:
             while t < end_ns and not self.paused:
                 if t >= actions.next_due:
                     actions.apply_due(t)
+                    self._frame_still = False  # an operator's action may change the picture of a still machine
                 if read_inputs is not None:
                     read_inputs(inputs, t)
                 run_cpu(t + dt)
@@ -247,6 +248,7 @@ class Simulation:
                         trace.add_plant_events(events)
                         actions.on_events(events)
                         events.clear()
+                        self._frame_still = False  # something happened on a still machine: draw it
                 if cpu.output_version != self._out_version:
                     self._out_version = cpu.output_version
                     if wiring is not None:
@@ -268,7 +270,8 @@ class Simulation:
             self.now = t
 
     def _sample_frame(self, t: int, quiet: Callable[[], bool] | None) -> None:
-        """Record the plant's shapes; a quiescent plant looks the same as at its last frame, so one is enough."""
+        """Record the plant's shapes; a quiescent plant looks the same as at its last frame, so one is enough
+        (unless something happened in it since: a part placed on or taken from a still table)."""
         still = quiet is not None and quiet()
         if not (still and self._frame_still):
             self.trace.add_frame(t, self.plant.dynamic_drawables())  # type: ignore[union-attr]
