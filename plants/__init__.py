@@ -6,10 +6,12 @@ The rigs are registered with plcsim by their plant ids of ``spec/exercises.md`` 
 
 from collections.abc import Callable, Iterator, Mapping
 
+from plants.align import Align
 from plants.components import StationOccupiedError
 from plants.conveyors import Conv1, Conv2x2, Conv3, ConveyorLine
 from plants.machine import Machine
 from plants.panel import Panel
+from plants.sort import Sort
 from plcsim import registry
 
 
@@ -30,4 +32,15 @@ class _Registered(Mapping[str, Callable[..., object]]):
 
 RIGS: Mapping[str, Callable[..., object]] = _Registered()
 
-__all__ = ["RIGS", "Conv1", "Conv2x2", "Conv3", "ConveyorLine", "Machine", "Panel", "StationOccupiedError"]
+__all__ = [
+    "RIGS",
+    "Align",
+    "Conv1",
+    "Conv2x2",
+    "Conv3",
+    "ConveyorLine",
+    "Machine",
+    "Panel",
+    "Sort",
+    "StationOccupiedError",
+]

@@ -36,9 +36,9 @@ from plcsim.config import RUN
 from plcsim.controller import Controller
 from plcsim.errors import ConfigurationError, PlcError
 from plcsim.literals import format_ns, to_ns
-from plcsim.plant import Plant
+from plcsim.plant import QUIESCENCE, Plant, capable, stations_of
 from plcsim.recorder import Recorder
-from plcsim.scenario import Scenario, check_names
+from plcsim.scenario import Scenario, check_names, plant_vocabulary
 from plcsim.trace import Trace, TraceEvent
 from plcsim.wiring import Wire, Wiring
 
@@ -131,7 +131,7 @@ class Simulation:
 
     def _check_scenario(self, scenario: Scenario) -> None:
         plant = self.plant
-        stations = list(plant.stations) if plant else []
+        stations = list(stations_of(plant))
         buttons = [n for n, s in plant.signals.items() if s.operator] if plant else list(self.cpu.inputs)
         sensors = [n for n, s in plant.signals.items() if s.direction == "sensor"] if plant else []
         actuators = [n for n, s in plant.signals.items() if s.direction == "actuator"] if plant else []
@@ -146,6 +146,7 @@ class Simulation:
             tags=[e.name for e in self.cpu.table],
             actuators=actuators,
             sensors=sensors,
+            **plant_vocabulary(plant),
         )
 
     # -- running --------------------------------------------------------------------------------
@@ -214,7 +215,7 @@ class Simulation:
         plant_step = plant.step if plant is not None else None
         events = plant.events if plant is not None else []
         sensors = plant.sensors if plant is not None else {}
-        quiet = getattr(plant, "quiescent", None) if self.fast_forward else None
+        quiet = plant.quiescent if self.fast_forward and capable(plant, QUIESCENCE) else None
         dt = self.dt_ns
         t = start = self.now
         report_every = max(dt, (end_ns - t) // 200) if progress is not None and end_ns < NEVER else NEVER
@@ -227,6 +228,7 @@ class Simulation:
             while t < end_ns and not self.paused:
                 if t >= actions.next_due:
                     actions.apply_due(t)
+                    self._frame_still = False  # an operator's action may change the picture of a still machine
                 if read_inputs is not None:
                     read_inputs(inputs, t)
                 run_cpu(t + dt)
@@ -247,6 +249,7 @@ class Simulation:
                         trace.add_plant_events(events)
                         actions.on_events(events)
                         events.clear()
+                        self._frame_still = False  # something happened on a still machine: draw it
                 if cpu.output_version != self._out_version:
                     self._out_version = cpu.output_version
                     if wiring is not None:
@@ -268,7 +271,8 @@ class Simulation:
             self.now = t
 
     def _sample_frame(self, t: int, quiet: Callable[[], bool] | None) -> None:
-        """Record the plant's shapes; a quiescent plant looks the same as at its last frame, so one is enough."""
+        """Record the plant's shapes; a quiescent plant looks the same as at its last frame, so one is enough
+        (unless something happened in it since: a part placed on or taken from a still table)."""
         still = quiet is not None and quiet()
         if not (still and self._frame_still):
             self.trace.add_frame(t, self.plant.dynamic_drawables())  # type: ignore[union-attr]

@@ -1,0 +1,175 @@
+"""The component protocol: a rig built from components, its declarations, faults and rig-supplied verbs."""
+
+from __future__ import annotations
+
+import pytest
+
+from plants.components import Axis, LimitSwitch
+from plants.conveyors import BarrierLayout, BeltLayout, ConveyorLine
+from plcsim import CPU, Tag
+from plcsim.check import action, count, event
+from plcsim.errors import ExerciseError
+from plcsim.plant import check_plant
+from plcsim.scenario import RigVerb, Scenario, place
+from plcsim.sim import Simulation
+from plcsim.wiring import Wire
+
+MS = 1_000_000
+
+
+class PressLine(ConveyorLine):
+    """A belt with a press ram on a kinematic axis (the shape of PUNCH), and one rig verb."""
+
+    VERBS = {"jam_ram": RigVerb("jam_ram", "jam_ram", "axis", "jam the ram {target}", targets="axes")}
+
+    def __init__(self) -> None:
+        self.ram = Axis(
+            "RAM",
+            0.0,
+            39.0,
+            start=3.0,
+            speed=25.0,
+            plus="DOLE",
+            minus="HORE",
+            cams=[LimitSwitch("KS1", 2.0, 4.0), LimitSwitch("KS2", 35.0, 37.0)],
+            drawing=(215.0, 105.0, 0.0, -1.0, 20.0, 30.0),
+        )
+        self.axes = {"RAM": self.ram}
+        super().__init__(
+            "PRESSLINE", [BeltLayout("M1", "M1", 280.0)], [BarrierLayout("OS1", "M1", 45.0)], components=[self.ram]
+        )
+
+    def jam_ram(self, target: str) -> None:
+        self.jam_motor(target, True)
+
+
+def test_a_rig_with_a_component_keeps_the_protocol():
+    plant = PressLine()
+    summary = check_plant(plant)
+    assert {"DOLE", "HORE", "KS1", "KS2"} <= set(plant.signals)
+    assert {"axis stalled", "interlock violated", "motor jammed"} <= plant.EVENTS
+    assert "RAM" in plant.event_subjects()
+    assert summary["drawables"] > 0
+
+
+def test_the_axis_moves_while_the_belt_idles_and_stalls_at_its_end_stop():
+    plant = PressLine()
+    assert plant.quiescent()
+    plant.actuate("DOLE", True)
+    assert not plant.quiescent()
+    while not plant.sensors["KS2"]:
+        plant.step(MS)
+    assert plant.now_ns == 1281 * MS and not plant.sensors["KS1"]  # 32 mm at 25 mm/s
+    for _ in range(200):
+        plant.step(MS)
+    assert [(e.kind, e.subject, e.data["end"]) for e in plant.events] == [("axis stalled", "RAM", "hi")]
+    plant.actuate("DOLE", False)
+    plant.step(MS)
+    assert plant.quiescent()  # settled: the idle steps can be skipped
+
+
+def test_a_shifted_cam_is_seen_at_once():
+    plant = PressLine()
+    assert plant.sensors["KS1"]
+    plant.shift_sensor("KS1", 5.0)
+    plant.step(MS)
+    assert not plant.sensors["KS1"]
+
+
+def run(scenario: Scenario) -> Simulation:
+    tags = {"OS1": Tag("%I0.0"), "KS2": Tag("%I0.1"), "DOLE": Tag("%Q0.0"), "M1": Tag("%Q0.1")}
+    cpu = CPU(tags, "def OB1(t):\n    t.DOLE = not t.KS2\n")
+    wires = [Wire("OS1", "OS1"), Wire("KS2", "KS2"), Wire("DOLE", "DOLE"), Wire("M1", "M1")]
+    sim = Simulation(cpu, PressLine(), wires, scenario)
+    sim.run()
+    return sim
+
+
+def test_a_rig_verb_needs_no_edit_in_plcsim():
+    jam_ram = PressLine.VERBS["jam_ram"]
+    sim = run(Scenario("jam", place("p1", at="OS1", t="10ms"), jam_ram("RAM", t="500ms"), duration="2s"))
+    tr = sim.trace
+    assert [(e.kind, e.subject) for e in tr.events_of(source="scenario")] == [("place", "p1"), ("jam_ram", "RAM")]
+    assert [e.kind for e in tr.events_of("motor jammed")] == ["motor jammed"]
+    assert not tr.column("KS2").any()  # jammed half-way down: KS2 is never reached
+    from plcsim.check import evaluate_all
+
+    verdicts = evaluate_all([count(action("jam_ram")).equals(1), count(event("motor jammed", "RAM")).equals(1)], tr)
+    assert all(v.passed for _, v in verdicts), verdicts
+
+
+def test_a_rig_verb_with_a_bad_target_or_on_a_rig_without_it_is_refused_before_the_run():
+    jam_ram = PressLine.VERBS["jam_ram"]
+    with pytest.raises(ExerciseError, match=r"jam the ram RAMM at 1 s: no axis 'RAMM'; did you mean 'RAM'\?"):
+        run(Scenario("bad", jam_ram("RAMM", t="1s"), duration="2s"))
+    other = RigVerb("jam_piston", "jam_piston", "piston", "jam piston {target}", targets="pistons")
+    with pytest.raises(ExerciseError, match=r"the rig has no verb 'jam_piston'.*its verbs: jam_ram"):
+        run(Scenario("bad", other("P1", t="1s"), duration="2s"))
+
+
+def test_the_colour_sensor_reads_the_part_over_its_spot_with_noise_and_ambient_light():
+    from plants.components.colour_sensor import ColourSensor
+    from plants.components.top_view import TopViewPlant
+    from plants.components.workpiece import WorkpieceSpec
+    from plcsim.plant import Station
+
+    sensor = ColourSensor("FARBA", 0.0, 0.0, colours={1: 5000, 2: 13000, 3: 21000}, noise=500.0)
+    plant = TopViewPlant(
+        "COLOUR",
+        components=[sensor],
+        stations=[Station("spot", 0.0, 0.0)],
+        table=(-50.0, -50.0, 50.0, 50.0),
+        workpiece=WorkpieceSpec(length=25.0, depth=25.0, mass_g=10.0),
+    )
+    assert plant.signals["FARBA"].kind == "analog" and plant.sensors["FARBA"] == 26500  # the bare belt
+    plant.place("spot", part="red", colour=2)
+    readings = []
+    for _ in range(400):
+        plant.step(MS)
+        readings.append(plant.sensors["FARBA"])
+    covered = readings[1:]  # the spot sees the part from the step after the placement
+    mean, spread = sum(covered) / len(covered), max(covered) - min(covered)
+    assert abs(mean - 13000) < 100 and 500 < spread < 8 * 500  # σ 500: the spread of 400 draws is ≈ 6 σ
+    sensor.set_ambient(plant, 1500.0)
+    plant.step(MS)
+    assert abs(plant.sensors["FARBA"] - 14500) < 2500
+    plant.remove("red")
+    plant.step(MS)
+    assert plant.sensors["FARBA"] == 27648  # 26500 + 1500, clipped to the module's range
+
+
+def test_a_piston_moves_out_only_once_the_compressor_has_built_30_percent():
+    from plants.components.compressor import Compressor
+    from plants.components.piston import Piston
+    from plants.components.top_view import TopViewPlant
+    from plants.components.workpiece import WorkpieceSpec
+
+    air = Compressor("K", "Kompresor")
+    piston = Piston("P1", "Piest1", origin=(0.0, 0.0), direction=(0.0, 1.0), stroke=70.0, supply=air.fraction)
+    plant = TopViewPlant(
+        "PNEU", components=[air, piston], stations=[], table=(-50, -20, 50, 100), workpiece=WorkpieceSpec()
+    )
+    plant.actuate("Piest1", True)
+    for _ in range(500):
+        plant.step(MS)
+    assert piston.s < 0.01  # the valve is open, but there is no air
+    plant.actuate("Kompresor", True)
+    t0 = plant.now_ns
+    while piston.s < 1.0 and plant.now_ns - t0 < 1000 * MS:
+        plant.step(MS)
+    # p = 1 - exp(-t/0.1 s) passes 0.3 after 36 ms; the plate then covers 1 mm at 80 mm/s in ≈ 13 ms
+    assert 45 * MS <= plant.now_ns - t0 <= 55 * MS
+    while not [e for e in plant.events if e.kind == "piston extended"]:
+        plant.step(MS)
+    assert plant.now_ns - t0 < 1000 * MS
+
+
+def test_a_plant_that_declares_nothing_is_refused_with_the_reason():
+    from types import SimpleNamespace
+
+    from plcsim.errors import ConfigurationError
+    from plcsim.scenario import plant_vocabulary
+
+    old = SimpleNamespace(name="OLD", VERBS={}, event_subjects=set)  # a plant of the old protocol
+    with pytest.raises(ConfigurationError, match=r"'OLD' does not declare \['EVENTS', 'CAPABILITIES'\]"):
+        plant_vocabulary(old)
