@@ -9,6 +9,7 @@ from plants.components import StationOccupiedError
 from plants.conveyors import Conv1, Conv2x2, Conv3, ConveyorLine
 from plants.machine import Machine
 from plants.panel import Panel
+from plants.punch import Punch
 
 RIGS: dict[str, Callable[..., object]] = {
     "PANEL": Panel,
@@ -16,6 +17,7 @@ RIGS: dict[str, Callable[..., object]] = {
     "CONV3": Conv3,
     "CONV2x2": Conv2x2,
     "MACHINE": Machine,
+    "PUNCH": Punch,
 }
 
-__all__ = ["RIGS", "Conv1", "Conv2x2", "Conv3", "ConveyorLine", "Machine", "Panel", "StationOccupiedError"]
+__all__ = ["RIGS", "Conv1", "Conv2x2", "Conv3", "ConveyorLine", "Machine", "Panel", "Punch", "StationOccupiedError"]
