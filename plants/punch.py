@@ -16,20 +16,25 @@ Side view, y up, mm. Parameters are the proposals of ``spec/exercises.md`` §5.1
 Stations: ``OS1`` (a part centred on the OS1 beam: the loading place) and ``OS2`` (a part put straight under the
 press, centred 5 mm downstream of the press axis so that, with the operator's ±5 mm, it always cuts the OS2 beam).
 
-Events besides the belt line's: ``press stroke`` (the tip passed 75 mm going down: ``part`` = the part whose
-extent contains the press axis, or none, ``data["offset_mm"]`` = its centre's distance from the axis),
-``motor stalled`` (the press, driven, cannot move: ``data["against"]`` = ``upper end stop``, ``lower end stop``,
-``part p1`` or ``jam``), ``part damaged`` (a part moved under the lowered tool, or the ram was driven into it) and
-``interlock violated`` (subject ``M1`` or ``M2``, ``data["reason"]``): both directions of M1 or of M2 commanded
-(the motor then stops), the belt driven while the press is away from the top, the press driven while the belt is
-driven. Commands are taken at the start of the next physics step, all outputs of a scan together, so the order in
-which one scan's outputs reach the plant never makes a violation (``R M1_VZAD`` and ``S M1_VPRED`` in one scan
-reverse the belt cleanly).
+Events besides the belt line's:
 
-Nominal figures, measured at dt = 1 ms by ``tests/test_punch.py`` (§5.10 in brackets): OS1↓ → OS2↓ forward with
-the part placed centred on OS1 ≈ 4.36 s (4.3 s); OS2 → OS1 return ≈ 3.9 s (3.9 s); one stroke KS1 → KS2 → KS1
+* ``press stroke``: the tip passed 75 mm going down; ``part`` = the part whose extent contains the press axis (or
+  none), ``data["offset_mm"]`` = its centre's distance from the axis;
+* ``motor stalled``: the press is driven against an end stop or a part (``data["against"]`` = ``upper end stop``,
+  ``lower end stop`` or ``part p1``);
+* ``part damaged``: a part moved under the lowered tool, or the ram was driven into it;
+* ``interlock violated`` (subject ``M1`` or ``M2``, ``data["reason"]``): both directions of M1 or of M2 commanded
+  (the motor then stops), the belt driven while the press is away from the top, the press driven while the belt
+  is driven.
+
+Commands are taken at the start of the next physics step, all outputs of a scan together, so the order in which
+one scan's outputs reach the plant never makes a violation (``R M1_VZAD`` and ``S M1_VPRED`` in one scan reverse
+the belt cleanly).
+
+Nominal figures, measured at dt = 1 ms by ``tests/test_punch_plant.py`` (§5.10 in brackets): OS1 → OS2 forward
+with the part placed centred on OS1 ≈ 4.28 s (4.3 s); OS2 → OS1 return ≈ 3.9 s (3.9 s); one stroke KS1 → KS2 → KS1
 ≈ 2.7 s (2.7 s). Changes to §5.10: the returning part is stopped by its *leading* (left) face, so it rests
-spanning ≈ 42–72 mm, not 14–44 mm (§5.10 counted the trailing face); the tip's rest heights are 105.5 / 71.5 mm
+spanning ≈ 44–74 mm, not 14–44 mm (§5.10 counted the trailing face); the tip's rest heights are 105.5 / 71.5 mm
 (the 0.5 mm coast of the drive past each switch's make point).
 
 >>> p = Punch()
@@ -242,8 +247,14 @@ class Punch(SideViewPlant):
         out = super().dynamic_drawables()
         press, cache = self.press, self._drawable_cache
         half = press.tool_width / 2
-        color = STALL_COLOR if press.stalled is not None else RAM
-        out.append(Drawable("press/ram", "polygon", draw.rect(press.x - half, press.z, press.x + half, 145.0), color))
+        key = ("ram", press.z, press.stalled is not None)
+        ram = cache.get(key) if press.v == 0.0 else None
+        if ram is None:
+            color = STALL_COLOR if press.stalled is not None else RAM
+            ram = Drawable("press/ram", "polygon", draw.rect(press.x - half, press.z, press.x + half, 145.0), color)
+            if press.v == 0.0:  # a ram at rest: one drawable per pose, shared by every frame
+                cache[key] = ram
+        out.append(ram)
         for sw, z in ((press.upper, press.top), (press.lower, press.bottom)):
             key = ("switch", sw.name, sw.actuated)
             d = cache.get(key)

@@ -6,9 +6,9 @@ The ram is kinematic (no pymunk body): its tool tip height ``z`` (mm above the b
 first-order speed response, ``v → command · speed`` with time constant τ, so a ram stopped at a limit switch
 coasts ``v·τ`` (0.5 mm at 25 mm/s, τ = 20 ms, a small worm-geared motor). It cannot leave
 ``[z_min, z_max]`` (the end stops, ``overtravel`` mm beyond each switch) and it cannot go below the top of a part
-under the tool. A motor that is commanded but cannot move — at an end stop, on a part, or jammed (a fault) —
-**stalls**: the ram stands still and the press reports ``motor stalled`` once per stall, with what it stalled
-against.
+under the tool. A motor that is driven against an end stop or a part **stalls**: the ram stands still and the
+press reports ``motor stalled`` once per stall, with what it stalled against. A jammed ram (a fault the scenario
+injects, reported by the plant as ``motor jammed``) stands wherever it was, driven or not.
 
 The limit switches are cams along the travel: the upper one is actuated from its make point ``top`` up to and past
 the upper end stop, the lower one from ``bottom`` down past the lower end stop (a roller lever stays pressed in
@@ -146,7 +146,9 @@ class Press:
     @property
     def idle(self) -> bool:
         """Nothing to advance: at rest, and not driven or blocked for good (an end stop, a jam; a part may go away)."""
-        return self.v == 0.0 and (self.direction == 0 or self.stalled in ("upper end stop", "lower end stop", "jam"))
+        return self.v == 0.0 and (
+            self.direction == 0 or self.jammed or self.stalled in ("upper end stop", "lower end stop")
+        )
 
     def command(self, direction: int) -> None:
         """Drive up (+1), down (-1) or stop (0); a change of command ends a stall."""
@@ -159,7 +161,6 @@ class Press:
     def jam(self, jammed: bool) -> None:
         """Fault: the ram is blocked where it is (a jammed guide); freed, it moves again as commanded."""
         self.jammed = bool(jammed)
-        self.stalled = None
         if self.jammed:
             self.v = 0.0
 
@@ -172,8 +173,6 @@ class Press:
         tip is low enough to reach a part.
         """
         if self.jammed:
-            if self.direction != 0 and self.stalled is None:
-                self._stall("jam", now_ns, events)
             return False
         if dt != self._dt:
             self._dt = dt
