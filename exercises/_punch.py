@@ -244,7 +244,13 @@ def parameter(tag: str, times: int = 1) -> Callable[[Trace, int], int]:
     return lambda trace, t: int(trace.value_at(tag, t)) * times
 
 
+def product(first: str, second: str) -> Callable[[Trace, int], int]:
+    """The product of two parameter tags when the object was loaded (strokes = moves × strokes per move)."""
+    return lambda trace, t: int(trace.value_at(first, t)) * int(trace.value_at(second, t))
+
+
 def constant(n: int) -> Callable[[Trace, int], int]:
+    """The same number for every object (one stroke, one removal)."""
     return lambda _trace, _t: n
 
 
@@ -290,6 +296,36 @@ class AwaitingStroke(Condition):
 
     def describe(self) -> str:
         return "an object under the press waits for its stroke"
+
+    def signals(self) -> list[str]:
+        return ["OS2"]
+
+    def names(self) -> Names:
+        return Names(("OS2",), (("part entered", "OS2"), ("part left", "OS2"), ("press stroke", None)))
+
+
+@dataclass(frozen=True)
+class Punched(Condition):
+    """True in the scans in which an object lies in the OS2 beam and has had all the press strokes its stay
+    requires (``required(trace, stay_start_ns)``): the object the belt must now carry back."""
+
+    required: Callable[[Trace, int], int]
+    label: str = "all its strokes"
+
+    def rows(self, ctx: Context) -> np.ndarray:
+        times = ctx.trace.times
+        out = np.zeros(len(times), dtype=bool)
+        strokes = strokes_of(ctx.trace)
+        for part, t0, t1 in visits(ctx.trace):
+            mine = [t for t, p in strokes if p == part and t0 <= t <= t1]
+            n = self.required(ctx.trace, t0)
+            if len(mine) >= n:
+                done = mine[n - 1] if n > 0 else t0
+                out |= (times >= done) & (times < t1)
+        return out
+
+    def describe(self) -> str:
+        return f"the object under the press has had {self.label}"
 
     def signals(self) -> list[str]:
         return ["OS2"]
@@ -348,4 +384,53 @@ def belt_waits_for_the_press() -> list[Check]:
             "the belt never runs while the press is away from KS1 or moving"
         ),
         never(event("interlock violated")).named("the machine reports no interlock violation"),
+    ]
+
+
+def punching_checks(
+    strokes_per_visit: Callable[[Trace, int], int],
+    per_object: Callable[[Trace, int], int],
+    label: str,
+    reads: tuple[str, ...],
+) -> list[Check]:
+    """The checks 6.3.4 and 6.3.5 share: strokes per stay and per object, the reverse after the last stroke,
+    the moves, the belt waiting for the press, the shuttle of 6.3.1 and the interlocks."""
+    return [
+        # criterion 1
+        PerVisit(
+            f"every stay under the press gets {label}", strokes_per_visit, reads=tuple(r for r in reads if "M2" in r)
+        ),
+        PerObject(
+            f"every object is punched {' × '.join(reads)} times",
+            "was punched",
+            strokes_on,
+            per_object,
+            reads=reads,
+            events=(("press stroke", None),),
+        ),
+        PerObject(
+            "every object is carried to OS2 M1_ZIADANY_POCET times",
+            "arrived at OS2",
+            arrivals,
+            parameter("M1_ZIADANY_POCET"),
+            reads=("M1_ZIADANY_POCET",),
+            events=(("part entered", "OS2"),),
+        ),
+        # criterion 2
+        *belt_waits_for_the_press(),
+        # criterion 3
+        never(all_of(Punched(strokes_per_visit, label), "KS1", off("M1_VZAD"))).named(
+            "the belt reverses within 1 scan once the press is back at KS1 after the last stroke"
+        ),
+        # criterion 4
+        PerObject(
+            "every object waits at OS1 until it is taken away",
+            "was taken away at OS1",
+            removed,
+            constant(1),
+            events=(("part removed", None),),
+        ),
+        *shuttle(reverse_at_os2=False),
+        *interlocks(),
+        *machine_safe(),
     ]
