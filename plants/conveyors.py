@@ -59,6 +59,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 from plants.components.belt import Belt
+from plants.components.component import Component
 from plants.components.light_barrier import LightBarrier
 from plants.components.panel import OperatorPanel
 from plants.components.side_view import DeadPlate, EndStop, SideViewPlant
@@ -102,6 +103,7 @@ class ConveyorLine(SideViewPlant):
         top: belt surface height above the base (mm).
         beam_height, beam_width: light-barrier beam above the belt surface and its spot width (mm).
         lamps, buttons, switches: an optional operator panel beside the line (e.g. ``lamps=("LED",)`` for 4.3.8).
+        components: further pieces on the component protocol (a press ram's axis), see ``SideViewPlant``.
         seed: initial seed (the rig has no randomness of its own).
     """
 
@@ -123,6 +125,7 @@ class ConveyorLine(SideViewPlant):
         lamps: Iterable[str] = (),
         buttons: Iterable[str] = (),
         switches: Iterable[str] = (),
+        components: Iterable[Component] = (),
         seed: int = 0,
     ) -> None:
         if end not in ("open", "stop"):
@@ -182,6 +185,7 @@ class ConveyorLine(SideViewPlant):
             end_stops=stops,
             dead_plates=plates,
             panel=panel,
+            components=components,
             signal_docs=docs,
             seed=seed,
         )

@@ -18,7 +18,8 @@ import math
 from typing import Any
 
 from plants.components import draw
-from plcsim.plant import Drawable, PlantEvent, SignalSpec, Station
+from plcsim.plant import OBSERVABLES, QUIESCENCE, Drawable, PlantEvent, SignalSpec
+from plcsim.scenario import RigVerb
 
 SPINDLE_RPM = 120.0  # drawn rotation while on (one turn per 0.5 s)
 
@@ -28,6 +29,8 @@ class Machine:
 
     view = "side"
     EVENTS: frozenset[str] = frozenset()  # no sensors, no parts: nothing happens that a check could see
+    CAPABILITIES = frozenset({QUIESCENCE, OBSERVABLES})
+    VERBS: dict[str, RigVerb] = {}
 
     def __init__(self, *, name: str = "MACHINE", actuator: str = "STROJ_ZAP", seed: int = 0) -> None:
         self.name = name
@@ -35,7 +38,6 @@ class Machine:
         self.signals: dict[str, SignalSpec] = {
             actuator: SignalSpec(actuator, "actuator", doc="machine (spindle) on while True; no running feedback"),
         }
-        self.stations: dict[str, Station] = {}
         self.sensors: dict[str, Any] = {}
         self.events: list[PlantEvent] = []
         self.seed = seed
@@ -76,14 +78,6 @@ class Machine:
         self.now_ns += dt_ns
         if self.on:
             self.on_time_ns += dt_ns
-
-    def operate(self, name: str, value: Any) -> None:
-        raise KeyError(f"{self.name} has no operator controls")
-
-    def _no_parts(self, *_args: Any, **_kw: Any) -> Any:
-        raise ValueError(f"{self.name} has no stations and no parts")
-
-    place = remove = hold = release = knock_off = _no_parts
 
     def observables(self) -> dict[str, float]:
         return {"on_time_s": self.on_time_s, "starts": float(self.starts)}

@@ -15,7 +15,8 @@ from collections.abc import Iterable
 from typing import Any
 
 from plants.components.panel import OperatorPanel
-from plcsim.plant import Drawable, PlantEvent, SignalSpec, Station
+from plcsim.plant import OBSERVABLES, OPERATOR, QUIESCENCE, Drawable, PlantEvent, SignalSpec
+from plcsim.scenario import RigVerb
 
 DEFAULT_BUTTONS = ("TLACIDLO", "TL", "TLACIDLO_ZAP", "TLACIDLO_VYP")
 DEFAULT_SWITCHES = ("PREPINAC",)
@@ -31,6 +32,8 @@ class Panel:
 
     view = "panel"
     EVENTS = OperatorPanel.EVENTS
+    CAPABILITIES = frozenset({OPERATOR, QUIESCENCE, OBSERVABLES})
+    VERBS: dict[str, RigVerb] = {}
 
     def __init__(
         self,
@@ -45,7 +48,6 @@ class Panel:
         self.name = name
         self.panel = OperatorPanel(buttons, switches, lamps, docs=docs)
         self.signals: dict[str, SignalSpec] = {s.name: s for s in self.panel.specs()}
-        self.stations: dict[str, Station] = {}
         self.sensors: dict[str, Any] = {}
         self.events: list[PlantEvent] = []
         self.seed = seed
@@ -85,11 +87,6 @@ class Panel:
         if dt_ns <= 0:
             raise ValueError(f"step: dt_ns must be > 0, not {dt_ns}")
         self.now_ns += dt_ns
-
-    def _no_parts(self, *_args: Any, **_kw: Any) -> Any:
-        raise ValueError(f"{self.name} is an operator panel: it has no stations and no parts")
-
-    place = remove = hold = release = knock_off = _no_parts
 
     def static_drawables(self) -> list[Drawable]:
         return self.panel.static_drawables("panel")

@@ -21,6 +21,7 @@ from typing import Any
 
 from plcsim.clock import NEVER
 from plcsim.errors import ConfigurationError, ExerciseError, PlcError
+from plcsim.plant import MOTOR_JAM, SENSOR_SHIFT, capable, rig_verbs, stations_of
 from plcsim.scenario import Action, Planned, Scenario, ScenarioError, plan
 from plcsim.trace import Trace, TraceEvent
 
@@ -59,9 +60,7 @@ class ActionRunner:
 
     def _ready(self, item: Planned) -> bool:
         action = item.action
-        return not (
-            action.verb in PART_VERBS and action.target in self._scenario_parts and action.target not in self.parts
-        )
+        return not (_on_part(action) and action.target in self._scenario_parts and action.target not in self.parts)
 
     def _refresh_polled(self) -> None:
         self.polled = [item for item in self._held if self._ready(item)]
@@ -134,9 +133,9 @@ class ActionRunner:
         except (PlcError, KeyError, ValueError) as exc:
             reason = exc.args[0] if isinstance(exc, KeyError) and exc.args else str(exc)
             where = f"{action.describe()} ({action.defined_at})"
-            if verb not in STATE_VERBS:
+            if verb not in STATE_VERBS and not (action.rig is not None and action.rig.state):
                 raise ExerciseError(f"{action.defined_at}: {action.describe()}: {reason}") from exc
-            if verb in PART_VERBS and action.target in self.parts:
+            if _on_part(action) and action.target in self.parts:
                 reason = f"{action.target} is no longer in the plant ({reason})"
             self.trace.add_event(TraceEvent(t, "scenario", "action failed", action.target, None, f"{where}: {reason}"))
             return
@@ -152,11 +151,17 @@ class ActionRunner:
         plant, cpu = self.plant, self.cpu
         verb, target, args = action.verb, action.target, action.args
         detail = ""
-        if verb == "place":
-            if plant is None or args["station"] not in plant.stations:  # not the run's doing: never possible
+        if action.rig is not None:
+            if action.rig is not rig_verbs(plant).get(verb):
+                raise ConfigurationError(f"the plant {getattr(plant, 'name', None)} does not bring the verb {verb!r}")
+            getattr(plant, action.rig.method)(self.parts.get(target, target), **args)
+        elif verb == "place":
+            if args["station"] not in stations_of(plant):  # not the run's doing: never possible
                 station = args["station"]
                 raise ScenarioError(f"{action.defined_at}: {action.describe()}: there is no station {station!r}")
-            offset, angle = args["offset_mm"], args["angle_deg"]
+            offset, angle = (
+                self.rng.uniform(*v) if isinstance(v, tuple) else v for v in (args["offset_mm"], args["angle_deg"])
+            )
             if args["noise"]:
                 offset = self.rng.uniform(-POSE_NOISE_MM, POSE_NOISE_MM) if offset is None else offset
                 angle = self.rng.uniform(-POSE_NOISE_DEG, POSE_NOISE_DEG) if angle is None else angle
@@ -182,9 +187,9 @@ class ActionRunner:
         elif verb in ("stick", "break_wire", "chatter", "clear"):
             self._wiring_fault(verb, target, args)
         elif verb == "shift":
-            _plant_method(plant, "shift_sensor")(target, args["mm"])
+            _plant_method(plant, "shift_sensor", SENSOR_SHIFT)(target, args["mm"])
         elif verb in ("jam_motor", "free_motor"):
-            _plant_method(plant, "jam_motor")(target, verb == "jam_motor")
+            _plant_method(plant, "jam_motor", MOTOR_JAM)(target, verb == "jam_motor")
         elif verb == "stop_cpu":
             cpu.stop(reason="mode switch")
         elif verb == "start_cpu":
@@ -209,8 +214,13 @@ class ActionRunner:
             wiring.clear(target)
 
 
-def _plant_method(plant: Any, method: str) -> Callable[..., Any]:
-    fn = getattr(plant, method, None)
-    if fn is None:
-        raise ConfigurationError(f"the plant {getattr(plant, 'name', None)} does not support {method}")
-    return fn
+def _plant_method(plant: Any, method: str, capability: str) -> Callable[..., Any]:
+    """The plant's method for a verb; the plant must declare the capability it belongs to."""
+    if not capable(plant, capability):
+        raise ConfigurationError(f"the plant {getattr(plant, 'name', None)} does not declare {capability!r}")
+    return getattr(plant, method)
+
+
+def _on_part(action: Action) -> bool:
+    """Whether the action's target is a part of the scenario."""
+    return action.verb in PART_VERBS or (action.rig is not None and action.rig.on_parts)

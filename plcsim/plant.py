@@ -2,23 +2,45 @@
 
 A plant knows nothing of PLCs. It has named signals: **sensors** it reports (a light barrier is
 ``True`` while its beam is interrupted, a button while pressed, a limit switch while actuated) and
-**actuators** it obeys (a belt motor, a lamp). The wiring maps them to PLC addresses (NO/NC,
-scaling, faults). Units are mm, g and s; time is integer nanoseconds.
+**actuators** it obeys (a belt motor, a lamp, a piston valve). The wiring maps them to PLC addresses
+(NO/NC, scaling, faults). Units are mm, g and s; time is integer nanoseconds.
+
+The **core** (:class:`Plant`) is what every machine has, a press or a crane as much as a belt line:
+signals, reset, actuate, step, events and drawing. Everything else is an optional **capability**
+the plant *declares* in ``CAPABILITIES`` (a frozenset of the names below), never found by probing
+for methods; :func:`capable` reads the declaration and :func:`check_plant` checks it is kept:
+
+* :data:`PARTS` — ``stations``, ``place(station, ...)``, ``remove(target)`` (:class:`HandlesParts`);
+* :data:`PART_FAULTS` — ``hold``, ``release``, ``knock_off`` on a part (:class:`PartFaults`; a belt line);
+* :data:`OPERATOR` — ``operate(name, value)`` for its buttons and switches (:class:`Operated`);
+* :data:`QUIESCENCE` — ``quiescent()``: True when a step would only advance the clock, so any number
+  of steps may be taken at once (the simulator then skips an idle machine's steps);
+* :data:`SENSOR_SHIFT` — ``shift_sensor(name, dx_mm)``; :data:`MOTOR_JAM` — ``jam_motor(name, jammed)``;
+* :data:`OBSERVABLES` — ``observables() -> dict[str, float]``: analog values worth tracing.
+
+A plant declares its **event vocabulary**: ``EVENTS`` (every kind it can emit) and
+``event_subjects()`` (every name its events can be about, a part's id aside). An exercise whose check
+or scenario waits for an event its rig never emits is refused when it is loaded.
+
+A rig may bring its own **scenario verbs** (``set_colour``, ``jam_piston``): ``VERBS`` maps each name
+to a :class:`plcsim.scenario.RigVerb`, which builds the action and names the plant method that
+carries it out, so that adding one needs no edit in ``plcsim``.
 
 Performance contract (the co-simulation budget depends on it): :attr:`Plant.sensors` is a live
 dict that :meth:`Plant.step` keeps up to date, so reading it costs a dict lookup; :meth:`Plant.actuate`
-is called only when an output changes. A plant may also offer ``quiescent() -> bool``: True when a
-step would only advance its clock (nothing moves), so that any number of steps can be taken at
-once; the simulator then skips the idle steps between PLC events.
+is called only when an output changes.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any, Literal, Protocol, runtime_checkable
+from typing import TYPE_CHECKING, Any, Literal, Protocol, runtime_checkable
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from plcsim.scenario import RigVerb
 
 
 @dataclass(frozen=True)
@@ -95,17 +117,46 @@ class Drawable:
     text: str = ""
 
 
+PARTS = "parts"
+"""Capability: ``stations``, ``place`` and ``remove`` (an operator puts parts in and takes them out)."""
+PART_FAULTS = "part faults"
+"""Capability: ``hold``, ``release`` and ``knock_off`` (a part jammed on a belt, or pushed off it)."""
+OPERATOR = "operator"
+"""Capability: ``operate`` (buttons and switches: sensors with ``operator=True``)."""
+QUIESCENCE = "quiescence"
+"""Capability: ``quiescent()``, True when a step would only advance the clock."""
+SENSOR_SHIFT = "sensor shift"
+"""Capability: ``shift_sensor(name, dx_mm)``, a sensor mounted off its place (a fault)."""
+MOTOR_JAM = "motor jam"
+"""Capability: ``jam_motor(name, jammed)``, a blocked drive (a fault)."""
+OBSERVABLES = "observables"
+"""Capability: ``observables()``, analog values worth tracing that are not signals."""
+
+CAPABILITY_MEMBERS: dict[str, tuple[str, ...]] = {
+    PARTS: ("stations", "place", "remove"),
+    PART_FAULTS: ("hold", "release", "knock_off"),
+    OPERATOR: ("operate",),
+    QUIESCENCE: ("quiescent",),
+    SENSOR_SHIFT: ("shift_sensor",),
+    MOTOR_JAM: ("jam_motor",),
+    OBSERVABLES: ("observables",),
+}
+"""The members each capability stands for (what a plant declaring it must have)."""
+
+
 @runtime_checkable
 class Plant(Protocol):
-    """A machine model the CPU can control through the wiring."""
+    """The core every machine model has; see the module docstring for the optional capabilities."""
 
     name: str
     view: Literal["side", "top", "panel"]
     signals: Mapping[str, SignalSpec]
-    stations: Mapping[str, Station]
     sensors: dict[str, Any]
     now_ns: int
     events: list[PlantEvent]
+    EVENTS: frozenset[str] | set[str]
+    CAPABILITIES: frozenset[str]
+    VERBS: Mapping[str, RigVerb]
 
     def reset(self, *, seed: int | None = None) -> None:
         """Back to the initial state (no parts, actuators off, time 0)."""
@@ -116,8 +167,23 @@ class Plant(Protocol):
     def step(self, dt_ns: int) -> None:
         """Advance the physics by ``dt_ns`` and update :attr:`sensors` and :attr:`events`."""
 
-    def operate(self, name: str, value: Any) -> None:
-        """The operator sets a button or switch (a sensor with ``operator=True``)."""
+    def event_subjects(self) -> set[str]:
+        """Every name its events can be about (a sensor, a station, a piston), a part's id aside."""
+
+    def static_drawables(self) -> list[Drawable]:
+        """Shapes that never move (frame, belts, sensor positions), drawn once."""
+
+    def dynamic_drawables(self) -> list[Drawable]:
+        """Shapes of the current state (parts, lit beams, lamps, piston rods)."""
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        """The area to show: (xmin, ymin, xmax, ymax) in mm."""
+
+
+class HandlesParts(Protocol):
+    """Capability :data:`PARTS`: an operator puts parts at named stations and takes them away."""
+
+    stations: Mapping[str, Station]
 
     def place(
         self,
@@ -133,6 +199,10 @@ class Plant(Protocol):
     def remove(self, target: str) -> None:
         """Take away a part, by id or by the station it is at."""
 
+
+class PartFaults(Protocol):
+    """Capability :data:`PART_FAULTS`: a part jammed where it is, freed, or pushed off the machine."""
+
     def hold(self, target: str) -> None:
         """Jam a part: it is held in place (a belt slips under it) until :meth:`release`."""
 
@@ -142,14 +212,33 @@ class Plant(Protocol):
     def knock_off(self, target: str) -> None:
         """Push a part off the machine (it falls off the belt)."""
 
-    def static_drawables(self) -> list[Drawable]:
-        """Shapes that never move (frame, belts, sensor positions), drawn once."""
 
-    def dynamic_drawables(self) -> list[Drawable]:
-        """Shapes of the current state (parts, lit beams, lamps, piston rods)."""
+class Operated(Protocol):
+    """Capability :data:`OPERATOR`: buttons and switches the operator sets."""
 
-    def bounds(self) -> tuple[float, float, float, float]:
-        """The area to show: (xmin, ymin, xmax, ymax) in mm."""
+    def operate(self, name: str, value: Any) -> None:
+        """The operator sets a button or switch (a sensor with ``operator=True``)."""
+
+
+def capable(plant: Any, capability: str) -> bool:
+    """Whether ``plant`` declares ``capability`` (False for no plant).
+
+    >>> class Press:
+    ...     CAPABILITIES = frozenset({QUIESCENCE})
+    >>> capable(Press(), QUIESCENCE), capable(Press(), PARTS), capable(None, PARTS)
+    (True, False, False)
+    """
+    return plant is not None and capability in plant.CAPABILITIES
+
+
+def stations_of(plant: Any) -> dict[str, Station]:
+    """The plant's stations (none if it does not handle parts)."""
+    return dict(plant.stations) if capable(plant, PARTS) else {}
+
+
+def rig_verbs(plant: Any) -> Mapping[str, RigVerb]:
+    """The scenario verbs the plant brings (none for no plant)."""
+    return {} if plant is None else plant.VERBS
 
 
 def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int = 1_000_000) -> dict[str, Any]:
@@ -162,14 +251,16 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
     * the declared signals: names match their keys, directions and kinds are valid, every sensor is in
       ``plant.sensors`` and ``plant.sensors`` holds nothing undeclared (so every declared signal is a sensor there or
       an actuator); stations are :class:`Station` objects under their own names;
+    * the declarations: ``EVENTS`` is a set of strings; every capability in ``CAPABILITIES`` is known and the plant
+      has its members; every rig verb in ``VERBS`` is a :class:`~plcsim.scenario.RigVerb` under its own name whose
+      method the plant has;
     * ``reset`` gives time 0, no events and the same sensors; ``operate`` sets operator sensors;
     * every ``step`` advances ``now_ns`` by exactly ``dt_ns``;
-    * events are :class:`PlantEvent` with integer times in ``[0, now_ns]``, in time order;
+    * events are :class:`PlantEvent` with integer times in ``[0, now_ns]``, in time order, of a declared kind and
+      about a declared subject (or a part);
     * drawables have ``(N, 2)`` finite float points (N ≥ 3 for polygons, ≥ 2 for lines, 1 for circles and labels),
       RGB colours and a path; ``bounds`` is a proper rectangle;
-    * both runs give identical sensors, events and geometry (determinism);
-    * if the plant declares ``EVENTS`` and ``event_subjects()``, every event it emitted is of a declared kind
-      and names a declared subject.
+    * both runs give identical sensors, events and geometry (determinism).
 
     Returns a summary: ``{"signals", "events", "drawables", "digest"}`` (digest = sha256 of the second run).
     """
@@ -182,6 +273,7 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
             problems.append(msg)
 
     need(isinstance(plant, Plant), f"{type(plant).__name__} lacks members of the Plant protocol")
+    _check_declarations(plant, need)
     signals = dict(plant.signals)
     for key, spec in signals.items():
         need(isinstance(spec, SignalSpec), f"signal {key!r}: not a SignalSpec")
@@ -194,7 +286,9 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
     sensor_names = [k for k, s in signals.items() if getattr(s, "direction", None) == "sensor"]
     actuators = [k for k, s in signals.items() if getattr(s, "direction", None) == "actuator"]
     operator = [k for k in sensor_names if signals[k].operator]
-    for key, st in dict(plant.stations).items():
+    need(not operator or capable(plant, OPERATOR), f"operator signals {operator} but no {OPERATOR!r} capability")
+    stations = stations_of(plant)
+    for key, st in stations.items():
         need(isinstance(st, Station) and st.name == key, f"station {key!r}: not a Station of that name")
 
     def check_drawables(where: str, items: list[Drawable]) -> None:
@@ -233,8 +327,8 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
                 plant.actuate(k, True)
             else:
                 plant.actuate(k, 0.5 * (signals[k].lo + signals[k].hi))
-        if plant.stations:
-            plant.place(next(iter(plant.stations)))
+        if stations:
+            plant.place(next(iter(stations)))
         for _ in range(steps):
             t0 = plant.now_ns
             plant.step(dt_ns)
@@ -245,6 +339,7 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
             plant.operate(k, False)
             need(bool(plant.sensors.get(k)) is False, f"operate({k!r}, False) did not clear the sensor")
         last = 0
+        subjects = plant.event_subjects()
         for e in plant.events:
             need(isinstance(e, PlantEvent), f"event {e!r} is not a PlantEvent")
             if not isinstance(e, PlantEvent):
@@ -253,10 +348,8 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
             need(0 <= e.t_ns <= plant.now_ns, f"event {e.kind!r}: t_ns {e.t_ns} outside [0, {plant.now_ns}]")
             need(e.t_ns >= last, f"event {e.kind!r} at {e.t_ns} ns comes after one at {last} ns")
             need(bool(e.kind) and isinstance(e.kind, str), f"event at {e.t_ns} ns has no kind")
-            declared = getattr(plant, "EVENTS", None)
-            need(declared is None or e.kind in declared, f"event {e.kind!r} is not among the declared EVENTS")
-            subjects = plant.event_subjects() if hasattr(plant, "event_subjects") else None
-            need(subjects is None or e.subject in subjects, f"event {e.kind!r}: undeclared subject {e.subject!r}")
+            need(e.kind in plant.EVENTS, f"event {e.kind!r} is not among the declared EVENTS")
+            need(e.subject in subjects, f"event {e.kind!r}: undeclared subject {e.subject!r}")
             last = max(last, e.t_ns)
         static, dynamic = plant.static_drawables(), plant.dynamic_drawables()
         check_drawables("static", static)
@@ -280,3 +373,32 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
         raise AssertionError(f"check_plant({getattr(plant, 'name', plant)!r}):\n  " + "\n  ".join(problems))
     digest = hashlib.sha256(repr(second).encode()).hexdigest()
     return {"signals": len(signals), "events": len(second[3]), "drawables": n_draw, "digest": digest}
+
+
+def _check_declarations(plant: Any, need: Any) -> None:
+    """The plant's declarations: events, capabilities (declared iff their members are there), rig verbs."""
+    from plcsim.scenario import RigVerb
+
+    events = getattr(plant, "EVENTS", None)
+    ok = isinstance(events, (set, frozenset)) and all(isinstance(k, str) and k for k in events)
+    need(ok, f"EVENTS must be a set of event kinds, not {events!r}")
+    declared = getattr(plant, "CAPABILITIES", None)
+    if not isinstance(declared, (set, frozenset)):
+        need(False, f"CAPABILITIES must be a frozenset of {sorted(CAPABILITY_MEMBERS)}, not {declared!r}")
+        declared = frozenset()
+    for cap in sorted(declared):
+        members = CAPABILITY_MEMBERS.get(cap)
+        if members is None:
+            need(False, f"unknown capability {cap!r}; capabilities: {sorted(CAPABILITY_MEMBERS)}")
+            continue
+        missing = [m for m in members if not hasattr(plant, m)]
+        need(not missing, f"declares {cap!r} but lacks {missing}")
+    verbs = getattr(plant, "VERBS", None)
+    if not isinstance(verbs, Mapping):
+        need(False, f"VERBS must be a mapping of rig verbs (empty if none), not {verbs!r}")
+        return
+    for key, verb in verbs.items():
+        if not isinstance(verb, RigVerb) or verb.name != key:
+            need(False, f"VERBS[{key!r}] is not a RigVerb named {key!r}")
+        elif not callable(getattr(plant, verb.method, None)):
+            need(False, f"rig verb {key!r} calls {verb.method!r}, which the plant does not have")

@@ -304,8 +304,11 @@ def _check_table(table: np.ndarray, names: list[str], types: dict[str, str], hor
 
 
 def _event(e: Any, horizon: int, where: str) -> TraceEvent:
-    if not isinstance(e, dict) or set(e) != {"t_ns", "source", "kind", "subject", "part", "detail"}:
+    if not isinstance(e, dict) or set(e) != {"t_ns", "source", "kind", "subject", "part", "detail", "data"}:
         raise InvalidResultError(f"{where}: an event does not have the fields of a trace event")
+    data = e["data"]
+    if not isinstance(data, dict) or len(data) > 64 or not all(_is_datum(k, v) for k, v in data.items()):
+        raise InvalidResultError(f"{where}: an event's data is not a small table of numbers and texts")
     if not _is_int(e["t_ns"]) or not 0 <= e["t_ns"] <= horizon or e["source"] not in EVENT_SOURCES:
         raise InvalidResultError(f"{where}: an event has an impossible time or source")
     return TraceEvent(
@@ -315,7 +318,17 @@ def _event(e: Any, horizon: int, where: str) -> TraceEvent:
         _text(e["subject"], "event subject"),
         _optional_text(e["part"], "event part"),
         _text(e["detail"], "event detail"),
+        dict(data),
     )
+
+
+def _is_datum(key: Any, value: Any) -> bool:
+    """A key and value of a plant event's data: a short name, and a finite number, a bool or a short text."""
+    if not isinstance(key, str) or len(key) > 100:
+        return False
+    if isinstance(value, str):
+        return len(value) <= 1000
+    return isinstance(value, bool | int) or (isinstance(value, float) and math.isfinite(value))
 
 
 def _geometry(trace: Trace, entry: dict[str, Any], horizon: int, where: str) -> None:

@@ -19,12 +19,13 @@ file and line that created it, so a bad name is reported where the instructor wr
 from __future__ import annotations
 
 import random
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 from plcsim.errors import ExerciseError, PlcError, defined_at, did_you_mean
 from plcsim.literals import format_ns, to_ns
+from plcsim.plant import MOTOR_JAM, OPERATOR, PART_FAULTS, PARTS, SENSOR_SHIFT
 
 
 class ScenarioError(ExerciseError):
@@ -102,9 +103,20 @@ class Action:
     delay: TimeSpec = field(default_factory=lambda: TimeSpec(0, 0))
     args: dict[str, Any] = field(default_factory=dict)
     defined_at: str = "?"
+    rig: RigVerb | None = None  # a verb the rig brings (None: one of plcsim's own)
 
     def describe(self) -> str:
-        what = {
+        what = self._core_phrase() if self.rig is None else self.rig.phrase.format(target=self.target, **self.args)
+        if self.when is not None:
+            when = self.when.describe() + (f" + {self.delay}" if self.delay.hi_ns else "")
+        elif "hold" in self.args:  # the release of press(..., hold=...)
+            when = f"{self.args['hold']} after the press"
+        else:
+            when = f"at {self.t}"
+        return f"{what} {when}"
+
+    def _core_phrase(self) -> str:
+        return {
             "place": f"place {self.target!r} at {self.args.get('station')}",
             "press": f"press {self.target}",
             "release": f"release {self.target}",
@@ -125,18 +137,11 @@ class Action:
             "start_cpu": "switch the CPU to RUN",
             "power_cycle": "power the CPU off and on",
         }.get(self.verb, self.verb)
-        if self.when is not None:
-            when = self.when.describe() + (f" + {self.delay}" if self.delay.hi_ns else "")
-        elif "hold" in self.args:  # the release of press(..., hold=...)
-            when = f"{self.args['hold']} after the press"
-        else:
-            when = f"at {self.t}"
-        return f"{what} {when}"
 
     def names(self) -> list[tuple[str, str]]:
         """The names this action relies on, by role: ``[("station", "S1"), ("signal to wait for", "S2")]``."""
         out = [("station", self.args["station"])] if self.verb == "place" else []
-        role = TARGET_ROLES.get(self.verb)
+        role = self.rig.role if self.rig is not None else TARGET_ROLES.get(self.verb)
         if role is not None:
             out.append((role, self.target))
         if self.when is not None and self.when.signal is not None:
@@ -167,7 +172,67 @@ TARGET_ROLES = {
 }
 """What the target of each verb names (the verbs on the CPU have none)."""
 VERBS = (*TARGET_ROLES, "place", "stop_cpu", "start_cpu", "power_cycle")
-"""Every verb of a scenario action (the kinds of the scenario's trace events, with ``action failed``)."""
+"""Every verb of plcsim's own (the kinds of the scenario's trace events, with ``action failed`` and the rig's verbs)."""
+
+VERB_CAPABILITY = {
+    "place": PARTS,
+    "remove": PARTS,
+    "jam": PART_FAULTS,
+    "unjam": PART_FAULTS,
+    "knock_off": PART_FAULTS,
+    "press": OPERATOR,
+    "release": OPERATOR,
+    "switch": OPERATOR,
+    "shift": SENSOR_SHIFT,
+    "jam_motor": MOTOR_JAM,
+    "free_motor": MOTOR_JAM,
+}
+"""The plant capability each of plcsim's verbs needs (a verb on a rig that lacks it is refused at load time)."""
+
+
+@dataclass(frozen=True)
+class RigVerb:
+    """A scenario verb a rig brings (``set_colour``, ``jam_piston``), so that adding one needs no edit in plcsim.
+
+    The rig lists it in its ``VERBS``; the exercise calls it to build an action, like any other verb::
+
+        JAM_PISTON = RigVerb("jam_piston", "jam_piston", "piston", "jam piston {target}", targets="pistons")
+        Scenario("jammed", place("p1", at="table", t="0.5s"), JAM_PISTON("P1", t="1s"), duration="5s")
+
+    Attributes:
+        name: the verb (the kind of its trace event, what ``action(name)`` in a check counts).
+        method: the plant method that carries it out, called as ``method(target, **args)``.
+        role: what the target names (``piston``, ``part``), for messages.
+        phrase: how the action is worded, formatted with ``target`` and the action's keyword arguments.
+        targets: the plant attribute holding the names a target may be (a mapping or a set); empty with
+            ``role="part"``: the target is a part of the scenario (its plant id is passed to the method).
+        state: True if whether it can be done depends on the run (a part that is gone): a failure is then
+            recorded as ``action failed``; otherwise it is the instructor's mistake and raises.
+        doc: what it does, for the rig's documentation.
+    """
+
+    name: str
+    method: str
+    role: str
+    phrase: str
+    targets: str = ""
+    state: bool = False
+    doc: str = ""
+
+    def __call__(
+        self, target: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0, **args: Any
+    ) -> Action:
+        action = _action(self.name, target, t, when, delay, **args)
+        action.rig = self
+        return action
+
+    @property
+    def on_parts(self) -> bool:
+        return self.role == "part" and not self.targets
+
+    def valid_targets(self, plant: Any) -> list[str]:
+        """The names its target may be on ``plant`` (parts aside)."""
+        return [] if self.on_parts else list(getattr(plant, self.targets))
 
 
 def _parse(parse: Any, value: Any, what: str) -> Any:
@@ -229,11 +294,19 @@ def place(
     when: Trigger | None = None,
     delay: Any = 0,
     noise: bool = True,
-    offset_mm: float | None = None,
-    angle_deg: float | None = None,
+    offset_mm: float | tuple[float, float] | None = None,
+    angle_deg: float | tuple[float, float] | None = None,
     **properties: Any,
 ) -> Action:
-    """Put a new part named ``part`` at station ``at`` (with ±5 mm / ±5° pose noise unless noise=False)."""
+    """Put a new part named ``part`` at station ``at`` (with ±5 mm / ±5° pose noise unless noise=False).
+
+    ``offset_mm`` and ``angle_deg`` fix the pose error, or draw it from a range with the scenario's seed:
+    ``place("p1", at="table", offset_mm=(0, 15), angle_deg=(-15, 15))`` (what the offset means is the rig's:
+    along the belt, or away from a fence).
+    """
+    for what, v in (("offset_mm", offset_mm), ("angle_deg", angle_deg)):
+        if isinstance(v, tuple) and not (len(v) == 2 and v[0] <= v[1]):
+            raise ScenarioError(f"{defined_at()}: place {part}: {what}={v!r} must be a number or a (lo, hi) range")
     return _action(
         "place",
         part,
@@ -404,6 +477,8 @@ def check_names(
     sensors: Iterable[str] | None = None,
     events: Iterable[str] | None = None,
     subjects: Iterable[str] | None = None,
+    capabilities: Iterable[str] | None = None,
+    verbs: Mapping[str, Iterable[str]] | None = None,
 ) -> None:
     """Check every name in the scenario before the run, naming the line and the valid choices."""
     for problem in name_problems(
@@ -416,6 +491,8 @@ def check_names(
         sensors=sensors,
         events=events,
         subjects=subjects,
+        capabilities=capabilities,
+        verbs=verbs,
     ):
         raise ScenarioError(": ".join(problem))
 
@@ -431,13 +508,16 @@ def name_problems(
     sensors: Iterable[str] | None = None,
     events: Iterable[str] | None = None,
     subjects: Iterable[str] | None = None,
+    capabilities: Iterable[str] | None = None,
+    verbs: Mapping[str, Iterable[str]] | None = None,
 ) -> list[tuple[str, str]]:
     """Every name of the scenario that does not exist: ``(file:line, "scenario ...: no ...; valid: ...")``.
 
     ``signals`` are what a fault can be put on (plant signals and wired tags), ``sensors`` what a trigger
     waits for (the plant's sensors: nothing else is polled); ``events`` the plant's event vocabulary and
-    ``subjects`` the names its events are about, besides the scenario's parts (None: not declared, not
-    checked).
+    ``subjects`` the names its events are about, besides the scenario's parts; ``capabilities`` what the
+    plant declares (a verb needing another one is refused) and ``verbs`` its rig verbs with their valid
+    targets (None: no plant, not checked).
     """
     signal_list = list(signals)
     sensor_list = list(sensors) if sensors is not None else signal_list
@@ -459,9 +539,19 @@ def name_problems(
     if subjects is not None:
         choices["event subject (a part or plant name)"] = parts + sorted(set(subjects) - set(parts))
     problems = []
+    caps = None if capabilities is None else set(capabilities)
     for a in scenario.actions:
-        for role, name in a.names():
-            valid = choices.get(role)
+        rig_problem = _rig_verb_problem(a, verbs)
+        if rig_problem:
+            problems.append((a.defined_at, f"scenario {scenario.name!r}: {a.describe()}: {rig_problem}"))
+            continue
+        targets = None
+        if a.rig is not None and verbs is not None:
+            targets = parts if a.rig.on_parts else list(verbs[a.verb])
+        found = len(problems)
+        for k, (role, name) in enumerate(a.names()):
+            is_target = a.rig is not None and k == 0  # a rig verb's first name is its target
+            valid = targets if is_target else choices.get(role)
             key = name.split(".")[0].split("[")[0] if role == "tag" else name
             if valid is None or key in valid:
                 continue
@@ -473,4 +563,33 @@ def name_problems(
                     f"{did_you_mean(name, valid)}; valid: {listed}",
                 )
             )
+        need = VERB_CAPABILITY.get(a.verb) if a.rig is None else None
+        if len(problems) == found and caps is not None and need is not None and need not in caps:
+            problems.append(
+                (
+                    a.defined_at,
+                    f"scenario {scenario.name!r}: {a.describe()}: the rig cannot do this "
+                    f"(it does not declare the capability {need!r})",
+                )
+            )
     return problems
+
+
+def _rig_verb_problem(a: Action, verbs: Mapping[str, Iterable[str]] | None) -> str:
+    """Why the rig cannot carry out this rig verb at all ("" if it can, or for one of plcsim's verbs)."""
+    if a.rig is None or verbs is None or a.verb in verbs:
+        return ""
+    return f"the rig has no verb {a.verb!r}{did_you_mean(a.verb, verbs)}; its verbs: {', '.join(verbs) or 'none'}"
+
+
+def plant_vocabulary(plant: Any) -> dict[str, Any]:
+    """What a scenario may ask of ``plant`` beyond its names: the ``events``, ``subjects``, ``capabilities`` and
+    ``verbs`` (with their valid targets) arguments of :func:`name_problems` (all None for no plant)."""
+    if plant is None:
+        return {"events": None, "subjects": None, "capabilities": None, "verbs": None}
+    return {
+        "events": sorted(plant.EVENTS),
+        "subjects": sorted(plant.event_subjects()),
+        "capabilities": sorted(plant.CAPABILITIES),
+        "verbs": {name: verb.valid_targets(plant) for name, verb in plant.VERBS.items()},
+    }

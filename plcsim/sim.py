@@ -35,9 +35,9 @@ from plcsim.clock import NEVER
 from plcsim.cpu import CPU, RUN
 from plcsim.errors import ConfigurationError, PlcError
 from plcsim.literals import format_ns, to_ns
-from plcsim.plant import Plant
+from plcsim.plant import QUIESCENCE, Plant, capable, stations_of
 from plcsim.recorder import Recorder
-from plcsim.scenario import Scenario, check_names
+from plcsim.scenario import Scenario, check_names, plant_vocabulary
 from plcsim.trace import Trace, TraceEvent
 from plcsim.wiring import Wire, Wiring
 
@@ -130,7 +130,7 @@ class Simulation:
 
     def _check_scenario(self, scenario: Scenario) -> None:
         plant = self.plant
-        stations = list(plant.stations) if plant else []
+        stations = list(stations_of(plant))
         buttons = [n for n, s in plant.signals.items() if s.operator] if plant else list(self.cpu.inputs)
         sensors = [n for n, s in plant.signals.items() if s.direction == "sensor"] if plant else []
         actuators = [n for n, s in plant.signals.items() if s.direction == "actuator"] if plant else []
@@ -145,6 +145,7 @@ class Simulation:
             tags=[e.name for e in self.cpu.table],
             actuators=actuators,
             sensors=sensors,
+            **plant_vocabulary(plant),
         )
 
     # -- running --------------------------------------------------------------------------------
@@ -213,7 +214,7 @@ class Simulation:
         plant_step = plant.step if plant is not None else None
         events = plant.events if plant is not None else []
         sensors = plant.sensors if plant is not None else {}
-        quiet = getattr(plant, "quiescent", None) if self.fast_forward else None
+        quiet = plant.quiescent if self.fast_forward and capable(plant, QUIESCENCE) else None
         dt = self.dt_ns
         t = start = self.now
         report_every = max(dt, (end_ns - t) // 200) if progress is not None and end_ns < NEVER else NEVER

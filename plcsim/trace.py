@@ -65,6 +65,7 @@ class TraceEvent:
     subject: str = ""
     part: str | None = None
     detail: str = ""
+    data: dict[str, float | int | str | bool] = field(default_factory=dict)  # a plant event's measurements
 
     def __str__(self) -> str:
         who = f" {self.subject}" if self.subject else ""
@@ -137,7 +138,8 @@ class Trace:
         """Record plant events."""
         for e in events:
             detail = ", ".join(f"{k}={_short(v)}" for k, v in e.data.items()) if e.data else ""
-            self.events.append(TraceEvent(e.t_ns, "plant", e.kind, e.subject, e.part, detail))
+            data = {str(k): _scalar(v) for k, v in e.data.items()} if e.data else {}
+            self.events.append(TraceEvent(e.t_ns, "plant", e.kind, e.subject, e.part, detail, data))
 
     def add_frame(self, t_ns: int, drawables: list[Drawable]) -> None:
         """Record the plant's moving shapes."""
@@ -341,7 +343,8 @@ class Trace:
         import hashlib
 
         h = hashlib.sha256(self.table.tobytes())
-        h.update(json.dumps([asdict(e) for e in self.events]).encode())
+        events = [{k: v for k, v in asdict(e).items() if k != "data"} for e in self.events]  # detail shows the data
+        h.update(json.dumps(events).encode())
         return h.hexdigest()
 
     def to_rrd(self, path: str | Path, **options: Any) -> Path:
@@ -355,6 +358,15 @@ class Trace:
         from plcsim.trace_plot import timing_diagram
 
         return timing_diagram(self, signals, **options)
+
+
+def _scalar(value: Any) -> float | int | str | bool:
+    """A value of a plant event's data as JSON keeps it (a number, a string or a bool; anything else as text)."""
+    if isinstance(value, bool | int | float | str):
+        return value
+    if isinstance(value, np.integer | np.floating | np.bool_):
+        return value.item()
+    return str(value)
 
 
 def _short(value: Any) -> str:

@@ -22,8 +22,9 @@ from plcsim.check import Check, Quantity, Span
 from plcsim.cpu import CPU, CPUConfig
 from plcsim.errors import ExerciseError, PlcError, did_you_mean
 from plcsim.literals import to_ns
+from plcsim.plant import rig_verbs, stations_of
 from plcsim.recorder import default_signals
-from plcsim.scenario import VERBS, Scenario, name_problems
+from plcsim.scenario import VERBS, Scenario, name_problems, plant_vocabulary
 from plcsim.wiring import Wiring
 
 if TYPE_CHECKING:
@@ -84,6 +85,12 @@ class _Validation:
         except Exception as exc:  # noqa: BLE001 - whatever the rig raises is the exercise's mistake
             self.add(home, f"the rig could not be built: {type(exc).__name__}: {exc}")
             return
+        declarations = ("EVENTS", "CAPABILITIES", "VERBS", "event_subjects")
+        undeclared = [m for m in declarations if self.plant is not None and not hasattr(self.plant, m)]
+        if undeclared:
+            self.add(home, f"the rig {self.plant!r} does not declare {undeclared} (see plcsim.plant.Plant)")
+            self.plant = None
+            return
         try:
             self.cpu = CPU(ex.tag_table(), None, CPUConfig(**ex.cpu))
         except (PlcError, TypeError) as exc:
@@ -117,18 +124,19 @@ class _Validation:
                 self.add(home, f"scenario_cpu[{scenario!r}]: {exc}")
 
     @property
-    def plant_events(self) -> list[str] | None:
-        """The events the plant can emit (None: it does not say; no plant: none)."""
-        if self.plant is None:
-            return []
-        declared = getattr(self.plant, "EVENTS", None)
-        return None if declared is None else sorted(declared)
+    def plant_events(self) -> list[str]:
+        """The events the plant can emit (no plant: none)."""
+        return [] if self.plant is None else sorted(self.plant.EVENTS)
 
     @property
     def plant_subjects(self) -> list[str] | None:
-        """The names the plant's events are about, a part's id aside (None: it does not say)."""
-        subjects = getattr(self.plant, "event_subjects", None)
-        return None if subjects is None else sorted(subjects())
+        """The names the plant's events are about, a part's id aside (no plant: not checked)."""
+        return None if self.plant is None else sorted(self.plant.event_subjects())
+
+    @property
+    def plant_verbs(self) -> list[str]:
+        """The scenario verbs the rig brings."""
+        return list(rig_verbs(self.plant))
 
     # -- scenarios ------------------------------------------------------------------------------
 
@@ -140,7 +148,7 @@ class _Validation:
             sensors = [n for n, s in plant.signals.items() if s.direction == "sensor"]
             actuators = [n for n, s in plant.signals.items() if s.direction == "actuator"]
             buttons = [n for n, s in plant.signals.items() if s.operator]
-            stations = list(plant.stations)
+            stations = list(stations_of(plant))
         else:
             sensors, actuators, stations = [], [], []
             buttons = list(cpu.inputs)
@@ -153,8 +161,7 @@ class _Validation:
             tags=tags,
             actuators=actuators,
             sensors=sensors,
-            events=self.plant_events,
-            subjects=self.plant_subjects,
+            **{**plant_vocabulary(plant), "events": self.plant_events},
         ):
             self.add(where, detail)
         for action in scenario.actions:
@@ -212,7 +219,7 @@ class _Validation:
         parts = sorted({a.target for s in applies for a in s.actions if a.verb == "place"})
         plant = getattr(self.plant, "name", "(no plant)")
         for kind, subject in used.events:
-            if events is not None and kind not in events:
+            if kind not in events:
                 self.add(
                     where,
                     f"{label} waits for the plant event {kind!r}, which {plant} never emits"
@@ -260,11 +267,12 @@ class _Validation:
     def _action(self, label: str, where: str, verb: str, target: str | None, applies: list[Scenario]) -> None:
         if verb == "action failed":
             return
-        if verb not in VERBS:
+        verbs = [*VERBS, *self.plant_verbs]
+        if verb not in verbs:
             self.add(
                 where,
                 f"{label} counts the scenario action {verb!r}, which is not an action"
-                f"{did_you_mean(verb, VERBS)}; actions: {_choices(VERBS)}",
+                f"{did_you_mean(verb, verbs)}; actions: {_choices(verbs)}",
             )
             return
         done = sorted({a.target for s in applies for a in s.actions if a.verb == verb})

@@ -43,11 +43,13 @@ class RecordingPlant:
 
     name = "FAKE"
     view = "panel"
+    EVENTS: frozenset = frozenset()
+    CAPABILITIES = frozenset({"operator"})
+    VERBS: dict = {}
 
     def __init__(self, fail_at_ns: int | None = None):
         self.fail_at_ns = fail_at_ns
         self.signals = {"X": SignalSpec("X", "sensor", operator=True), "Y": SignalSpec("Y", "actuator")}
-        self.stations: dict = {}
         self.sensors: dict = {}
         self.events: list = []
         self.actuated: list = []
@@ -75,6 +77,9 @@ class RecordingPlant:
 
     def dynamic_drawables(self):
         return []
+
+    def event_subjects(self):
+        return set()
 
     def bounds(self):
         return (0.0, 0.0, 1.0, 1.0)

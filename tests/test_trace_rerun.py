@@ -39,6 +39,9 @@ class FakeBelt:
 
     name = "fake_belt"
     view = "side"
+    EVENTS = frozenset({"part placed", "part entered", "part left"})
+    CAPABILITIES = frozenset({"parts"})
+    VERBS: dict = {}
     SPEED = 100.0  # mm/s
     WIDTH = 30.0
     BEAMS = {"S1": 20.0, "S2": 200.0}
@@ -79,9 +82,6 @@ class FakeBelt:
                 kind = "part entered" if inside else "part left"
                 self.events.append(PlantEvent(self.now_ns, kind, sensor, inside[0] if inside else None))
 
-    def operate(self, name: str, value: Any) -> None:
-        raise NotImplementedError
-
     def place(
         self,
         station: str,
@@ -98,11 +98,6 @@ class FakeBelt:
 
     def remove(self, target: str) -> None:
         self.parts.pop(target)
-
-    def hold(self, target: str) -> None:
-        raise NotImplementedError
-
-    release = knock_off = hold
 
     def static_drawables(self) -> list[Drawable]:
         return [
@@ -129,6 +124,9 @@ class FakeBelt:
             )
         )
         return out
+
+    def event_subjects(self) -> set[str]:
+        return {"S1", "S2"}
 
     def bounds(self) -> tuple[float, float, float, float]:
         return (0.0, -20.0, 300.0, 100.0)

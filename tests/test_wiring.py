@@ -23,6 +23,9 @@ class Tank:
 
     name = "TANK"
     view = "side"
+    EVENTS: frozenset = frozenset()
+    CAPABILITIES: frozenset = frozenset()
+    VERBS: dict = {}
 
     def __init__(self, level: float = 250.0):
         self.level = level
@@ -32,7 +35,6 @@ class Tank:
             "VALVE": SignalSpec("VALVE", "actuator", "analog", unit="%", lo=0.0, hi=100.0),
             "PUMP": SignalSpec("PUMP", "actuator"),
         }
-        self.stations: dict = {}
         self.sensors: dict = {}
         self.events: list = []
         self.actuated: list = []
@@ -50,14 +52,14 @@ class Tank:
     def step(self, dt_ns):
         self.now_ns += dt_ns
 
-    def operate(self, name, value):
-        raise KeyError(name)
-
     def static_drawables(self):
         return []
 
     def dynamic_drawables(self):
         return []
+
+    def event_subjects(self):
+        return set()
 
     def bounds(self):
         return (0.0, 0.0, 1.0, 1.0)

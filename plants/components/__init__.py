@@ -1,6 +1,9 @@
-"""Reusable parts of the plant models: belt, light barrier, limit switch, workpiece, operator panel, side-view base."""
+"""Reusable parts of the plant models on the component protocol (``component.py``): axis, belt, light barrier,
+limit switch, workpiece, operator panel, the side-view base."""
 
+from plants.components.axis import Axis
 from plants.components.belt import Belt
+from plants.components.component import Assembly, Bench, Component, Host
 from plants.components.light_barrier import LightBarrier
 from plants.components.limit_switch import LimitSwitch
 from plants.components.panel import OperatorPanel
@@ -8,6 +11,11 @@ from plants.components.side_view import DeadPlate, EndStop, SideViewPlant, Stati
 from plants.components.workpiece import STANDARD, Part, WorkpieceSpec
 
 __all__ = [
+    "Assembly",
+    "Axis",
+    "Bench",
+    "Component",
+    "Host",
     "Belt",
     "DeadPlate",
     "EndStop",

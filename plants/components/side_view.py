@@ -42,10 +42,24 @@ from plants.components.collide import (
     PLATE_CAT,
     STOP_CAT,
 )
+from plants.components.component import Assembly, Component
 from plants.components.light_barrier import LightBarrier
 from plants.components.panel import OperatorPanel
 from plants.components.workpiece import STANDARD, Part, WorkpieceSpec
-from plcsim.plant import Drawable, PlantEvent, SignalSpec, Station
+from plcsim.plant import (
+    MOTOR_JAM,
+    OBSERVABLES,
+    OPERATOR,
+    PART_FAULTS,
+    PARTS,
+    QUIESCENCE,
+    SENSOR_SHIFT,
+    Drawable,
+    PlantEvent,
+    SignalSpec,
+    Station,
+)
+from plcsim.scenario import RigVerb
 
 GRAVITY = 9810.0  # mm/s²
 
@@ -143,6 +157,8 @@ class SideViewPlant:
             station is the belt's upstream end and ``offset_mm`` is the position along it) to their belt.
         end_stops, dead_plates: fixed parts of the frame.
         panel: optional operator panel (buttons, switches, lamps) shown beside the machine.
+        components: further pieces of the rig on the component protocol (``plants.components.component``: an
+            axis, a piston); their signals, events and drawings join the rig's, and they are stepped while busy.
         signal_docs: doc strings of the signals (by name).
         seed: initial seed (the belt rigs have no randomness of their own; ``rng`` is offered to subclasses).
         max_step_ns: a ``step`` longer than this is split into equal sub-steps (physics stays stable at coarse scans).
@@ -163,6 +179,10 @@ class SideViewPlant:
         "interlock violated",
     }
     """Every kind of event the rig can emit (the panel's only with a panel)."""
+    CAPABILITIES = frozenset({PARTS, PART_FAULTS, QUIESCENCE, SENSOR_SHIFT, MOTOR_JAM, OBSERVABLES, OPERATOR})
+    """What the rig offers besides the core (operator controls only with a panel)."""
+    VERBS: dict[str, RigVerb] = {}
+    """The rig's own scenario verbs (a subclass adds to a copy of it)."""
 
     def __init__(
         self,
@@ -176,6 +196,7 @@ class SideViewPlant:
         end_stops: Iterable[EndStop] = (),
         dead_plates: Iterable[DeadPlate] = (),
         panel: OperatorPanel | None = None,
+        components: Iterable[Component] = (),
         signal_docs: Mapping[str, str] | None = None,
         workpiece: WorkpieceSpec = STANDARD,
         seed: int = 0,
@@ -189,8 +210,12 @@ class SideViewPlant:
         self.end_stops = list(end_stops)
         self.dead_plates = list(dead_plates)
         self.panel = panel
+        self.assembly = Assembly(components)
+        if self.assembly.components:
+            self.EVENTS = self.EVENTS | self.assembly.events
         if panel is None:
             self.EVENTS = self.EVENTS - OperatorPanel.EVENTS
+            self.CAPABILITIES = self.CAPABILITIES - {OPERATOR}
         self.workpiece = workpiece
         self.max_step_ns = int(max_step_ns)
         self.stations: dict[str, Station] = {s.name: s for s in stations}
@@ -201,6 +226,7 @@ class SideViewPlant:
         specs += [SignalSpec(m, "actuator", doc=docs.get(m, "")) for m in self.motors]
         if panel is not None:
             specs += panel.specs()
+        specs += self.assembly.specs()
         names = [s.name for s in specs]
         dup = sorted({n for n in names if names.count(n) > 1})
         if dup:
@@ -215,7 +241,16 @@ class SideViewPlant:
         """Every ``subject`` its events can name: beams, stations, belts, end stops, motors, panel controls."""
         names = set(self.barrier) | set(self.stations) | set(self._belt_by_name) | set(self.motors)
         names |= {s.name for s in self.end_stops} | set(self.panel.controls if self.panel is not None else ())
-        return names
+        return names | self.assembly.subjects()
+
+    # --- what a component sees of the rig (plants.components.component.Host) ---------------------------------
+    def emit(self, kind: str, subject: str, part: str | None = None, **data: Any) -> None:
+        """Record a plant event at the current time."""
+        self.events.append(PlantEvent(self.now_ns, kind, subject, part, data))
+
+    def wake(self, component: Component) -> None:
+        """Step ``component`` from the next step on."""
+        self.assembly.wake(component)
 
     # --- protocol: lifecycle ---------------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None) -> None:
@@ -275,6 +310,7 @@ class SideViewPlant:
         self._falling: list[Part] = []
         self._rebuild: list[LightBarrier] = []
         self._post = False
+        self.assembly.reset(self)
 
     def quiescent(self) -> bool:
         """True when a step would only advance the clock: no part in the plant and every drive settled.
@@ -282,11 +318,12 @@ class SideViewPlant:
         A quiescent plant may be stepped by any ``dt_ns`` at once; the simulator uses this to skip
         the steps of an idle machine (an hours meter counting a belt that runs empty).
         """
-        return not self._live and not self._transient
+        return not self._live and not self._transient and not self.assembly.busy
 
     def step(self, dt_ns: int) -> None:
         """Advance by ``dt_ns``: belt drives in transition, then one physics step (skipped with no parts)."""
-        if not self._live and not self._transient and dt_ns > 0:
+        busy = self.assembly.busy
+        if not self._live and not self._transient and not busy and dt_ns > 0:
             self.now_ns += dt_ns
             return
         if dt_ns > self.max_step_ns or dt_ns <= 0:
@@ -296,6 +333,8 @@ class SideViewPlant:
         dt = dt_ns / 1e9
         if self._transient:
             self._advance_belts(dt)
+        if busy:
+            self.assembly.advance(self, dt)
         if self._live:
             if self._fresh:  # a body was added: pymunk's own step checks it once
                 self._fresh = False
@@ -361,6 +400,9 @@ class SideViewPlant:
         if self.panel is not None and name in self.panel.lamps:
             self.panel.set_lamp(name, value)
             return
+        if self.assembly.owns(name):
+            self.assembly.actuate(self, name, value)
+            return
         raise KeyError(f"{self.name} has no actuator {name!r} (actuators: {self._actuator_names()})")
 
     def _actuator_names(self) -> list[str]:
@@ -377,8 +419,12 @@ class SideViewPlant:
         """Fault: the light barrier ``name`` is mounted ``dx_mm`` off its nominal place (absolute, not cumulative).
 
         The beam is moved at once; which parts it sees is re-detected by the next physics step, and only the
-        difference is reported (no spurious edge for a part that stays in the beam).
+        difference is reported (no spurious edge for a part that stays in the beam). A cam or switch of a
+        component (an axis) is shifted by its component.
         """
+        if name not in self.barrier and self.assembly.owns(name):
+            self.assembly.shift(self, name, dx_mm)
+            return
         lb = self._get_barrier(name)
         dx = float(dx_mm)
         if dx == lb.dx:
@@ -397,7 +443,11 @@ class SideViewPlant:
             self._finish_rebuild(lb)
 
     def jam_motor(self, name: str, jammed: bool = True) -> None:
-        """Fault: the motor (actuator name, or belt name) is blocked: commanded or not, its belt does not move."""
+        """Fault: the motor (actuator name, or belt name) is blocked: commanded or not, its belt does not move.
+        The drive of a component (an axis, by its name or an actuator of it) is jammed by its component."""
+        if name not in self.motors and name not in self._belt_by_name and self.assembly.has(name):
+            self.assembly.jam(self, name, jammed)
+            return
         belt = self._get_belt(name)
         was = belt.jammed
         if belt.jam(jammed) and belt not in self._transient:
@@ -675,7 +725,7 @@ class SideViewPlant:
             out.append(draw.label(f"sensors/{lb.name}/label", lb.x, lb.y + 36.0, lb.name))
         if self.panel is not None:
             out += self.panel.static_drawables("panel")
-        return out
+        return out + self.assembly.static_drawables()
 
     def dynamic_drawables(self) -> list[Drawable]:
         cache = self._drawable_cache
@@ -709,4 +759,4 @@ class SideViewPlant:
             out.append(beam)
         if self.panel is not None:
             out += self.panel.dynamic_drawables(self.sensors, "panel")
-        return out
+        return out + self.assembly.dynamic_drawables()

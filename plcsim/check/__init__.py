@@ -23,6 +23,7 @@ Building blocks:
 * **checks**: ``X.within(d).after(Y)``, ``X.between(lo, hi).after(Y)``, ``never(c)``, ``always(c)``,
   ``holds(c).until(Y)``, ``holds(c).to_the_end()``, ``holds(c).for_at_least(d)``, ``eventually(c).before(t)``,
   ``count(X)``, ``spacing(X)``, ``durations(c)``, ``duty(c)``, ``final("MOTOR.SEKUNDY")``, ``program_uses_no("SET")``,
+  ``event_data(kind, key)`` for a plant's own measurement (the data of its events),
   and ``measure(label, fn)`` for a number computed from the trace by a Python function.
 
 Durations are literals with scans: ``"1 scan"``, ``"10s + 2 scans"``, ``"0.5s - 1 scan"`` (a scan is the
@@ -76,7 +77,7 @@ from plcsim.check.occurrences import (
     seen,
     seen_at,
 )
-from plcsim.check.quantities import Quantity, count, durations, duty, final, measure, spacing, value_at
+from plcsim.check.quantities import Quantity, count, durations, duty, event_data, final, measure, spacing, value_at
 from plcsim.check.static import StaticCheck, program_uses_no
 from plcsim.check.temporal import Always, Eventually, Holds, HoldsBuilder, Never, always, eventually, holds, never
 from plcsim.trace import Trace
@@ -134,6 +135,7 @@ __all__ = [
     "final",
     "value_at",
     "measure",
+    "event_data",
     "program_uses_no",
     "evaluate_all",
     "AllOf",

@@ -9,7 +9,7 @@ from typing import Any
 
 from plcsim.check.base import Check, Context, Names, Span, Verdict, names_of, show_number
 from plcsim.check.conditions import Condition, as_condition
-from plcsim.check.occurrences import Occurrences, becomes
+from plcsim.check.occurrences import Occurrences, becomes, event
 from plcsim.trace import Trace
 
 
@@ -196,6 +196,25 @@ def measure(
         return (None if value is None else float(value)), []
 
     q = Quantity(label, run, list(signals), unit=unit)
+    return q
+
+
+def event_data(kind: str, key: str, subject: str | None = None) -> Quantity:
+    """Every value of ``key`` in the data of the plant events ``kind`` (about ``subject``): a plant's own
+    measurement graded like any number, ``event_data("alignment measured", "gap_mm").at_most(1.0)``.
+
+    No such event is a failure ("nothing to measure"), and so is an event without ``key``.
+    """
+    occ = event(kind, subject)
+
+    def compute(ctx: Context) -> tuple[list[float | None], list[int]]:
+        events = ctx.trace.events_of(kind, None, "plant")
+        events = [e for e in events if subject is None or subject in (e.subject, e.part)]
+        values = [e.data.get(key) for e in events]
+        return [float(v) if isinstance(v, int | float) else None for v in values], [e.t_ns for e in events]
+
+    q = Quantity(f"{key} of '{kind}'" + (f" {subject}" if subject else ""), compute, [], measured=(occ,))
+    q.every = True
     return q
 
 
