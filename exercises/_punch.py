@@ -356,7 +356,7 @@ def machine_safe() -> list[Check]:
     return [
         never(event("part fell off")).named("no object falls off the belt"),
         never(event("part damaged")).named("no object is damaged by the press"),
-        never(event("motor stalled")).named("the press is never driven against an end stop"),
+        never(event("axis stalled")).named("the press is never driven against an end stop"),
     ]
 
 

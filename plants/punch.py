@@ -7,11 +7,12 @@ Side view, y up, mm. Parameters are the proposals of ``spec/exercises.md`` §5.1
   carried past either end falls off);
 * light barriers ``OS1`` at 45 mm and ``OS2`` at 230 mm, 10 mm above the belt, spot 2 mm (True = interrupted; the
   textbook wires both NC);
-* press ``M2`` over the belt at x = 215 mm (:class:`~plants.components.press.Press`): ``M2_DOLE`` drives it down,
-  ``M2_HORE`` up, 25 mm/s, τ = 20 ms; the tool tip rests at 105.5 mm at the top and stops ≈ 71.5 mm at the bottom
-  (the part's top is at 70 mm); limit switches **KS1 = upper** (make point 105 mm) and **KS2 = lower** (72 mm),
-  as all the textbook's solutions use them; ``ks1="lower"`` swaps the names, as the model text reads (text issue
-  12); mechanical end stops 3 mm beyond each switch, where a driven ram stalls (``motor stalled``).
+* press ``M2`` over the belt at x = 215 mm (:class:`~plants.components.press.Press`, a component on a 1-D
+  :class:`~plants.components.axis.Axis`): ``M2_DOLE`` drives it down, ``M2_HORE`` up, 25 mm/s, τ = 20 ms; the tool
+  tip rests at 105.5 mm at the top and stops ≈ 71.5 mm at the bottom (the part's top is at 70 mm); limit switches
+  **KS1 = upper** (make point 105 mm) and **KS2 = lower** (72 mm), as all the textbook's solutions use them;
+  ``ks1="lower"`` swaps the names, as the model text reads (text issue 12); mechanical end stops 3 mm beyond each
+  switch, where a driven ram stalls (``axis stalled``).
 
 Stations: ``OS1`` (a part centred on the OS1 beam: the loading place) and ``OS2`` (a part put straight under the
 press, centred 5 mm downstream of the press axis so that, with the operator's ±5 mm, it always cuts the OS2 beam).
@@ -20,8 +21,8 @@ Events besides the belt line's:
 
 * ``press stroke``: the tip passed 75 mm going down; ``part`` = the part whose extent contains the press axis (or
   none), ``data["offset_mm"]`` = its centre's distance from the axis;
-* ``motor stalled``: the press is driven against an end stop or a part (``data["against"]`` = ``upper end stop``,
-  ``lower end stop`` or ``part p1``);
+* ``axis stalled``: the press is driven against an end stop (``data["end"]`` = ``lo`` at the top, ``hi`` at the
+  bottom) or onto a part (``part damaged`` follows); ``motor jammed``: the fault ``jam_motor("M2_DOLE")``;
 * ``part damaged``: a part moved under the lowered tool, or the ram was driven into it;
 * ``interlock violated`` (subject ``M1`` or ``M2``, ``data["reason"]``): both directions of M1 or of M2 commanded
   (the motor then stops), the belt driven while the press is away from the top, the press driven while the belt
@@ -29,7 +30,7 @@ Events besides the belt line's:
 
 Commands are taken at the start of the next physics step, all outputs of a scan together, so the order in which
 one scan's outputs reach the plant never makes a violation (``R M1_VZAD`` and ``S M1_VPRED`` in one scan reverse
-the belt cleanly).
+the belt cleanly; the press does the same for its two relays).
 
 Nominal figures, measured at dt = 1 ms by ``tests/test_punch_plant.py`` (§5.10 in brackets): OS1 → OS2 forward
 with the part placed centred on OS1 ≈ 4.28 s (4.3 s); OS2 → OS1 return ≈ 3.9 s (3.9 s); one stroke KS1 → KS2 → KS1
@@ -60,7 +61,7 @@ from plants.components.belt import Belt
 from plants.components.light_barrier import LightBarrier
 from plants.components.press import PartUnder, Press
 from plants.components.side_view import SideViewPlant
-from plcsim.plant import Drawable, PlantEvent, SignalSpec, Station
+from plcsim.plant import Drawable, Station
 
 TOP = 50.0  # belt surface above the base, mm
 LENGTH = 280.0
@@ -68,11 +69,7 @@ SPEED = 40.0  # mm/s
 OS1_X, OS2_X = 45.0, 230.0
 PRESS_X = 215.0
 BEAM_HEIGHT = 10.0
-FORWARD, BACKWARD, DOWN, UP = "M1_VPRED", "M1_VZAD", "M2_DOLE", "M2_HORE"
-STALL_COLOR = (230, 40, 40)
-RAM = (110, 110, 125)
-SWITCH_ON = (60, 190, 60)
-SWITCH_OFF = (90, 90, 90)
+FORWARD, BACKWARD = "M1_VPRED", "M1_VZAD"
 
 
 class Punch(SideViewPlant):
@@ -84,14 +81,12 @@ class Punch(SideViewPlant):
         name, seed: as every rig.
     """
 
-    EVENTS = SideViewPlant.EVENTS | {"press stroke", "motor stalled", "part damaged"}
-
     def __init__(self, *, ks1: str = "upper", name: str = "PUNCH", seed: int = 0) -> None:
         if ks1 not in ("upper", "lower"):
             raise ValueError(f"{name}: ks1 must be 'upper' or 'lower', not {ks1!r}")
         self.ks1 = ks1
         upper, lower = ("KS1", "KS2") if ks1 == "upper" else ("KS2", "KS1")
-        self.press = Press("M2", x=PRESS_X, upper=upper, lower=lower)
+        self.press = Press("M2", parts_under=self._parts_under, x=PRESS_X, upper=upper, lower=lower)
         belt = Belt("M1", 0.0, LENGTH, TOP, speed=SPEED, tau_s=0.05, friction=0.6, reversible=True)
         beam = f"{BEAM_HEIGHT:g} mm above the belt: True while interrupted"
         barriers = [
@@ -104,13 +99,14 @@ class Punch(SideViewPlant):
             Station("OS1", OS1_X, TOP, "the loading place: a part centred on the OS1 beam"),
             Station("OS2", PRESS_X + 5.0, TOP, "under the press: a part centred 5 mm past the press axis cuts OS2"),
         ]
-        self._commands = dict.fromkeys((FORWARD, BACKWARD, DOWN, UP), False)
+        self._belt_commands = dict.fromkeys((FORWARD, BACKWARD), False)
         super().__init__(
             name,
             belts=[belt],
             motors={FORWARD: (belt, 1), BACKWARD: (belt, -1)},
             barriers=barriers,
             stations=stations,
+            components=[self.press],
             signal_docs={
                 FORWARD: f"belt M1 forward (towards the press) at {SPEED:g} mm/s while True",
                 BACKWARD: f"belt M1 backward (towards OS1) at {SPEED:g} mm/s while True",
@@ -118,102 +114,70 @@ class Punch(SideViewPlant):
             seed=seed,
         )
         self.belt = belt
-        sw = self.press.switches
-        self.signals.update(
-            {
-                "KS1": SignalSpec("KS1", "sensor", doc=sw["KS1"].doc),
-                "KS2": SignalSpec("KS2", "sensor", doc=sw["KS2"].doc),
-                DOWN: SignalSpec(DOWN, "actuator", doc="press M2 down at 25 mm/s while True"),
-                UP: SignalSpec(UP, "actuator", doc="press M2 up at 25 mm/s while True"),
-            }
-        )
-
-    def event_subjects(self) -> set[str]:
-        return super().event_subjects() | {self.press.name, DOWN, UP, "KS1", "KS2"}
 
     # --- lifecycle -----------------------------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None) -> None:
-        """As every side-view rig, and the press at rest at the top, its motor off."""
+        """As every side-view rig (the press at rest at the top, its motor off), and no command pending."""
         super().reset(seed=seed)
-        self.press.reset()
-        for k in self._commands:
-            self._commands[k] = False
+        for k in self._belt_commands:
+            self._belt_commands[k] = False
         self._pending = False
         self._violations: set[tuple[str, str]] = set()
-        self._update_switches()
+        self._at_top = True
 
     def quiescent(self) -> bool:
-        return super().quiescent() and self.press.idle and not self._pending
+        return super().quiescent() and not self._pending
 
     def step(self, dt_ns: int) -> None:
-        """Take the new commands, advance belt and parts, then the press."""
+        """Take the belt's new commands, advance belt, press and parts, then look at the interlocks."""
         if dt_ns > self.max_step_ns or dt_ns <= 0:
             self._step_split(dt_ns)
             return
+        press = self.press
+        changed = self._pending or press.pending
         if self._pending:
             self._apply_commands()
+        if self.belt.v != 0.0 and press.z <= press.rearm:  # a part may be carried under the lowered tool
+            self.wake(press)
         super().step(dt_ns)
-        press = self.press
-        if not press.idle and press.advance(dt_ns / 1e9, self.now_ns, self._parts_under, self.events):
-            self._update_switches()
+        if changed or press.at_top != self._at_top:
+            self._at_top = press.at_top
             self._check_interlocks()
 
     # --- actuators ---------------------------------------------------------------------------------------------
     def actuate(self, name: str, value: Any) -> None:
-        """A PLC output changed: belt and press relays take effect, together, at the next step."""
-        if name not in self._commands:
-            super().actuate(name, value)  # an unknown name: the base names the actuators there are
+        """A PLC output changed: the belt's two relays take effect together at the next step (the press's too)."""
+        if name not in self._belt_commands:
+            super().actuate(name, value)  # the press, or an unknown name: the base names the actuators there are
             return
         value = bool(value)
-        if self._commands[name] != value:
-            self._commands[name] = value
+        if self._belt_commands[name] != value:
+            self._belt_commands[name] = value
             self._pending = True
 
     def _apply_commands(self) -> None:
         self._pending = False
-        c = self._commands
-        self._check_interlocks()
-        belt = 0 if c[FORWARD] == c[BACKWARD] else (1 if c[FORWARD] else -1)
-        if self.belt.command(belt) and self.belt not in self._transient:
+        fwd, back = self._belt_commands[FORWARD], self._belt_commands[BACKWARD]
+        if fwd and back:
+            self.emit("interlock violated", self.belt.name, reason="both directions commanded")
+        if self.belt.command(0 if fwd == back else (1 if fwd else -1)) and self.belt not in self._transient:
             self._transient.append(self.belt)
-        self.press.command(0 if c[DOWN] == c[UP] else (-1 if c[DOWN] else 1))
 
     def _check_interlocks(self) -> None:
-        """Log each interlock violation once, when it begins."""
-        c = self._commands
-        belt_on, press_on = c[FORWARD] or c[BACKWARD], c[DOWN] or c[UP]
+        """Belt and press must not move together: each violation is logged once, when it begins."""
+        belt_on = self._belt_commands[FORWARD] or self._belt_commands[BACKWARD]
         active = set()
-        if c[FORWARD] and c[BACKWARD]:
-            active.add((self.belt.name, "both directions commanded"))
-        if c[DOWN] and c[UP]:
-            active.add((self.press.name, "both directions commanded"))
         if belt_on and not self.press.at_top:
             active.add((self.belt.name, "belt driven while the press is away from the top"))
-        if belt_on and press_on:
+        if belt_on and self.press.driven:
             active.add((self.press.name, "press driven while the belt is driven"))
         for subject, reason in sorted(active - self._violations):
-            self.events.append(PlantEvent(self.now_ns, "interlock violated", subject, None, {"reason": reason}))
+            self.emit("interlock violated", subject, reason=reason)
         self._violations = active
 
-    def jam_motor(self, name: str, jammed: bool = True) -> None:
-        """Fault: a blocked drive. ``M2_DOLE``, ``M2_HORE`` or ``M2``: the ram is stuck where it is."""
-        if name not in (DOWN, UP, self.press.name):
-            super().jam_motor(name, jammed)
-            return
-        was = self.press.jammed
-        self.press.jam(jammed)
-        if jammed and not was:
-            data = {"press": self.press.name, "commanded": self.press.direction != 0, "z": round(self.press.z, 3)}
-            self.events.append(PlantEvent(self.now_ns, "motor jammed", name, None, data))
-
     # --- the press and the parts ---------------------------------------------------------------------------------
-    def _update_switches(self) -> None:
-        for sw in self.press.switches.values():
-            self.sensors[sw.name] = sw.actuated
-
-    def _parts_under(self) -> Iterator[PartUnder]:
-        press = self.press
-        lo, hi = press.x - press.tool_width / 2, press.x + press.tool_width / 2
+    def _parts_under(self, lo: float, hi: float) -> Iterator[PartUnder]:
+        """The parts on the machine whose extent along the belt overlaps [lo, hi]."""
         for p in self.parts.values():
             if p.state not in ("on", "held"):
                 continue
@@ -226,7 +190,7 @@ class Punch(SideViewPlant):
         """The belt's, and the tool tip height and speed of the press."""
         out = super().observables()
         out[f"{self.press.name}.z"] = self.press.z
-        out[f"{self.press.name}.v"] = self.press.v
+        out[f"{self.press.name}.v"] = -self.press.axis.v
         return out
 
     # --- drawing -----------------------------------------------------------------------------------------------
@@ -234,34 +198,10 @@ class Punch(SideViewPlant):
         return (-40.0, -10.0, LENGTH + 50.0, 175.0)
 
     def static_drawables(self) -> list[Drawable]:
-        out = super().static_drawables()
         px = self.press.x
-        out.append(draw.polygon("press/column", draw.rect(LENGTH + 15.0, 0.0, LENGTH + 30.0, 160.0), draw.FRAME))
-        out.append(draw.polygon("press/arm", draw.rect(px - 20.0, 145.0, LENGTH + 30.0, 160.0), draw.FRAME, "M2"))
-        out.append(draw.label("press/label", px + 30.0, 166.0, f"{self.press.name} ({self.ks1} KS1)"))
-        for sw, z in ((self.press.upper, self.press.top), (self.press.lower, self.press.bottom)):
-            out.append(draw.label(f"press/switches/{sw.name}/label", px + 42.0, z, sw.name))
-        return out
-
-    def dynamic_drawables(self) -> list[Drawable]:
-        out = super().dynamic_drawables()
-        press, cache = self.press, self._drawable_cache
-        half = press.tool_width / 2
-        key = ("ram", press.z, press.stalled is not None)
-        ram = cache.get(key) if press.v == 0.0 else None
-        if ram is None:
-            color = STALL_COLOR if press.stalled is not None else RAM
-            ram = Drawable("press/ram", "polygon", draw.rect(press.x - half, press.z, press.x + half, 145.0), color)
-            if press.v == 0.0:  # a ram at rest: one drawable per pose, shared by every frame
-                cache[key] = ram
-        out.append(ram)
-        for sw, z in ((press.upper, press.top), (press.lower, press.bottom)):
-            key = ("switch", sw.name, sw.actuated)
-            d = cache.get(key)
-            if d is None:
-                box = draw.rect(press.x + 26.0, z - 2.0, press.x + 34.0, z + 2.0)
-                d = cache[key] = draw.polygon(
-                    f"press/switches/{sw.name}", box, SWITCH_ON if sw.actuated else SWITCH_OFF
-                )
-            out.append(d)
-        return out
+        frame = [
+            draw.polygon("press/column", draw.rect(LENGTH + 15.0, 0.0, LENGTH + 30.0, 160.0), draw.FRAME),
+            draw.polygon("press/arm", draw.rect(px - 20.0, 145.0, LENGTH + 30.0, 160.0), draw.FRAME),
+            draw.label("press/option", px + 30.0, 166.0, f"KS1 {self.ks1}"),
+        ]
+        return frame + super().static_drawables()

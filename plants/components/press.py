@@ -1,20 +1,19 @@
-"""A press ram on a vertical 1-D axis: one motor with a relay per direction, an upper and a lower limit switch,
-mechanical end stops, a stall when it is driven against one of them (or against a part), and the tool's effect
-on a part under it (a stroke, damage).
+"""A press: a ram on a vertical 1-D axis (:class:`~plants.components.axis.Axis`) with an upper and a lower limit
+switch, and what its tool does to a part under it (a stroke, damage). A component on the protocol of
+:mod:`plants.components.component`.
 
-The ram is kinematic (no pymunk body): its tool tip height ``z`` (mm above the base) follows the motor with a
-first-order speed response, ``v → command · speed`` with time constant τ, so a ram stopped at a limit switch
-coasts ``v·τ`` (0.5 mm at 25 mm/s, τ = 20 ms, a small worm-geared motor). It cannot leave
-``[z_min, z_max]`` (the end stops, ``overtravel`` mm beyond each switch) and it cannot go below the top of a part
-under the tool. A motor that is driven against an end stop or a part **stalls**: the ram stands still and the
-press reports ``motor stalled`` once per stall, with what it stalled against. A jammed ram (a fault the scenario
-injects, reported by the plant as ``motor jammed``) stands wherever it was, driven or not.
+The ram's travel ``s`` runs downward from the upper end stop (``s = 0``, tool tip at ``top + overtravel``) to the
+lower one (tip at ``bottom - overtravel``); the tip height is ``z = top + overtravel - s``. The axis moves it at
+``speed`` with a first-order speed response (τ = 20 ms: a ram stopped at a switch coasts 0.5 mm), stalls when it is
+driven against an end stop (``axis stalled``) and cannot move while jammed (``motor jammed``); both motor relays on
+is ``interlock violated``. A part under the tool is an end stop too: the ram driven down onto it stalls there and
+the part is ``part damaged``.
 
 The limit switches are cams along the travel: the upper one is actuated from its make point ``top`` up to and past
 the upper end stop, the lower one from ``bottom`` down past the lower end stop (a roller lever stays pressed in
-overtravel), each with 0.5 mm hysteresis (:class:`~plants.components.limit_switch.LimitSwitch`).
+overtravel), each with 0.5 mm hysteresis.
 
-The tool and a part (plant coordinates, the press axis at ``x``):
+The tool and a part (the press axis at ``x`` along the belt):
 
 * **stroke** — the tip passing down through ``stroke_depth`` counts one ``press stroke``, about the part whose
   extent along the belt contains the axis (or none); re-armed once the tip is back above ``rearm``;
@@ -22,33 +21,43 @@ The tool and a part (plant coordinates, the press axis at ``x``):
   footprint that moves more than ``damage_mm`` along the belt, or that the ram is driven into, is ``part damaged``
   (once per part per stroke).
 
-Performance: a ram at rest costs nothing per step (the plant skips it); a moving one a few float operations,
-plus one position read per part under the tool while the tool is in the stroke zone.
+Commands are taken at the next step, both relays together, so the order in which one scan's outputs arrive never
+makes a both-directions violation of its own (``S M2_DOLE`` and ``R M2_HORE`` in one scan turn the ram cleanly).
 
->>> press = Press(upper="KS1", lower="KS2")
->>> press.z, press.switches["KS1"].actuated, press.switches["KS2"].actuated
-(105.5, True, False)
->>> press.command(-1)
->>> events = []
->>> t = 0
->>> while not press.switches["KS2"].actuated:
-...     t += 1
-...     _ = press.advance(0.001, t * 1_000_000, lambda: (), events)
->>> t, [e.kind for e in events]
-(1360, ['press stroke'])
+Performance: a ram at rest is not stepped at all; a moving one costs the axis's few float operations, plus one
+position read per part under the tool while the tip is within reach of a part.
+
+>>> from plants.components.component import Bench
+>>> host = Bench()
+>>> press = Press(parts_under=lambda lo, hi: ())
+>>> _ = press.reset(host)
+>>> press.z, host.sensors
+(105.5, {'KS1': True, 'KS2': False})
+>>> _ = press.actuate(host, "M2_DOLE", True)
+>>> while not host.sensors["KS2"]:
+...     host.step(press)
+>>> host.now_ns // 1_000_000, [(e.kind, e.part) for e in host.events]
+(1360, [('press stroke', None)])
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Iterable
 from typing import Any
 
+from plants.components import draw
+from plants.components.axis import Axis
+from plants.components.component import Host
 from plants.components.limit_switch import LimitSwitch
-from plcsim.plant import PlantEvent
+from plcsim.plant import Drawable, SignalSpec
 
 PartUnder = tuple[str, float, float, float]
 """A part under the tool: (id, x of its centre, half its length, height of its top), mm."""
+
+RAM = (110, 110, 125)
+STALLED = (230, 40, 40)
+SWITCH_ON = (60, 190, 60)
+SWITCH_OFF = (90, 90, 90)
 
 
 class Press:
@@ -56,6 +65,8 @@ class Press:
 
     Args:
         name: the press's name, the subject of its events (``M2``).
+        parts_under: ``parts_under(lo, hi)`` lists the parts whose extent along the belt overlaps ``[lo, hi]``
+            (the rig's parts; called only while the tip is within reach of a part).
         x: the press axis along the belt (mm).
         top, bottom: make points of the upper and lower limit switch (tool tip height, mm).
         overtravel: the end stops lie this far beyond the switches (mm).
@@ -63,14 +74,15 @@ class Press:
         tool_width: the tool's footprint along the belt (mm).
         stroke_depth, rearm: the tip height that counts a stroke, and the height above which the next one is armed.
         damage_mm: how far a part may move under the tool in the stroke zone before it is damaged.
-        upper, lower: the signal names of the upper and lower limit switch.
-        hysteresis: of both switches (mm).
+        down, up: the actuators; upper, lower: the signal names of the upper and lower limit switch.
+        frame_top: where the ram's guide ends above the belt (mm), for drawing.
     """
 
     def __init__(
         self,
         name: str = "M2",
         *,
+        parts_under: Callable[[float, float], Iterable[PartUnder]],
         x: float = 215.0,
         top: float = 105.0,
         bottom: float = 72.0,
@@ -81,62 +93,131 @@ class Press:
         stroke_depth: float = 75.0,
         rearm: float = 80.0,
         damage_mm: float = 1.0,
+        down: str = "M2_DOLE",
+        up: str = "M2_HORE",
         upper: str = "KS1",
         lower: str = "KS2",
-        hysteresis: float = 0.5,
+        frame_top: float = 145.0,
     ) -> None:
         if not bottom < stroke_depth < rearm < top:
             raise ValueError(
                 f"press {name}: need bottom < stroke_depth < rearm < top, got {bottom}, {stroke_depth}, {rearm}, {top}"
             )
-        if speed <= 0 or tau_s <= 0 or overtravel <= 0:
-            raise ValueError(f"press {name}: speed, tau_s and overtravel must be > 0")
+        if overtravel <= 0:
+            raise ValueError(f"press {name}: overtravel must be > 0")
         self.name = name
+        self.parts_under = parts_under
         self.x = float(x)
-        self.top = float(top)
-        self.bottom = float(bottom)
-        self.z_max = self.top + overtravel
-        self.z_min = self.bottom - overtravel
-        self.speed = float(speed)
-        self.tau_s = float(tau_s)
+        self.top, self.bottom = float(top), float(bottom)
+        self.z0 = self.top + overtravel  # the tip at s = 0 (the upper end stop)
+        self.stroke_depth, self.rearm = float(stroke_depth), float(rearm)
         self.tool_width = float(tool_width)
-        self.stroke_depth = float(stroke_depth)
-        self.rearm = float(rearm)
         self.damage_mm = float(damage_mm)
+        self.down, self.up = down, up
+        self.frame_top = float(frame_top)
         reach = 10.0 * overtravel  # the cams extend well past the end stops
+        travel = self.z0 - (self.bottom - overtravel)
         self.upper = LimitSwitch(
             upper,
-            self.top,
-            self.z_max + reach,
-            hysteresis=hysteresis,
-            doc=f"press upper limit switch: True while the tool tip is at {self.top:g} mm or above",
+            -reach,
+            overtravel,
+            doc=f"press upper limit switch: True while the tool tip is at {top:g} mm or above",
         )
         self.lower = LimitSwitch(
             lower,
-            self.z_min - reach,
-            self.bottom,
-            hysteresis=hysteresis,
-            doc=f"press lower limit switch: True while the tool tip is at {self.bottom:g} mm or below",
+            self.z0 - self.bottom,
+            travel + reach,
+            doc=f"press lower limit switch: True while the tool tip is at {bottom:g} mm or below",
         )
-        self.switches = {self.upper.name: self.upper, self.lower.name: self.lower}
-        self._dt = -1.0
-        self._decay = 0.0
-        self.reset()
+        self.axis = Axis(
+            name,
+            0.0,
+            travel,
+            start=overtravel - 0.5,
+            speed=speed,
+            tau_s=tau_s,
+            plus=down,
+            minus=up,
+            cams=[self.upper, self.lower],
+            docs={down: f"press {name} down at {speed:g} mm/s while True", up: f"press {name} up at {speed:g} mm/s"},
+        )
+        self.travel = travel
+        self.EVENTS = Axis.EVENTS | {"press stroke", "part damaged"}
+        self._cache: dict[tuple, Drawable] = {}
 
-    def reset(self) -> None:
+    # --- the component protocol --------------------------------------------------------------------------------
+    def specs(self) -> list[SignalSpec]:
+        return self.axis.specs()
+
+    def subjects(self) -> set[str]:
+        return {self.name}
+
+    def reset(self, host: Host) -> bool:
         """At rest just above the upper switch's make point (where a stop at the switch leaves it), motor off."""
-        self.z = self.top + 0.5
-        self.v = 0.0
-        self.direction = 0  # commanded: -1 down, 0, +1 up
-        self.jammed = False
-        self.stalled: str | None = None  # what the driven ram stands against
+        self.axis.hi = self.travel
+        self.axis.reset(host)
+        self.command = {self.down: False, self.up: False}
+        self.pending = False
         self.armed = True  # the next pass through stroke_depth counts a stroke
         self.strokes = 0
         self.engaged: dict[str, float] = {}  # parts under the tool in the stroke zone -> x when it got there
         self.damaged: set[str] = set()  # parts damaged in this stroke
-        for sw in self.switches.values():
-            sw.reset()
-            sw.update(self.z)
+        return False
+
+    def actuate(self, host: Host, signal: str, value: Any) -> bool:
+        """A relay changed: taken, with the other one, at the next step."""
+        value = bool(value)
+        if self.command[signal] != value:
+            self.command[signal] = value
+            self.pending = True
+        return self.pending
+
+    def jam(self, host: Host, jammed: bool) -> bool:
+        """Fault: the ram is stuck where it is (a jammed guide stops it at once); freed, it moves again as commanded."""
+        if jammed:
+            self.axis.v = 0.0
+        return self.axis.jam(host, jammed)
+
+    def shift_cam(self, name: str, dx: float) -> None:
+        """Fault: a limit switch mounted ``dx`` mm off its place (along the travel, + = lower)."""
+        self.axis.shift_cam(name, dx)
+
+    def advance(self, host: Host, dt: float) -> bool:
+        axis = self.axis
+        if self.pending:  # switch the released relay first: the axis sees both on only if both are commanded
+            self.pending = False
+            for signal in sorted(self.command, key=lambda k: self.command[k]):
+                axis.actuate(host, signal, self.command[signal])
+        under: list[PartUnder] = []
+        if self.z0 - (axis.s + abs(axis.v) * dt) <= self.rearm:  # within reach of a part's top
+            half = self.tool_width / 2
+            under = list(self.parts_under(self.x - half, self.x + half))
+        tops = [(p[3], p[0]) for p in under if self.z0 - p[3] < self.travel]
+        floor, against = max(tops, default=(None, None))
+        axis.hi = self.travel if floor is None else max(axis.s, self.z0 - floor)  # a part never lifts the ram
+        was_stalled = axis.stalled
+        busy = axis.advance(host, dt)
+        if against is not None and axis.stalled and not was_stalled and axis.s >= axis.hi:
+            self._damage(host, against, "the ram was driven into it")
+        z = self.z
+        if z <= self.stroke_depth:
+            if self.armed:
+                self.armed = False
+                self.strokes += 1
+                self._stroke(host, under)
+            self._watch(host, under)
+        elif self.engaged or self.damaged:
+            self.engaged.clear()
+            self.damaged.clear()
+        if z > self.rearm:
+            self.armed = True
+        return busy or (z <= self.stroke_depth and bool(under))  # a lowered tool watches the parts under it
+
+    # --- state ---------------------------------------------------------------------------------------------
+    @property
+    def z(self) -> float:
+        """Tool tip height above the base (mm)."""
+        return self.z0 - self.axis.s
 
     @property
     def at_top(self) -> bool:
@@ -144,107 +225,54 @@ class Press:
         return self.upper.actuated
 
     @property
-    def idle(self) -> bool:
-        """Nothing to advance: at rest, and not driven or blocked for good (an end stop, a jam; a part may go away)."""
-        return self.v == 0.0 and (
-            self.direction == 0 or self.jammed or self.stalled in ("upper end stop", "lower end stop")
-        )
+    def driven(self) -> bool:
+        """A relay of the motor is on."""
+        return self.command[self.down] or self.command[self.up]
 
-    def command(self, direction: int) -> None:
-        """Drive up (+1), down (-1) or stop (0); a change of command ends a stall."""
-        if direction not in (-1, 0, 1):
-            raise ValueError(f"press {self.name}: direction must be -1, 0 or 1, not {direction}")
-        if direction != self.direction:
-            self.direction = direction
-            self.stalled = None
-
-    def jam(self, jammed: bool) -> None:
-        """Fault: the ram is blocked where it is (a jammed guide); freed, it moves again as commanded."""
-        self.jammed = bool(jammed)
-        if self.jammed:
-            self.v = 0.0
-
-    def advance(
-        self, dt: float, now_ns: int, parts_under: Callable[[], Iterable[PartUnder]], events: list[PlantEvent]
-    ) -> bool:
-        """One step of ``dt`` s ending at ``now_ns``; returns True if a limit switch changed.
-
-        ``parts_under()`` lists the parts whose extent overlaps the tool's footprint; it is called only while the
-        tip is low enough to reach a part.
-        """
-        if self.jammed:
-            return False
-        if dt != self._dt:
-            self._dt = dt
-            self._decay = math.exp(-dt / self.tau_s)
-        target = self.direction * self.speed
-        v = target + (self.v - target) * self._decay
-        if abs(v - target) < 1e-4:
-            v = target
-        z = self.z + v * dt
-        under: list[PartUnder] = []
-        floor, against = self.z_min, "lower end stop"
-        if z <= self.rearm:
-            under = list(parts_under())
-            for pid, _x, _half, part_top in under:
-                if part_top > floor:
-                    floor, against = part_top, f"part {pid}"
-        if z >= self.z_max and v > 0:
-            z, v = self.z_max, 0.0
-            self._stall("upper end stop", now_ns, events)
-        elif z <= floor and v < 0:
-            z, v = floor, 0.0
-            self._stall(against, now_ns, events)
-            if against.startswith("part "):
-                self._damage(against[5:], "the ram was driven into it", now_ns, events)
-        elif v != 0.0:
-            self.stalled = None
-        self.z, self.v = z, v
-        if z <= self.stroke_depth:
-            if self.armed:
-                self.armed = False
-                self.strokes += 1
-                self._stroke(under, now_ns, events)
-            self._watch(under, now_ns, events)
-        elif self.engaged or self.damaged:
-            self.engaged.clear()
-            self.damaged.clear()
-        if z > self.rearm:
-            self.armed = True
-        changed = self.upper.update(z)
-        return self.lower.update(z) or changed
-
-    def _stall(self, against: str, now_ns: int, events: list[PlantEvent]) -> None:
-        if self.stalled == against:
-            return
-        self.stalled = against
-        events.append(
-            PlantEvent(
-                now_ns,
-                "motor stalled",
-                self.name,
-                None,
-                {"against": against, "z": round(self.z, 3), "direction": "up" if self.direction > 0 else "down"},
-            )
-        )
-
-    def _stroke(self, under: list[PartUnder], now_ns: int, events: list[PlantEvent]) -> None:
+    def _stroke(self, host: Host, under: list[PartUnder]) -> None:
         on_axis = [p for p in under if abs(p[1] - self.x) <= p[2]]
         part = min(on_axis, key=lambda p: abs(p[1] - self.x), default=None)
         data: dict[str, Any] = {"stroke": self.strokes}
         if part is not None:
             data["offset_mm"] = round(part[1] - self.x, 3)
-        events.append(PlantEvent(now_ns, "press stroke", self.name, part[0] if part else None, data))
+        host.emit("press stroke", self.name, part[0] if part else None, **data)
 
-    def _watch(self, under: list[PartUnder], now_ns: int, events: list[PlantEvent]) -> None:
+    def _watch(self, host: Host, under: list[PartUnder]) -> None:
         """A part under the tool in the stroke zone must not move."""
         for pid, x, _half, _top in under:
             x0 = self.engaged.setdefault(pid, x)
             if abs(x - x0) > self.damage_mm:
-                self._damage(pid, f"it moved {x - x0:+.1f} mm under the lowered tool", now_ns, events)
+                self._damage(host, pid, f"it moved {x - x0:+.1f} mm under the lowered tool")
 
-    def _damage(self, pid: str, cause: str, now_ns: int, events: list[PlantEvent]) -> None:
-        if pid in self.damaged:
-            return
-        self.damaged.add(pid)
-        events.append(PlantEvent(now_ns, "part damaged", self.name, pid, {"cause": cause, "z": round(self.z, 3)}))
+    def _damage(self, host: Host, pid: str, cause: str) -> None:
+        if pid not in self.damaged:
+            self.damaged.add(pid)
+            host.emit("part damaged", self.name, pid, cause=cause, z=round(self.z, 3))
+
+    # --- drawing ---------------------------------------------------------------------------------------------
+    def static_drawables(self) -> list[Drawable]:
+        out = [draw.label(f"press/{self.name}/label", self.x - 30.0, self.frame_top + 6.0, self.name)]
+        for sw, z in ((self.upper, self.top), (self.lower, self.bottom)):
+            out.append(draw.label(f"press/switches/{sw.name}/label", self.x + 42.0, z, sw.name))
+        return out
+
+    def dynamic_drawables(self) -> list[Drawable]:
+        cache, axis, half = self._cache, self.axis, self.tool_width / 2
+        key = ("ram", axis.s, axis.stalled)
+        ram = cache.get(key) if axis.v == 0.0 else None
+        if ram is None:
+            box = draw.rect(self.x - half, self.z, self.x + half, self.frame_top)
+            ram = Drawable(f"press/{self.name}/ram", "polygon", box, STALLED if axis.stalled else RAM)
+            if axis.v == 0.0:  # a ram at rest: one drawable per pose, shared by every frame
+                cache[key] = ram
+        out = [ram]
+        for sw, z in ((self.upper, self.top), (self.lower, self.bottom)):
+            key = ("switch", sw.name, sw.actuated)
+            d = cache.get(key)
+            if d is None:
+                box = draw.rect(self.x + 26.0, z - 2.0, self.x + 34.0, z + 2.0)
+                d = cache[key] = draw.polygon(
+                    f"press/switches/{sw.name}", box, SWITCH_ON if sw.actuated else SWITCH_OFF
+                )
+            out.append(d)
+        return out
