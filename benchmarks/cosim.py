@@ -1,11 +1,13 @@
-"""Co-simulation figures: CONV1 under the reference program of 4.3.5 against the same plant stepped alone.
+"""Co-simulation figures: a rig under a reference program against the same plant stepped alone.
 
-Two workloads, each 1 ms scan, 1 ms physics, the trace on (one row per scan, plant geometry at
+Three workloads, each 1 ms scan, 1 ms physics, the trace on (one row per scan, plant geometry at
 25 Hz), fast-forward off so that every physics step is taken in both runs:
 
-* ``shuttle`` (4.3.5's reference): 60 s, one part at a time loaded at S1, removed at S2 after 1 s.
-* ``several`` (4.3.6's reference, its "five objects" scenario repeated): several parts on the belt
+* ``shuttle`` (CONV1, 4.3.5's reference): 60 s, one part at a time loaded at S1, removed at S2 after 1 s.
+* ``several`` (CONV1, 4.3.6's reference, its "five objects" scenario repeated): several parts on the belt
   at once, queued at S2 while the belt waits.
+* ``punch`` (PUNCH, 6.3.5's reference, its "two moves, three strokes" scenario): the reversible belt
+  shuttles one part twice to the press, which strokes three times at each visit.
 
 "Physics alone" replays, on a fresh plant and in the same process, exactly the plant calls the
 co-simulation made (actuator commands, parts placed and removed) at the same simulated times, and steps
@@ -32,14 +34,24 @@ def _scenario(seconds: int) -> Any:
     return Scenario("shuttle", *shuttle(seconds // 7 + 1), duration=f"{seconds}s")
 
 
+WORKLOADS = (
+    ("shuttle", "4.3.5 reference", "CONV1"),
+    ("several", "4.3.6 reference", "CONV1"),
+    ("punch", "6.3.5 reference", "PUNCH"),
+)
+
+
 def _cosim(workload: str, seconds: int) -> tuple[float, Any, list[tuple[int, str, tuple, dict]]]:
     from exercises import get
 
     if workload == "shuttle":
         exercise, scenario = get("4.3.5"), _scenario(seconds)
-    else:
+    elif workload == "several":
         exercise = get("4.3.6")
         scenario = exercise.scenario("five objects")
+    else:
+        exercise = get("6.3.5")
+        scenario = exercise.scenario("two moves, three strokes")
     sim = exercise.simulation(exercise.reference.program(), scenario, seed=1)
     sim.fast_forward = False
     plant = sim.plant
@@ -57,10 +69,10 @@ def _cosim(workload: str, seconds: int) -> tuple[float, Any, list[tuple[int, str
     return time.perf_counter() - t0, sim, log
 
 
-def _physics_alone(seconds: int, log: list[tuple[int, str, tuple, dict]], dt_ns: int) -> float:
-    from plants import Conv1
+def _physics_alone(seconds: int, log: list[tuple[int, str, tuple, dict]], dt_ns: int, rig: str) -> float:
+    from plants import RIGS
 
-    plant = Conv1()
+    plant = RIGS[rig]()
     plant.reset(seed=1)
     end = seconds * 1_000_000_000
     calls = sorted(log, key=lambda e: e[0])
@@ -77,23 +89,23 @@ def _physics_alone(seconds: int, log: list[tuple[int, str, tuple, dict]], dt_ns:
 
 
 def run(settings: Settings) -> Iterator[dict[str, Any]]:
-    for workload, program in (("shuttle", "4.3.5 reference"), ("several", "4.3.6 reference")):
-        yield from _workload(settings, workload, program)
+    for workload, program, rig in WORKLOADS:
+        yield from _workload(settings, workload, program, rig)
 
 
-def _workload(settings: Settings, workload: str, program: str) -> Iterator[dict[str, Any]]:
+def _workload(settings: Settings, workload: str, program: str, rig: str) -> Iterator[dict[str, Any]]:
     best_co, best_ph, scans, rows, seconds = float("inf"), float("inf"), 0, 0, 0
     for _ in range(settings.repeats):
         wall, sim, log = _cosim(workload, settings.size(SIM_S, 5))
         seconds = sim.now // 1_000_000_000
-        phys = _physics_alone(seconds, log, sim.dt_ns)
+        phys = _physics_alone(seconds, log, sim.dt_ns, rig)
         best_co, best_ph = min(best_co, wall), min(best_ph, phys)
         scans, rows = sim.cpu.scan_count, len(sim.trace)
         progress(f"{workload}: cosim {wall:.2f} s, physics alone {phys:.2f} s")
     steps = seconds * 1000
     context = {
         "workload": workload,
-        "plant": "CONV1",
+        "plant": rig,
         "program": program,
         "simulated_s": seconds,
         "scan_ms": 1,

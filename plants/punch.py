@@ -137,11 +137,12 @@ class Punch(SideViewPlant):
         changed = self._pending or press.pending
         if self._pending:
             self._apply_commands()
-        if self.belt.v != 0.0 and press.z <= press.rearm:  # a part may be carried under the lowered tool
+        if self.belt.v != 0.0 and press.axis.s >= press.s_reach:  # a part may be carried under the lowered tool
             self.wake(press)
         super().step(dt_ns)
-        if changed or press.at_top != self._at_top:
-            self._at_top = press.at_top
+        at_top = press.upper.actuated
+        if changed or at_top != self._at_top:
+            self._at_top = at_top
             self._check_interlocks()
 
     # --- actuators ---------------------------------------------------------------------------------------------

@@ -142,6 +142,7 @@ class Press:
             docs={down: f"press {name} down at {speed:g} mm/s while True", up: f"press {name} up at {speed:g} mm/s"},
         )
         self.travel = travel
+        self.s_reach = self.z0 - self.rearm  # from this travel on the tool may reach a part
         self.EVENTS = Axis.EVENTS | {"press stroke", "part damaged"}
         self._cache: dict[tuple, Drawable] = {}
 
@@ -189,17 +190,23 @@ class Press:
             for signal in sorted(self.command, key=lambda k: self.command[k]):
                 axis.actuate(host, signal, self.command[signal])
         under: list[PartUnder] = []
-        if self.z0 - (axis.s + abs(axis.v) * dt) <= self.rearm:  # within reach of a part's top
+        against = None
+        if axis.s + abs(axis.v) * dt >= self.s_reach:  # the tip is within reach of a part's top
             half = self.tool_width / 2
             under = list(self.parts_under(self.x - half, self.x + half))
-        tops = [(p[3], p[0]) for p in under if self.z0 - p[3] < self.travel]
-        floor, against = max(tops, default=(None, None))
-        axis.hi = self.travel if floor is None else max(axis.s, self.z0 - floor)  # a part never lifts the ram
+            tops = [(p[3], p[0]) for p in under if self.z0 - p[3] < self.travel]
+            if tops:
+                floor, against = max(tops)
+                axis.hi = max(axis.s, self.z0 - floor)  # a part never lifts the ram
+            else:
+                axis.hi = self.travel
+        elif axis.hi != self.travel:
+            axis.hi = self.travel
         was_stalled = axis.stalled
         busy = axis.advance(host, dt)
         if against is not None and axis.stalled and not was_stalled and axis.s >= axis.hi:
             self._damage(host, against, "the ram was driven into it")
-        z = self.z
+        z = self.z0 - axis.s
         if z <= self.stroke_depth:
             if self.armed:
                 self.armed = False
