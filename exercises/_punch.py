@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from exercises._truth import Parts
-from plcsim.check import Check, Condition, Context, Verdict, all_of, any_of, event, never, off
+from plcsim.check import Check, Condition, Context, Verdict, all_of, any_of, event, event_data, never, off
 from plcsim.check.base import Names
 from plcsim.exercise import IO
 from plcsim.scenario import after_event, held, place, remove, write
@@ -379,6 +379,12 @@ def shuttle(ignore: tuple[str, ...] = (), *, reverse_at_os2: bool = True) -> lis
     return checks
 
 
+def strokes_land_on_objects() -> Check:
+    """The plant's account of each stroke: it came down on an object, near the object's centre (a stroke on an
+    empty place has no offset and fails)."""
+    return event_data("press stroke", "offset_mm").between(-15, 15).named("every stroke comes down on an object")
+
+
 def belt_waits_for_the_press() -> list[Check]:
     """6.3.4 criterion 2 on the PLC's outputs: the belt never moves while the press is away from KS1 or driven (the
     machine's own word on it is :func:`machine_safe`'s interlock check)."""
@@ -402,6 +408,7 @@ def punching_checks(
         PerVisit(
             f"every stay under the press gets {label}", strokes_per_visit, reads=tuple(r for r in reads if "M2" in r)
         ),
+        strokes_land_on_objects(),
         PerObject(
             f"every object is punched {' × '.join(reads)} times",
             "was punched",

@@ -14,6 +14,7 @@ from exercises._punch import (
     edge_bits,
     interlocks,
     machine_safe,
+    strokes_land_on_objects,
     strokes_on,
 )
 from plants import Punch
@@ -92,6 +93,7 @@ EXERCISE = Exercise(
             "three objects",
             "jammed press",
         ),
+        only(strokes_land_on_objects(), "three objects", "jammed press"),
         only(
             count(rises("M2_DOLE")).equals(OBJECTS).named("the press starts once per object, never without one"),
             "three objects",
