@@ -6,8 +6,8 @@ Three workloads, each 1 ms scan, 1 ms physics, the trace on (one row per scan, p
 * ``shuttle`` (CONV1, 4.3.5's reference): 60 s, one part at a time loaded at S1, removed at S2 after 1 s.
 * ``several`` (CONV1, 4.3.6's reference, its "five objects" scenario repeated): several parts on the belt
   at once, queued at S2 while the belt waits.
-* ``punch`` (PUNCH, 6.3.5's reference, its "two moves, three strokes" scenario): the reversible belt
-  shuttles one part twice to the press, which strokes three times at each visit.
+* ``punch`` (PUNCH, 6.3.5's reference): 60 s of parts loaded one after the other, each shuttled twice
+  to the press by the reversible belt, three strokes at each visit.
 
 "Physics alone" replays, on a fresh plant and in the same process, exactly the plant calls the
 co-simulation made (actuator commands, parts placed and removed) at the same simulated times, and steps
@@ -50,8 +50,12 @@ def _cosim(workload: str, seconds: int) -> tuple[float, Any, list[tuple[int, str
         exercise = get("4.3.6")
         scenario = exercise.scenario("five objects")
     else:
+        from exercises._punch import cycles
+        from plcsim.scenario import Scenario
+
         exercise = get("6.3.5")
-        scenario = exercise.scenario("two moves, three strokes")
+        writes = {1: {"M1_ZIADANY_POCET": 2, "M2_ZIADANY_POCET": 3}}
+        scenario = Scenario("punch", *cycles(3, writes=writes), duration=f"{seconds}s")
     sim = exercise.simulation(exercise.reference.program(), scenario, seed=1)
     sim.fast_forward = False
     plant = sim.plant
