@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from exercises._truth import Parts
+from exercises._truth import GONE, Parts
 from plcsim.check import Check, Condition, Context, Verdict, all_of, any_of, event, event_data, never, off
 from plcsim.check.base import Names
 from plcsim.exercise import IO
@@ -84,8 +84,8 @@ def counts(*names: str) -> list[IO]:
 # --------------------------------------------------------------------------------------------
 
 REST = ("1.5s", "2s", "1.7s", "2.2s")
-"""How long each object rests at OS1 before the operator takes it (the holds differ, so a late trigger of one
-object's removal can never take the next one)."""
+"""How long each object rests at OS1 before the operator takes it (object by object: the operator is not a
+metronome)."""
 
 
 def cycles(
@@ -109,8 +109,6 @@ def cycles(
 # --------------------------------------------------------------------------------------------
 # What the plant saw: per object, per visit
 # --------------------------------------------------------------------------------------------
-
-GONE = ("part removed", "part fell off", "part knocked off")
 
 
 def _placed(trace: Trace, ignore: tuple[str, ...]) -> dict[str, int]:
@@ -239,9 +237,9 @@ def removed(trace: Trace, part: str, _placed_ns: int) -> int:
     return int(any(e.source == "plant" and e.kind == "part removed" and e.part == part for e in trace.events))
 
 
-def parameter(tag: str, times: int = 1) -> Callable[[Trace, int], int]:
-    """The value of a parameter tag when the object was loaded (× ``times``)."""
-    return lambda trace, t: int(trace.value_at(tag, t)) * times
+def parameter(tag: str) -> Callable[[Trace, int], int]:
+    """The value of a parameter tag when the object was loaded (or its stay under the press began)."""
+    return lambda trace, t: int(trace.value_at(tag, t))
 
 
 def product(first: str, second: str) -> Callable[[Trace, int], int]:
