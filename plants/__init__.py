@@ -5,11 +5,13 @@
 
 from collections.abc import Callable
 
+from plants.align import Align
 from plants.components import StationOccupiedError
 from plants.conveyors import Conv1, Conv2x2, Conv3, ConveyorLine
 from plants.machine import Machine
 from plants.panel import Panel
 from plants.punch import Punch
+from plants.sort import Sort
 
 RIGS: dict[str, Callable[..., object]] = {
     "PANEL": Panel,
@@ -17,7 +19,21 @@ RIGS: dict[str, Callable[..., object]] = {
     "CONV3": Conv3,
     "CONV2x2": Conv2x2,
     "MACHINE": Machine,
+    "ALIGN": Align,
+    "SORT": Sort,
     "PUNCH": Punch,
 }
 
-__all__ = ["RIGS", "Conv1", "Conv2x2", "Conv3", "ConveyorLine", "Machine", "Panel", "Punch", "StationOccupiedError"]
+__all__ = [
+    "RIGS",
+    "Align",
+    "Conv1",
+    "Conv2x2",
+    "Conv3",
+    "ConveyorLine",
+    "Machine",
+    "Panel",
+    "Punch",
+    "Sort",
+    "StationOccupiedError",
+]

@@ -105,3 +105,60 @@ def test_a_rig_verb_with_a_bad_target_or_on_a_rig_without_it_is_refused_before_t
     other = RigVerb("jam_piston", "jam_piston", "piston", "jam piston {target}", targets="pistons")
     with pytest.raises(ExerciseError, match=r"the rig has no verb 'jam_piston'.*its verbs: jam_ram"):
         run(Scenario("bad", other("P1", t="1s"), duration="2s"))
+
+
+def test_the_colour_sensor_reads_the_part_over_its_spot_with_noise_and_ambient_light():
+    from plants.components.colour_sensor import ColourSensor
+    from plants.components.top_view import TopViewPlant
+    from plants.components.workpiece import WorkpieceSpec
+    from plcsim.plant import Station
+
+    sensor = ColourSensor("FARBA", 0.0, 0.0, colours={1: 5000, 2: 13000, 3: 21000}, noise=500.0)
+    plant = TopViewPlant(
+        "COLOUR",
+        components=[sensor],
+        stations=[Station("spot", 0.0, 0.0)],
+        table=(-50.0, -50.0, 50.0, 50.0),
+        workpiece=WorkpieceSpec(length=25.0, depth=25.0, mass_g=10.0),
+    )
+    assert plant.signals["FARBA"].kind == "analog" and plant.sensors["FARBA"] == 26500  # the bare belt
+    plant.place("spot", part="red", colour=2)
+    readings = []
+    for _ in range(400):
+        plant.step(MS)
+        readings.append(plant.sensors["FARBA"])
+    covered = readings[1:]  # the spot sees the part from the step after the placement
+    mean, spread = sum(covered) / len(covered), max(covered) - min(covered)
+    assert abs(mean - 13000) < 100 and 500 < spread < 8 * 500  # σ 500: the spread of 400 draws is ≈ 6 σ
+    sensor.set_ambient(plant, 1500.0)
+    plant.step(MS)
+    assert abs(plant.sensors["FARBA"] - 14500) < 2500
+    plant.remove("red")
+    plant.step(MS)
+    assert plant.sensors["FARBA"] == 27648  # 26500 + 1500, clipped to the module's range
+
+
+def test_a_piston_moves_out_only_once_the_compressor_has_built_30_percent():
+    from plants.components.compressor import Compressor
+    from plants.components.piston import Piston
+    from plants.components.top_view import TopViewPlant
+    from plants.components.workpiece import WorkpieceSpec
+
+    air = Compressor("K", "Kompresor")
+    piston = Piston("P1", "Piest1", origin=(0.0, 0.0), direction=(0.0, 1.0), stroke=70.0, supply=air.fraction)
+    plant = TopViewPlant(
+        "PNEU", components=[air, piston], stations=[], table=(-50, -20, 50, 100), workpiece=WorkpieceSpec()
+    )
+    plant.actuate("Piest1", True)
+    for _ in range(500):
+        plant.step(MS)
+    assert piston.s < 0.01  # the valve is open, but there is no air
+    plant.actuate("Kompresor", True)
+    t0 = plant.now_ns
+    while piston.s < 1.0 and plant.now_ns - t0 < 1000 * MS:
+        plant.step(MS)
+    # p = 1 - exp(-t/0.1 s) passes 0.3 after 36 ms; the plate then covers 1 mm at 80 mm/s in ≈ 13 ms
+    assert 45 * MS <= plant.now_ns - t0 <= 55 * MS
+    while not [e for e in plant.events if e.kind == "piston extended"]:
+        plant.step(MS)
+    assert plant.now_ns - t0 < 1000 * MS

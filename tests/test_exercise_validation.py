@@ -85,7 +85,7 @@ def test_all_shipped_exercises_validate_cleanly():
     assert broken_exercises() == ()
     numbers = [e.number for e in all_exercises()]
     modules = sorted(Path(exercises.__file__).parent.glob("ex_*.py"))
-    assert len(numbers) == len(modules) >= 23  # every shipped module loads (4.3.x and 6.3.1-6.3.5 so far)
+    assert len(numbers) == len(modules) == 25  # every shipped module loads: 4.3.x with 4.3.12, 4.3.17; 6.3.1-6.3.5
     assert numbers[:5] == ["4.3.1", "4.3.2", "4.3.3", "4.3.4", "4.3.5"] and numbers[-1] == "6.3.5"
     for ex in all_exercises():
         validate(ex)  # again, explicitly: no ExerciseError

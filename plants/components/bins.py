@@ -1,0 +1,102 @@
+"""Bins (magazines) beside a machine: zones that record every part that lands in them.
+
+A bin is a static sensor rectangle; a part that reaches it is **in** the bin: ``part in bin`` (subject: the
+bin, data: the part's properties worth grading, e.g. its ``colour``), once per part. The rig then takes the part
+out of the physics (it lies in the bin) with :meth:`Bins.landed`'s answer. ``contents`` keeps what each bin holds,
+in order, for the checks and the drawing.
+
+>>> from plants.components.component import Bench
+>>> b = Bins({"bin1": (0, 0, 50, 40), "unsorted": (60, 0, 100, 40)}); host = Bench(); _ = b.reset(host)
+>>> b.which(25.0, 20.0), b.which(55.0, 20.0)
+('bin1', None)
+>>> b.landed(host, "bin1", "p1", {"colour": 2}); b.contents, [(e.kind, e.subject, e.data) for e in host.events]
+({'bin1': ['p1'], 'unsorted': []}, [('part in bin', 'bin1', {'colour': 2})])
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import pymunk
+
+from plants.components import draw
+from plants.components.collide import BEAM_CAT, CT_BEAM, PART_CAT
+from plants.components.component import Host
+from plcsim.plant import Drawable, SignalSpec
+
+GRADED = ("colour", "colour_raw")
+
+
+class Bins:
+    """Named bins, each an axis-aligned rectangle (x0, y0, x1, y1) in mm."""
+
+    EVENTS = frozenset({"part in bin"})
+
+    def __init__(self, bins: Mapping[str, tuple[float, float, float, float]], *, name: str = "bins") -> None:
+        self.name = name
+        self.bins = {k: tuple(float(v) for v in box) for k, box in bins.items()}
+
+    def specs(self) -> list[SignalSpec]:
+        return []
+
+    def subjects(self) -> set[str]:
+        return set(self.bins)
+
+    def reset(self, host: Host) -> bool:
+        self.contents: dict[str, list[str]] = {k: [] for k in self.bins}
+        if host.space is not None:  # in a space: each bin is a sensor zone; a part touching it has landed there
+            for k, (x0, y0, x1, y1) in self.bins.items():
+                shape = pymunk.Poly(host.space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+                shape.sensor = True
+                shape.collision_type = CT_BEAM
+                shape.filter = pymunk.ShapeFilter(categories=BEAM_CAT, mask=PART_CAT)
+                shape.owner = _Zone(self, k)
+                host.space.add(shape)
+        return False
+
+    def which(self, x: float, y: float) -> str | None:
+        """The bin whose area holds (x, y), if any."""
+        for k, (x0, y0, x1, y1) in self.bins.items():
+            if x0 <= x <= x1 and y0 <= y <= y1:
+                return k
+        return None
+
+    def landed(self, host: Host, bin_name: str, pid: str, props: Mapping[str, Any]) -> None:
+        """Record that part ``pid`` (with these properties) lies in ``bin_name`` (once per part)."""
+        if any(pid in parts for parts in self.contents.values()):
+            return
+        self.contents[bin_name].append(pid)
+        host.emit("part in bin", bin_name, pid, **{k: props[k] for k in GRADED if k in props})
+
+    def actuate(self, host: Host, signal: str, value: Any) -> bool:
+        return False
+
+    def advance(self, host: Host, dt: float) -> bool:
+        return False
+
+    def static_drawables(self) -> list[Drawable]:
+        out = []
+        for k, (x0, y0, x1, y1) in self.bins.items():
+            out.append(draw.polygon(f"bins/{k}", draw.rect(x0, y0, x1, y1), (200, 205, 215), k))
+            out.append(draw.label(f"bins/{k}/label", 0.5 * (x0 + x1), y0 + 4.0, k))
+        return out
+
+    def dynamic_drawables(self) -> list[Drawable]:
+        return [
+            draw.label(f"bins/{k}/count", 0.5 * (x0 + x1), y1 - 8.0, str(len(self.contents[k])))
+            for k, (x0, y0, x1, y1) in self.bins.items()
+        ]
+
+
+class _Zone:
+    """The sensor zone of one bin: the top view's collision callback calls ``enter``/``leave``."""
+
+    def __init__(self, bins: Bins, name: str) -> None:
+        self.bins, self.name = bins, name
+
+    def enter(self, host: Host, part: Any) -> None:
+        self.bins.landed(host, self.name, part.id, part.props)
+
+    def leave(self, host: Host, pid: str) -> None:
+        """A part stays recorded where it landed."""

@@ -1,0 +1,107 @@
+"""An analog colour sensor seen from above: a spot that reads the colour of the part covering it, 0…27648 raw.
+
+The raw value is the part's colour mean (its ``colour_raw`` property, or the rig's table of colour means for its
+``colour`` property) plus Gaussian noise (σ ``noise``, drawn from the rig's seeded generator in every step while a
+part covers the spot) plus the ambient-light offset (``ambient``, a scenario fault: ``set_ambient``), clipped to the
+module range. With no part it reads the bare belt (``bare``). The signal is ``analog`` with ``lo..hi`` = 0…27648, so
+the wiring passes the raw value through unscaled.
+
+The spot is a sensor shape like :class:`~plants.components.top_view.SpotSensor`: the rig's collision callback calls
+:meth:`ColourSensor.enter` / :meth:`ColourSensor.leave`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import pymunk
+
+from plants.components import draw
+from plants.components.collide import BEAM_CAT, CT_BEAM, PART_CAT
+from plants.components.component import Host
+from plcsim.plant import Drawable, SignalSpec
+
+RAW_MAX = 27_648
+
+
+class ColourSensor:
+    """Analog colour sensor ``name`` with its spot at (x, y)."""
+
+    EVENTS: frozenset[str] = frozenset()
+
+    def __init__(
+        self,
+        name: str,
+        x: float,
+        y: float,
+        *,
+        radius: float = 2.5,
+        colours: Mapping[int, float] | None = None,
+        bare: float = 26_500.0,
+        noise: float = 500.0,
+        doc: str = "",
+    ) -> None:
+        self.name, self.x, self.y, self.radius = name, float(x), float(y), float(radius)
+        self.colours = dict(colours or {})
+        self.bare, self.noise = float(bare), float(noise)
+        self.doc = doc or f"colour sensor at ({x:g}, {y:g}): raw 0..{RAW_MAX} (σ {noise:g})"
+
+    def specs(self) -> list[SignalSpec]:
+        return [SignalSpec(self.name, "sensor", "analog", doc=self.doc, unit="raw", lo=0.0, hi=float(RAW_MAX))]
+
+    def subjects(self) -> set[str]:
+        return {self.name}
+
+    def reset(self, host: Host) -> bool:
+        self.parts: dict[str, float] = {}  # covering parts -> their colour mean
+        self.ambient = 0.0
+        shape = pymunk.Circle(host.space.static_body, self.radius, (self.x, self.y))
+        shape.sensor = True
+        shape.collision_type = CT_BEAM
+        shape.filter = pymunk.ShapeFilter(categories=BEAM_CAT, mask=PART_CAT)
+        shape.owner = self
+        host.space.add(shape)
+        self.value = host.sensors[self.name] = self._clip(self.bare)
+        return False
+
+    def mean_of(self, props: Mapping[str, Any]) -> float:
+        """The colour mean of a part with these properties."""
+        if "colour_raw" in props:
+            return float(props["colour_raw"])
+        return float(self.colours[int(props["colour"])])
+
+    def enter(self, host: Host, part: Any) -> None:
+        """A part (with ``id`` and ``props``) covers the spot."""
+        self.parts[part.id] = self.mean_of(part.props)
+        host.wake(self)
+
+    def leave(self, host: Host, pid: str) -> None:
+        if self.parts.pop(pid, None) is not None:
+            host.wake(self)
+
+    def set_ambient(self, host: Host, offset: float) -> None:
+        """Fault / condition: ambient light adds ``offset`` raw units to every reading."""
+        self.ambient = float(offset)
+        host.wake(self)
+
+    def _clip(self, raw: float) -> int:
+        return max(0, min(RAW_MAX, round(raw)))
+
+    def actuate(self, host: Host, signal: str, value: Any) -> bool:
+        return False
+
+    def advance(self, host: Host, dt: float) -> bool:
+        if self.parts:
+            mean = next(iter(self.parts.values()))
+            self.value = host.sensors[self.name] = self._clip(mean + self.ambient + host.rng.normal(0.0, self.noise))
+            return True
+        self.value = host.sensors[self.name] = self._clip(self.bare + self.ambient)
+        return False
+
+    def static_drawables(self) -> list[Drawable]:
+        return [draw.label(f"sensors/{self.name}/label", self.x, self.y - self.radius - 6.0, self.name)]
+
+    def dynamic_drawables(self) -> list[Drawable]:
+        grey = int(255 * self.value / RAW_MAX)  # the reading as a grey level: dark = low raw value
+        return [draw.circle(f"sensors/{self.name}", self.x, self.y, self.radius, (grey, grey, grey), str(self.value))]
