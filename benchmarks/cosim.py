@@ -8,6 +8,8 @@ The workloads, each 1 ms scan, 1 ms physics, the trace on (one row per scan, pla
   at once, queued at S2 while the belt waits.
 * ``aligner`` (ALIGN, 4.3.12's reference): 60 s, a crooked part every 4 s, pushed flat, taken away.
 * ``sorter`` (SORT, 4.3.17's reference, its "six mixed" scenario): six parts of mixed colours on the belt.
+* ``punch`` (PUNCH, 6.3.5's reference): 60 s of parts loaded one after the other, each shuttled twice
+  to the press by the reversible belt, three strokes at each visit.
 
 "Physics alone" replays, on a fresh plant and in the same process, exactly the plant calls the
 co-simulation made (actuator commands, parts placed and removed) at the same simulated times, and steps
@@ -30,6 +32,7 @@ WORKLOADS = (
     ("several", "4.3.6 reference", "CONV1"),
     ("aligner", "4.3.12 reference", "ALIGN"),
     ("sorter", "4.3.17 reference", "SORT"),
+    ("punch", "6.3.5 reference", "PUNCH"),
 )
 
 
@@ -51,6 +54,14 @@ def _aligner(seconds: int) -> Any:
     return Scenario("aligner", *actions, duration=f"{seconds}s")
 
 
+def _punch(seconds: int) -> Any:
+    from exercises._punch import cycles
+    from plcsim.scenario import Scenario
+
+    writes = {1: {"M1_ZIADANY_POCET": 2, "M2_ZIADANY_POCET": 3}}
+    return Scenario("punch", *cycles(3, writes=writes), duration=f"{seconds}s")
+
+
 def _cosim(workload: str, seconds: int) -> tuple[float, Any, list[tuple[int, str, tuple, dict]]]:
     from exercises import get
 
@@ -61,6 +72,8 @@ def _cosim(workload: str, seconds: int) -> tuple[float, Any, list[tuple[int, str
     elif workload == "sorter":
         exercise = get("4.3.17")
         scenario = exercise.scenario("six mixed")
+    elif workload == "punch":
+        exercise, scenario = get("6.3.5"), _punch(seconds)
     else:
         exercise = get("4.3.6")
         scenario = exercise.scenario("five objects")

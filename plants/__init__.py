@@ -11,6 +11,7 @@ from plants.components import StationOccupiedError
 from plants.conveyors import Conv1, Conv2x2, Conv3, ConveyorLine
 from plants.machine import Machine
 from plants.panel import Panel
+from plants.punch import Punch
 from plants.sort import Sort
 from plcsim import registry
 
@@ -41,6 +42,7 @@ __all__ = [
     "ConveyorLine",
     "Machine",
     "Panel",
+    "Punch",
     "Sort",
     "StationOccupiedError",
 ]

@@ -1,0 +1,149 @@
+"""6.3.3 Task 3 — one press stroke. Plant: PUNCH."""
+
+from __future__ import annotations
+
+from exercises._common import solution
+from exercises._punch import (
+    MODEL,
+    PUNCH_IO,
+    AwaitingStroke,
+    PerObject,
+    PerVisit,
+    constant,
+    cycles,
+    edge_bits,
+    interlocks,
+    machine_safe,
+    strokes_land_on_objects,
+    strokes_on,
+)
+from plants import Punch
+from plcsim.check import all_of, count, final, never, off, rises
+from plcsim.exercise import IO, Exercise, only
+from plcsim.scenario import Scenario, after_event, free_motor, held, jam_motor, place, remove
+
+NUMBER = "6.3.3"
+OBJECTS = 3
+HOLDS = ("4s", "4.5s", "4.2s")  # the operator takes the object away this long after placing it (a stroke: 2.7 s)
+
+EXERCISE = Exercise(
+    number=NUMBER,
+    slug="punch-stroke",
+    title="Punching machine 3: one press stroke",
+    title_sk="Slovné zadanie 3 – Lisovací stroj s dopravníkom",
+    task=(
+        MODEL + "\n"
+        "Task: create a program that moves the punching device down and then up when an object is detected by OS2. "
+        "The sequence may start again only after the object has been removed and a new one loaded. It is similar "
+        "to task 1, except that the object does not move: the punching part of the model moves. The operator puts "
+        "the object straight under the press (at OS2) and takes it away there. Remember that the press has been "
+        "down for the object in the bit OBJEKT_BOL_DOLE; the removal is the rising edge of OS2 (edge memory bit "
+        "POM_P_OS2)."
+    ),
+    io=[
+        *PUNCH_IO,
+        IO("OBJEKT_BOL_DOLE", "the press has been down for this object", "Bool", "%M0.1", comment="address proposed"),
+        *edge_bits("POM_P_OS2"),
+    ],
+    rig=Punch,
+    scenarios=[
+        Scenario(
+            "three objects",
+            *cycles(OBJECTS, at="OS2", rest=HOLDS),
+            duration="22s",
+            description="three objects, one after the other, put under the press at OS2 and taken away 4..4.5 s "
+            "later; the next is put there 1..2 s after the removal",
+        ),
+        Scenario(
+            "jammed press",
+            place("p1", at="OS2", t="0.3s..0.8s"),
+            jam_motor("M2_DOLE", when=after_event("part entered", "OS2"), delay="0.4s..0.9s"),
+            free_motor("M2_DOLE", when=after_event("motor jammed"), delay="1.5s..3s"),
+            remove("p1", when=held("OS2", "7s")),
+            place("p2", at="OS2", when=after_event("part removed", "p1"), delay="1s..2s"),
+            remove("p2", when=held("OS2", "4s")),
+            duration="18s",
+            description="a fault: the press jams on its way down (KS2 is not reached) and is freed 1.5..3 s later; "
+            "the stroke then completes; a second object follows",
+        ),
+        Scenario(
+            "object taken during the stroke",
+            place("p1", at="OS2", t="0.3s..0.8s"),
+            remove("p1", when=after_event("part entered", "OS2"), delay="0.5s..1s"),
+            duration="6s",
+            description="the operator takes the object away while the press is on its way down",
+        ),
+    ],
+    checks=[
+        # criterion 1
+        never(all_of(AwaitingStroke(), "KS1", off("M2_DOLE"))).named(
+            "the press starts down within 1 scan for an object at OS2"
+        ),
+        never(all_of("KS2", "M2_DOLE")).named("the press stops at KS2 within 1 scan"),
+        never(all_of("KS2", off("M2_HORE"))).named("the press goes back up from KS2 within 1 scan"),
+        never(all_of("KS1", "M2_HORE")).named("the press stops at KS1 within 1 scan"),
+        # criteria 2 and 3
+        only(
+            PerVisit("every object under the press is punched exactly once", constant(1)),
+            "three objects",
+            "jammed press",
+        ),
+        only(
+            PerObject("every object gets exactly one stroke", "was punched", strokes_on, constant(1)),
+            "three objects",
+            "jammed press",
+        ),
+        only(strokes_land_on_objects(), "three objects", "jammed press"),
+        only(
+            count(rises("M2_DOLE")).equals(OBJECTS).named("the press starts once per object, never without one"),
+            "three objects",
+        ),
+        *interlocks(belt=False),
+        *machine_safe(),
+        only(final("KS1").equals(1).named("the press is back at KS1 at the end"), "object taken during the stroke"),
+    ],
+    solutions=[
+        solution(
+            NUMBER,
+            "reference",
+            explanation="S M2_DOLE for an object at OS2 with the press at KS1 and not OBJEKT_BOL_DOLE; at KS2 "
+            "reverse and S OBJEKT_BOL_DOLE; R M2_HORE at KS1; the removal edge of OS2 clears OBJEKT_BOL_DOLE",
+        ),
+        solution(
+            NUMBER,
+            "wrong-no-helper-bit",
+            "wrong",
+            "(not from the textbook) without the OBJEKT_BOL_DOLE test the press strokes again and again while the "
+            "object lies at OS2",
+            fails=("every object under the press is punched exactly once",),
+        ),
+        solution(
+            NUMBER,
+            "wrong-no-stop-at-top",
+            "wrong",
+            "(not from the textbook) no R M2_HORE at KS1: the press runs into its upper end stop and stalls",
+            fails=("the press is never driven against an end stop", "the press stops at KS1 within 1 scan"),
+        ),
+        solution(
+            NUMBER,
+            "wrong-ks1-lower",
+            "wrong",
+            "the model text's KS1 = lower, KS2 = upper (text issue 12), on a model wired as the solutions use it: "
+            "KS1 at the top is taken for 'down', the press is driven into its upper end stop, nothing is punched",
+            fails=(
+                "every object under the press is punched exactly once",
+                "the press is never driven against an end stop",
+            ),
+        ),
+    ],
+    notes=(
+        "The object is put straight under the press: the OS2 station places it 5 mm past the press axis (the "
+        "operator's ±5 mm), so it always cuts the OS2 beam and lies under the tool. A stroke is counted by the "
+        "plant when the tool tip passes 75 mm (the object's top is at 70 mm), on the object whose extent holds the "
+        "press axis. 'Jammed press' is a fault of the machine, not of the program: the textbook's program keeps "
+        "M2_DOLE on while the press stands (it has no watchdog) and finishes the stroke once the press is freed. "
+        "'Object taken during the stroke' grades only what must hold then: the press finishes its stroke and waits "
+        "at KS1 (the textbook's OBJEKT_BOL_DOLE is set after the removal edge, so an object put there next would "
+        "not be punched; the textbook does not consider this case)."
+    ),
+)

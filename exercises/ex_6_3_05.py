@@ -1,0 +1,104 @@
+"""6.3.5 Task 5 — the required number of press strokes (an Int parameter). Plant: PUNCH."""
+
+from __future__ import annotations
+
+from exercises._common import solution
+from exercises._punch import MODEL, PUNCH_IO, counts, cycles, edge_bits, parameter, product, punching_checks
+from plants import Punch
+from plcsim.check import all_of, never, value
+from plcsim.exercise import IO, Exercise
+from plcsim.scenario import Scenario, after_event, free_motor, jam_motor
+
+NUMBER = "6.3.5"
+MOVES, STROKES = "M1_ZIADANY_POCET", "M2_ZIADANY_POCET"
+
+EXERCISE = Exercise(
+    number=NUMBER,
+    slug="punch-strokes",
+    title="Punching machine 5: the required number of press strokes",
+    title_sk="Slovné zadanie 5 – Lisovací stroj s dopravníkom",
+    task=(
+        MODEL + "\n"
+        "Task: modify the program of task 4 so that the required number of punchings at each visit to OS2 can be "
+        "entered through a parameter of data type INT, M2_ZIADANY_POCET; count the punchings done in "
+        "M2_AKTUALNY_POCET (the rising edge of the lower sensor KS2 is one punching) and clear the count when the "
+        "object leaves OS2. The object is sent back only after the last punching, with the press at the top "
+        "again. A required count of zero need not be handled. The operator sets M1_ZIADANY_POCET and "
+        "M2_ZIADANY_POCET on the HMI before loading an object."
+    ),
+    io=[
+        *PUNCH_IO,
+        *counts(MOVES, "M1_AKTUALNY_POCET", STROKES, "M2_AKTUALNY_POCET"),
+        IO("OBJEKT_PRI_OS2", "the required number of moves is reached", "Bool", "%M0.0", comment="address proposed"),
+        IO(
+            "OBJEKT_BOL_DOLE",
+            "the required number of punchings is done",
+            "Bool",
+            "%M0.1",
+            comment="address proposed",
+        ),
+        *edge_bits("POM_P_OS1", "POM_N_OS2", "POM_P_OS2", "POM_P_KS2"),
+    ],
+    rig=Punch,
+    scenarios=[
+        Scenario(
+            "two moves, three strokes",
+            *cycles(1, writes={1: {MOVES: 2, STROKES: 3}}),
+            duration="38s",
+            description="M1_ZIADANY_POCET = 2, M2_ZIADANY_POCET = 3: the object is punched three times at each "
+            "of its two visits to OS2",
+        ),
+        Scenario(
+            "two strokes, then one",
+            *cycles(2, writes={1: {MOVES: 1, STROKES: 2}, 2: {MOVES: 1, STROKES: 1}}),
+            duration="34s",
+            description="the first object with two strokes, the second (after the operator has changed the "
+            "parameter) with one",
+        ),
+        Scenario(
+            "jammed press",
+            *cycles(1, writes={1: {MOVES: 1, STROKES: 2}}),
+            jam_motor("M2_DOLE", when=after_event("press stroke"), delay="1.8s..2.2s"),
+            free_motor("M2_DOLE", when=after_event("motor jammed"), delay="1.5s..3s"),
+            duration="22s",
+            description="a fault: the press jams on its way down to the second stroke and is freed 1.5..3 s later",
+        ),
+    ],
+    checks=[
+        *punching_checks(parameter(STROKES), product(MOVES, STROKES), "M2_ZIADANY_POCET strokes", (MOVES, STROKES)),
+        never(all_of("OS2", value("M2_AKTUALNY_POCET") != 0)).named(
+            "M2_AKTUALNY_POCET is 0 whenever no object is under the press"
+        ),
+    ],
+    solutions=[
+        solution(
+            NUMBER,
+            "reference",
+            explanation="task 4 with the strokes counted by ADD on the rising edge of KS2 (rung 6), OBJEKT_BOL_DOLE "
+            ":= count >= M2_ZIADANY_POCET (rung 7), the count cleared when the object leaves OS2 (rung 8)",
+        ),
+        solution(
+            NUMBER,
+            "wrong-count-ks2-level",
+            "wrong",
+            "(not from the textbook) ADD on the level of KS2: one stroke counts tens of times",
+            fails=("every stay under the press gets M2_ZIADANY_POCET strokes",),
+        ),
+        solution(
+            NUMBER,
+            "wrong-no-count-reset",
+            "wrong",
+            "(not from the textbook) the stroke count is never cleared: later visits get no stroke",
+            fails=(
+                "every stay under the press gets M2_ZIADANY_POCET strokes",
+                "M2_AKTUALNY_POCET is 0 whenever no object is under the press",
+            ),
+        ),
+    ],
+    notes=(
+        "The textbook names neither stroke count; M2_ZIADANY_POCET and M2_AKTUALNY_POCET are proposed (spec 6.3.5). "
+        "Its text cites Figs. 6.44-6.50 but lists eight rungs; the reference has the eight (6.44-6.51). The jam "
+        "comes on the way down to the second stroke: the program must neither count a stroke nor move the belt "
+        "before the press is back at KS1 after the last one."
+    ),
+)
