@@ -2,7 +2,18 @@
 
 from __future__ import annotations
 
+import sys
+
 import pytest
+
+
+@pytest.fixture(autouse=True)
+def _sys_path_restored():
+    """A test that loads an instructor's folder by path (``load_path`` appends it to ``sys.path``) must not
+    leave it there: a later test that hands ``sys.path`` to a child would import that folder's files."""
+    saved = list(sys.path)
+    yield
+    sys.path[:] = saved
 
 
 @pytest.fixture
