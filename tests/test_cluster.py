@@ -22,6 +22,9 @@ from plcsim.errors import ConfigurationError
 from plcsim.executors import open_executor
 from plcsim.grading import Limits, grade_batch, write_gradebook, write_junit
 
+# one xdist worker runs them: they share one local Dask cluster (a second would double the workers)
+pytestmark = pytest.mark.xdist_group("cluster")
+
 distributed = pytest.importorskip("distributed")
 
 LOOPS = "def OB1(t):\n    t.LED = t.TLACIDLO\n    while True:\n        pass\n"  # the cycle watchdog stops it

@@ -16,6 +16,9 @@ from plcsim import sandbox
 from plcsim.grading import grade_batch
 from plcsim.sandbox import Probes
 
+# one xdist worker runs them: they share one local Dask cluster (a second would double the workers)
+pytestmark = pytest.mark.xdist_group("cluster")
+
 
 @pytest.fixture(scope="module")
 def ex4():

@@ -47,6 +47,10 @@ from plcsim.errors import ConfigurationError
 from plcsim.grading import Limits, grade_sandboxed
 from plcsim.sandbox import MODE_VARIABLE, portable_mode
 
+# one xdist worker runs them in turn: they look for the hostile child's leftovers machine-wide and
+# time their limits, so two at once on two cores would see each other
+pytestmark = pytest.mark.xdist_group("sandbox")
+
 PORTABLE_HOSTILE = "portable_hostile_child"
 
 

@@ -22,6 +22,10 @@ from exercises import get
 from plcsim.errors import ConfigurationError
 from plcsim.grading import Limits, grade_sandboxed
 
+# one xdist worker runs them in turn: they look for the hostile child's leftovers machine-wide and
+# time their limits, so two at once on two cores would see each other
+pytestmark = pytest.mark.xdist_group("sandbox")
+
 HOSTILE = "sandbox_hostile_child"
 linux_only = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="namespaces and Landlock are Linux's")
 

@@ -15,6 +15,10 @@ from plcsim.grading import evaluate, run_scenarios
 from plcsim.run_result import InvalidResultError, decode, encode_failure, encode_runs, message_length
 from plcsim.sandbox import _expected
 
+# one xdist worker runs them in turn: they look for the hostile child's leftovers machine-wide and
+# time their limits, so two at once on two cores would see each other
+pytestmark = pytest.mark.xdist_group("sandbox")
+
 
 @pytest.fixture(scope="module")
 def ex1():
