@@ -377,6 +377,17 @@ def shuttle(ignore: tuple[str, ...] = (), *, reverse_at_os2: bool = True) -> lis
     return checks
 
 
+def waits_at_os1() -> Check:
+    """Criterion of the shuttling tasks: each object, back at OS1, stays until the operator takes it away."""
+    return PerObject(
+        "every object waits at OS1 until it is taken away",
+        "was taken away at OS1",
+        removed,
+        constant(1),
+        events=(("part removed", None),),
+    )
+
+
 def strokes_land_on_objects() -> Check:
     """The plant's account of each stroke: it came down on an object, near the object's centre (a stroke on an
     empty place has no offset and fails)."""
@@ -430,13 +441,7 @@ def punching_checks(
             "the belt reverses within 1 scan once the press is back at KS1 after the last stroke"
         ),
         # criterion 4
-        PerObject(
-            "every object waits at OS1 until it is taken away",
-            "was taken away at OS1",
-            removed,
-            constant(1),
-            events=(("part removed", None),),
-        ),
+        waits_at_os1(),
         *shuttle(reverse_at_os2=False),
         *interlocks(),
         *machine_safe(),

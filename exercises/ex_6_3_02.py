@@ -9,15 +9,14 @@ from exercises._punch import (
     Arrivals,
     PerObject,
     arrivals,
-    constant,
     counts,
     cycles,
     edge_bits,
     interlocks,
     machine_safe,
     parameter,
-    removed,
     shuttle,
+    waits_at_os1,
 )
 from exercises._truth import parts_equal
 from plants import Punch
@@ -80,13 +79,7 @@ EXERCISE = Exercise(
             reads=(REQUIRED,),
             events=(("part entered", "OS2"),),
         ),
-        PerObject(
-            "every object waits at OS1 until it is taken away",
-            "was taken away at OS1",
-            removed,
-            constant(1),
-            events=(("part removed", None),),
-        ),
+        waits_at_os1(),
         # criterion 2
         always(parts_equal("M1_AKTUALNY_POCET", Arrivals())).named(
             "M1_AKTUALNY_POCET counts the object's arrivals at OS2 and is 0 after its removal"
