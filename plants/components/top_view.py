@@ -81,13 +81,17 @@ class SpotSensor:
         return False
 
     def _attach(self, host: Any) -> None:
-        shape = pymunk.Circle(host.space.static_body, self.radius, (self.x + self.dx, self.y))
+        shape = self._sensing_shape(host.space.static_body)
         shape.sensor = True
         shape.collision_type = CT_BEAM
         shape.filter = pymunk.ShapeFilter(categories=BEAM_CAT, mask=PART_CAT)
         shape.owner = self
         host.space.add(shape)
         self.shape = shape
+
+    def _sensing_shape(self, body: pymunk.Body) -> pymunk.Shape:
+        """The sensor's area: a spot of ``radius`` (a :class:`Beam` is a line across the belt)."""
+        return pymunk.Circle(body, self.radius, (self.x + self.dx, self.y))
 
     def enter(self, host: Any, part: TopPart) -> None:
         pid = part.id
@@ -124,17 +128,9 @@ class Beam(SpotSensor):
         super().__init__(name, x, 0.5 * (y0 + y1), 0.5 * width, doc or f"light barrier at x = {x:g} mm")
         self.y0, self.y1 = float(y0), float(y1)
 
-    def _attach(self, host: Any) -> None:
+    def _sensing_shape(self, body: pymunk.Body) -> pymunk.Shape:
         x, hw = self.x + self.dx, self.radius
-        shape = pymunk.Poly(
-            host.space.static_body, [(x - hw, self.y0), (x + hw, self.y0), (x + hw, self.y1), (x - hw, self.y1)]
-        )
-        shape.sensor = True
-        shape.collision_type = CT_BEAM
-        shape.filter = pymunk.ShapeFilter(categories=BEAM_CAT, mask=PART_CAT)
-        shape.owner = self
-        host.space.add(shape)
-        self.shape = shape
+        return pymunk.Poly(body, [(x - hw, self.y0), (x + hw, self.y0), (x + hw, self.y1), (x - hw, self.y1)])
 
     def static_drawables(self) -> list[Drawable]:
         return [draw.label(f"sensors/{self.name}/label", self.x, self.y1 + 6.0, self.name)]
