@@ -41,8 +41,7 @@ from plcsim.compiler import FB_STORE, ROOT_GUARD, STORE, TICK
 from plcsim.config import CLOCK_BITS, RUN, STOP, SYSTEM_BITS, CPUConfig, DiagnosticEntry
 from plcsim.errors import ConfigurationError, PlcTypeError
 from plcsim.execution import NEVER, CycleWatchdog, Execution, RunningTask, TaskRunner, switched_off, tuple_getter
-from plcsim.instructions.edges import bit_resolver, make_edge_instructions
-from plcsim.instructions.system import make_move, make_rd_loc_t
+from plcsim.instructions import bind_instructions
 from plcsim.instructions.timers import IecTimer
 from plcsim.literals import datetime_literal, format_ns, to_ns
 from plcsim.loaded import LinkTarget, LoadedProgram, LoadedTask, SourceProgram, TaskSpec
@@ -251,10 +250,9 @@ class CPU(TaskRunner, HostAccess):
         return task
 
     def _bound_instructions(self) -> dict[str, Any]:
-        lookup = bit_resolver(self.t, self.resolve_path)
-        bound: dict[str, Any] = make_edge_instructions(lookup)
-        bound["MOVE"] = make_move(self.resolve_path)
-        bound["RD_LOC_T"] = make_rd_loc_t(self.local_time)
+        """The instructions that need this CPU (built from their descriptions), and the runtime hooks the
+        Python front end's compiled code calls: the watchdog tick and the store guards."""
+        bound: dict[str, Any] = bind_instructions(self)
         ticks = self._ticks
         budget = self.config.watchdog_iterations
 

@@ -16,34 +16,28 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 from plcsim.compiler import ALLOWED_BUILTINS
-from plcsim.instructions import BLOCKS, FB_TYPES, PURE_INSTRUCTIONS, Block
-from plcsim.instructions.edges import make_edge_instructions
-from plcsim.instructions.system import make_move, make_rd_loc_t
+from plcsim.instructions import BLOCKS, FB_TYPES, PURE_INSTRUCTIONS, Block, bind_instructions
 from plcsim.program import DECLARATION_NAMES, DECLARATION_ONLY, TYPE_NAMES
 
 PAGE = "docs/instructions.md"
 """Where the generated page lives in the repository."""
 
 
-def _unbound(path: str) -> Any:  # the per-CPU instructions are built only to read their docstrings
-    raise AssertionError("never called")
+class _NoCPU:
+    """A host the per-CPU instructions are built on only to read their docstrings (never run)."""
 
+    t = None
 
-_unbound.cache = {}  # type: ignore[attr-defined]
+    def resolve_path(self, path: str) -> Any:
+        raise AssertionError("never called")
 
-
-def _cpu_bound() -> dict[str, Callable[..., Any]]:
-    """The instructions each CPU builds for itself (edges, MOVE, RD_LOC_T), built once here for their text."""
-    return {
-        **make_edge_instructions(_unbound),
-        "MOVE": make_move(_unbound),
-        "RD_LOC_T": make_rd_loc_t(_unbound),  # type: ignore[arg-type]
-    }
+    def local_time(self) -> Any:
+        raise AssertionError("never called")
 
 
 def network_instructions() -> dict[str, Callable[..., Any]]:
     """Every instruction a network may call, by name (the pure ones and those each CPU builds)."""
-    return {**PURE_INSTRUCTIONS, **_cpu_bound()}
+    return {**PURE_INSTRUCTIONS, **bind_instructions(_NoCPU())}
 
 
 def _first_paragraph(obj: Any) -> str:

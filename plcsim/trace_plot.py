@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from plcsim.literals import to_ns
-from plcsim.trace import Trace, TraceEvent
+from plcsim.trace_table import TraceEvent, TraceTable
 
 MAX_DEFAULT_LANES = 24
 """Lanes drawn when no signals are named (inputs first, then outputs, internal bits, numbers)."""
@@ -60,7 +60,7 @@ def _figure_class() -> type:
     return type("TimingDiagramFigure", (TimingDiagram, Figure), {})
 
 
-def default_signals(trace: Trace) -> list[str]:
+def default_signals(trace: TraceTable) -> list[str]:
     """The lanes drawn when none are named: inputs, outputs, internal Bools, then numbers (at most
     :data:`MAX_DEFAULT_LANES`)."""
 
@@ -77,7 +77,7 @@ def _ns(value: str | int | None, what: str) -> int | None:
     return None if value is None else to_ns(value, what)
 
 
-def steps(trace: Trace, name: str, start: int, end: int) -> tuple[np.ndarray, np.ndarray]:
+def steps(trace: TraceTable, name: str, start: int, end: int) -> tuple[np.ndarray, np.ndarray]:
     """The step points of a signal in ``[start, end]``: times (ns) and values, one point at the
     window start (the value valid then, if any), one at each change, and one at ``end``."""
     when = trace.signal_times(name)
@@ -99,7 +99,7 @@ def steps(trace: Trace, name: str, start: int, end: int) -> tuple[np.ndarray, np
 
 
 def timing_diagram(
-    trace: Trace,
+    trace: TraceTable,
     signals: Sequence[str] | None = None,
     *,
     start: str | int | None = None,
@@ -215,7 +215,7 @@ def timing_diagram(
 
 
 def save_timing_diagram(
-    trace: Trace, path: str | Path, signals: Sequence[str] | None = None, *, dpi: int = 120, **options: Any
+    trace: TraceTable, path: str | Path, signals: Sequence[str] | None = None, *, dpi: int = 120, **options: Any
 ) -> Path:
     """Draw a timing diagram (options as :func:`timing_diagram`) and write it as a PNG."""
     path = Path(path)
@@ -231,7 +231,7 @@ def _fmt(value: float) -> str:
     return str(int(value)) if float(value).is_integer() else f"{value:.4g}"
 
 
-def _title(trace: Trace) -> str:
+def _title(trace: TraceTable) -> str:
     meta = trace.meta
     parts = [str(meta[k]) for k in ("exercise", "scenario", "program") if meta.get(k) and str(meta[k])[0] != "<"]
     if meta.get("seed") is not None and parts:

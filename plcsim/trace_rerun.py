@@ -49,7 +49,7 @@ from typing import Any
 import numpy as np
 
 from plcsim.plant import Drawable
-from plcsim.trace import HEAD, Trace, TraceEvent
+from plcsim.trace_table import HEAD, TraceEvent, TraceTable
 
 TIMELINE = "sim"
 """The one timeline of an exported recording (simulated time)."""
@@ -88,7 +88,7 @@ _LABEL_RADIUS = -0.5  # a label is its text; the anchor dot stays small
 
 
 def export_rrd(
-    trace: Trace,
+    trace: TraceTable,
     path: str | Path,
     *,
     application_id: str = "plcsim",
@@ -122,7 +122,7 @@ def export_rrd(
 
 
 def _export(
-    rr: Any, trace: Trace, path: Path, application_id: str, rid: str, title: str | None, every_row: bool
+    rr: Any, trace: TraceTable, path: Path, application_id: str, rid: str, title: str | None, every_row: bool
 ) -> Path:
     with _rerun_enabled():  # the recording and the blueprint's stream, both created here
         rec = rr.RecordingStream(application_id, recording_id=rid, send_properties=False)
@@ -145,13 +145,13 @@ def _export(
 # -- identity and metadata ---------------------------------------------------------------------
 
 
-def default_recording_id(trace: Trace) -> str:
+def default_recording_id(trace: TraceTable) -> str:
     """A recording id that depends only on the trace: its metadata and its rows and events."""
     meta = json.dumps(trace.meta, sort_keys=True, default=str)
     return str(uuid.uuid5(_NAMESPACE, f"{meta}\n{trace.digest()}"))
 
 
-def _default_title(trace: Trace) -> str:
+def _default_title(trace: TraceTable) -> str:
     meta = trace.meta
     parts = [
         str(meta[k]) for k in ("exercise", "scenario", "plant", "program") if meta.get(k) and str(meta[k])[0] != "<"
@@ -160,7 +160,7 @@ def _default_title(trace: Trace) -> str:
     return " · ".join(parts + ([f"seed {seed}"] if seed is not None else [])) or "plcsim run"
 
 
-def metadata_markdown(trace: Trace) -> str:
+def metadata_markdown(trace: TraceTable) -> str:
     """The run's description shown in the viewer: metadata and the traced signals."""
     meta = trace.meta
     lines = ["# plcsim run", "", "| | |", "|---|---|"]
@@ -194,7 +194,7 @@ def _rerun_enabled() -> Iterator[None]:
 # -- signals -----------------------------------------------------------------------------------
 
 
-def signal_groups(trace: Trace) -> dict[str, list[str]]:
+def signal_groups(trace: TraceTable) -> dict[str, list[str]]:
     """The trace's signals by group (``inputs``, ``outputs``, ``internal``, ``numbers``,
     ``number_outputs``), in trace order; empty groups are left out."""
     groups: dict[str, list[str]] = {g: [] for g in GROUPS}
@@ -242,7 +242,7 @@ def step_rows(times: np.ndarray, values: np.ndarray, every_row: bool = False) ->
     return times[order], values[source]
 
 
-def group_rows(trace: Trace, names: Sequence[str], every_row: bool = False) -> tuple[np.ndarray, np.ndarray]:
+def group_rows(trace: TraceTable, names: Sequence[str], every_row: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """The times (int64 ns) and values (rows, len(names)) sent for signals that share a timestamp
     (one group): rows sorted by the time the values became valid, as :func:`step_rows`."""
     table = trace.table
@@ -274,7 +274,7 @@ def _series_style(rr: Any, names: list[str], color: int | None = None) -> Any:
     )
 
 
-def _send_signals(rec: Any, trace: Trace, every_row: bool) -> None:
+def _send_signals(rec: Any, trace: TraceTable, every_row: bool) -> None:
     import rerun as rr
 
     for group, names in signal_groups(trace).items():
@@ -475,7 +475,7 @@ def _send_static_geometry(rec: Any, drawables: Sequence[Drawable]) -> set[str]:
     return written
 
 
-def _send_frames(rec: Any, trace: Trace, written: set[str]) -> None:
+def _send_frames(rec: Any, trace: TraceTable, written: set[str]) -> None:
     """Log the geometry frames; a moving shape's caption is left out when a fixed shape writes it."""
     import rerun as rr
 
@@ -504,12 +504,12 @@ def _send_frames(rec: Any, trace: Trace, written: set[str]) -> None:
             rec.send_columns(entity, indexes=index, columns=columns)
 
 
-def has_geometry(trace: Trace) -> bool:
+def has_geometry(trace: TraceTable) -> bool:
     """Whether the trace has a plant to draw."""
     return bool(trace.static_drawables or any(f.drawables for f in trace.frames))
 
 
-def _bounds(trace: Trace) -> tuple[float, float, float, float] | None:
+def _bounds(trace: TraceTable) -> tuple[float, float, float, float] | None:
     if trace.bounds is not None:
         return tuple(float(v) for v in trace.bounds)  # type: ignore[return-value]
     pts = [np.asarray(d.points, dtype=float).reshape(-1, 2) for d in trace.static_drawables]
@@ -524,7 +524,7 @@ def _bounds(trace: Trace) -> tuple[float, float, float, float] | None:
 # -- blueprint ---------------------------------------------------------------------------------
 
 
-def make_blueprint(trace: Trace) -> Any:
+def make_blueprint(trace: TraceTable) -> Any:
     """The viewer layout: the machine beside (or, for a wide machine, above) the signals, the events
     and the run's description in tabs."""
     import rerun.blueprint as rrb
@@ -557,7 +557,7 @@ def make_blueprint(trace: Trace) -> Any:
     )
 
 
-def signal_panel(trace: Trace) -> tuple[Any, float]:
+def signal_panel(trace: TraceTable) -> tuple[Any, float]:
     """The signal lanes and their height in lanes: in one column, or, when more than
     :data:`LANES_PER_COLUMN` would make each too low to read (rerun then cuts off a plot's 0 line
     and time axis), in two: inputs and outputs beside the internal bits and the numbers.
@@ -574,7 +574,7 @@ def signal_panel(trace: Trace) -> tuple[Any, float]:
     return rrb.Horizontal(*columns, name="Signals"), max(sum(shares[:io]), sum(shares[io:]))
 
 
-def signal_lanes(trace: Trace) -> tuple[list[Any], list[float]]:
+def signal_lanes(trace: TraceTable) -> tuple[list[Any], list[float]]:
     """The signal views, top to bottom, and their heights: one lane per Bool (inputs, outputs,
     internal; the first lane of a group carries the group's title), then one plot of the numbers,
     2.5 lanes high. All share one time axis, so zooming one zooms all."""
@@ -618,6 +618,6 @@ TITLE_SHARE = 0.45
 """Extra height of a group's first lane, for its title bar (so its plot is as high as the others)."""
 
 
-def _plant_name(trace: Trace) -> str:
+def _plant_name(trace: TraceTable) -> str:
     plant = trace.meta.get("plant")
     return f" ({plant})" if plant else ""

@@ -6,15 +6,16 @@ Function-block instance types are declared in a program (``TON_A = IEC_TIMER()``
 
 from __future__ import annotations
 
+import datetime as _dt
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol
 
 from plcsim.clock import Clock
 from plcsim.instructions.arithmetic import MATH_FUNCTIONS
 from plcsim.instructions.counters import IecCounter
-from plcsim.instructions.edges import EdgeTrigger
-from plcsim.instructions.system import JMP, RET
+from plcsim.instructions.edges import EDGE_INSTRUCTIONS, EdgeTrigger, bind_edge
+from plcsim.instructions.system import JMP, RET, make_move, make_rd_loc_t
 from plcsim.instructions.timers import PT, RT, IecTimer, TimerDialect
 from plcsim.tags import FBType
 from plcsim.types import ElementaryType, Int
@@ -172,29 +173,55 @@ def block_named(name: str) -> Block | None:
     return BLOCKS.get(name)
 
 
+class Host(Protocol):
+    """What an instruction that needs the CPU is bound to: the S7 CPU is one (a test's stand-in another)."""
+
+    t: Any
+    """The tags, as the networks see them."""
+
+    def resolve_path(self, path: str) -> tuple[Any, Any]:
+        """Where ``"NAME"``, ``"DB.member"`` or ``"%M2.0"`` lives: (container, key)."""
+        ...
+
+    def local_time(self) -> tuple[_dt.datetime, int]:
+        """The CPU's local date and time now, and its nanoseconds."""
+        ...
+
+
 @dataclass(frozen=True)
 class Function:
     """One instruction a network calls as a function (``P``, ``DIV``, ``MOVE`` ...).
 
     ``run`` is its implementation when it is the same for every program; an instruction that reads or
-    writes a CPU's memory or clock (``needs_cpu``) is built by each CPU instead."""
+    writes a CPU's memory or clock has ``bind`` instead, and each CPU calls ``bind(cpu)`` for its own
+    implementation (the CPU binds every such description alike and names none of them)."""
 
     name: str
     run: Callable[..., Any] | None = None
     returns_bool: bool = False
     """Its result is a Bool (the compiler's static typing: storing it into a BOOL needs no check)."""
-    needs_cpu: bool = False
+    bind: Callable[[Host], Callable[..., Any]] | None = None
+
+    @property
+    def needs_cpu(self) -> bool:
+        """Whether each CPU builds its own implementation (with :attr:`bind`)."""
+        return self.bind is not None
 
 
 def _functions() -> dict[str, Function]:
     boolean = {"IN_RANGE", "OUT_RANGE"}
     pure = {**MATH_FUNCTIONS, "RT": RT, "PT": PT, "JMP": JMP, "RET": RET}
     found = {name: Function(name, run, returns_bool=name in boolean) for name, run in pure.items()}
-    for name in ("P", "N", "P_TRIG", "N_TRIG", "P_COIL", "N_COIL"):
-        found[name] = Function(name, returns_bool=True, needs_cpu=True)
-    for name in ("MOVE", "RD_LOC_T"):
-        found[name] = Function(name, needs_cpu=True)
+    for name in EDGE_INSTRUCTIONS:
+        found[name] = Function(name, returns_bool=True, bind=bind_edge(name))
+    found["MOVE"] = Function("MOVE", bind=lambda host: make_move(host.resolve_path))
+    found["RD_LOC_T"] = Function("RD_LOC_T", bind=lambda host: make_rd_loc_t(host.local_time))
     return found
+
+
+def bind_instructions(host: Host) -> dict[str, Callable[..., Any]]:
+    """The instructions that need a CPU, each built for ``host`` from its description (name -> callable)."""
+    return {f.name: f.bind(host) for f in FUNCTIONS.values() if f.bind is not None}
 
 
 FUNCTIONS: dict[str, Function] = _functions()
@@ -214,6 +241,8 @@ __all__ = [
     "FUNCTIONS",
     "Block",
     "Function",
+    "Host",
+    "bind_instructions",
     "BlockMember",
     "block_named",
     "block_of",

@@ -150,3 +150,16 @@ def make_edge_instructions(lookup: Callable[[str], BitRef]) -> dict[str, Callabl
         return rlo
 
     return {"P": P, "N": N, "P_TRIG": P, "N_TRIG": N, "P_COIL": P_COIL, "N_COIL": N_COIL}
+
+
+EDGE_INSTRUCTIONS = ("P", "N", "P_TRIG", "N_TRIG", "P_COIL", "N_COIL")
+"""The edge instructions with an edge memory bit (each bound to one CPU's memory)."""
+
+
+def bind_edge(name: str) -> Callable[[Any], Callable[..., bool]]:
+    """How a CPU (anything with ``t`` and ``resolve_path``) builds the edge instruction ``name``."""
+
+    def bind(host: Any) -> Callable[..., bool]:
+        return make_edge_instructions(bit_resolver(host.t, host.resolve_path))[name]
+
+    return bind
