@@ -42,6 +42,11 @@ def _parser() -> argparse.ArgumentParser:
     lister.add_argument(
         "--exercises", metavar="PATH", help="list an instructor's exercises: a file or a folder of them"
     )
+    lister.add_argument(
+        "--profiles",
+        action="store_true",
+        help="list the CPU profiles (memory areas, tasks, restarts) and the front ends whose programs run on each",
+    )
 
     show = sub.add_parser(
         "show",
@@ -219,6 +224,11 @@ def _list(args: argparse.Namespace) -> int:
     from plcsim.catalog import all_exercises, broken_exercises, load_path
     from plcsim.report import print_exercise_list
 
+    if args.profiles:
+        from plcsim.profiles.listing import print_profiles
+
+        print_profiles()
+        return 0
     if args.exercises:
         loaded, broken = load_path(args.exercises)
         print_exercise_list(loaded, title=f"exercises in {args.exercises}")

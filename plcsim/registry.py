@@ -9,7 +9,10 @@ Groups (``[project.entry-points."plcsim.rigs"]`` in a package's ``pyproject.toml
   ``course = "exercises"`` registers the course's.
 * ``plcsim.rigs``: a rig's id and its factory, ``CONV1 = "plants.conveyors:Conv1"``.
 * ``plcsim.frontends``: a front end of another package, named by the file suffix it reads (``st =
-  "my_st:read_st"`` reads ``.st``); plcsim's own front ends register in :mod:`plcsim.frontends`.
+  "my_st:read_st"`` reads ``.st``; a :class:`plcsim.frontends.FrontEnd` names its profile too);
+  plcsim's own front ends register in :mod:`plcsim.frontends`.
+* ``plcsim.profiles``: a CPU profile (:class:`plcsim.profiles.Profile`) by name, ``s7-1200 =
+  "plcsim.profiles.s7:PROFILE"`` (:mod:`plcsim.profiles` reads them).
 
 A module is imported only when what it registers is asked for (``plcsim --help`` lists the rigs from the
 names alone). A file in the working folder never stands in for a registered module: a student's
@@ -31,6 +34,7 @@ from plcsim.errors import ConfigurationError, did_you_mean
 EXERCISES = "plcsim.exercises"
 RIGS = "plcsim.rigs"
 FRONTENDS = "plcsim.frontends"
+PROFILES = "plcsim.profiles"
 
 
 def entry_points(group: str) -> list[importlib.metadata.EntryPoint]:
@@ -120,6 +124,7 @@ def _same_folder(a: str, b: str) -> bool:
 __all__ = [
     "EXERCISES",
     "FRONTENDS",
+    "PROFILES",
     "RIGS",
     "entry_points",
     "frontend",

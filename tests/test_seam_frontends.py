@@ -111,13 +111,13 @@ def _network(ops: list[tuple[int, str, str]], store) -> object:
 
 @pytest.fixture
 def il_suffix():
-    before = frontends._READERS.get(".il")  # the Tecomat front end, put back afterwards
+    before = frontends.frontend_for(".il")  # the Tecomat front end, put back afterwards
     register(".il", lambda path: TinyIL(path.read_text(), str(path)))
     yield ".il"
     if before is None:
         unregister(".il")
     else:
-        register(".il", before)
+        register(".il", before.read, profile=before.profile, language=before.language, contract=before.contract)
 
 
 def test_the_front_end_is_chosen_by_the_file_suffix(tmp_path: Path, il_suffix):

@@ -1,17 +1,23 @@
-"""Front ends, chosen by file suffix: each reads a source file into a program the CPU can load.
+"""Front ends, chosen by file suffix: each reads a source file into a program a controller can load.
 
-``.py`` (the Python subset, :class:`plcsim.program.Program`) is the one today; another registers with
-:func:`register` (``register(".il", read_il)``), or from another package through the entry-point group
-``plcsim.frontends`` (:mod:`plcsim.registry`), and every tool that reads a program file through
-:func:`read_program` accepts it.
+A front end is described by a :class:`FrontEnd`: the suffix it reads, its reader, the CPU profile its
+programs are written for (:mod:`plcsim.profiles`) and its **contract program**, the self-holding motor of
+:data:`CONTRACT_TASK` in its language. ``.py`` (the Python subset, :class:`plcsim.program.Program`, on
+the S7-1200) and ``.il`` (the Tecomat instruction list, on the Tecomat NS950) are plcsim's own; another
+registers with :func:`register` (``register(".st", read_st, profile="s7-1200", contract=MOTOR_ST)``), or
+from another package through the entry-point group ``plcsim.frontends`` (:mod:`plcsim.registry`), and
+every tool that reads a program file through :func:`read_program` accepts it. The contract test
+(``tests/test_seam_contract.py``) runs every registered front end's contract program and asks for the
+Python one's trace digest, bit for bit.
 
->>> sorted(suffixes())
-['.il', '.py']
+>>> sorted(suffixes()), frontend_for(".il").profile
+(['.il', '.py'], 'tecomat-ns950')
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 from plcsim import registry
@@ -19,35 +25,82 @@ from plcsim.errors import ProgramError
 from plcsim.loaded import SourceProgram
 
 Reader = Callable[[Path], SourceProgram]
-_READERS: dict[str, Reader] = {}
+DEFAULT_PROFILE = "s7-1200"
+
+CONTRACT_TAGS = {"START": "%I0.0", "STOP": "%I0.1", "MOTOR": "%Q0.0"}
+"""The contract program's I/O table: two push buttons (normally open) and a motor contactor."""
+CONTRACT_TASK = (
+    "MOTOR := (START OR MOTOR) AND NOT STOP, in one cyclic task: START switches the motor on and it holds "
+    "itself; STOP switches it off and dominates."
+)
 
 
-def register(suffix: str, reader: Reader) -> None:
+@dataclass(frozen=True)
+class FrontEnd:
+    """One front end: the file suffix it reads, its reader, its programs' profile and contract program."""
+
+    suffix: str
+    read: Reader
+    profile: str = DEFAULT_PROFILE
+    """The name of the registered CPU profile its programs are written for."""
+    language: str = ""
+    contract: str | None = None
+    """:data:`CONTRACT_TASK` in this front end's language (the text of a file it reads)."""
+
+
+_FRONT_ENDS: dict[str, FrontEnd] = {}
+
+
+def register(
+    suffix: str,
+    reader: Reader,
+    *,
+    profile: str = DEFAULT_PROFILE,
+    language: str = "",
+    contract: str | None = None,
+) -> None:
     """Make ``reader`` the front end of files ending in ``suffix`` (``".py"``); a later call replaces it."""
     if not suffix.startswith(".") or len(suffix) < 2:
         raise ValueError(f"a front end's suffix starts with a dot, like '.il', not {suffix!r}")
-    _READERS[suffix.lower()] = reader
+    _FRONT_ENDS[suffix.lower()] = FrontEnd(suffix.lower(), reader, profile, language, contract)
 
 
 def unregister(suffix: str) -> None:
     """Forget the front end of ``suffix`` (tests register a throw-away one)."""
-    _READERS.pop(suffix.lower(), None)
+    _FRONT_ENDS.pop(suffix.lower(), None)
 
 
 def suffixes() -> list[str]:
     """The file suffixes a front end is registered for (here, or by another package's entry point)."""
-    return list(dict.fromkeys([*_READERS, *registry.frontend_suffixes()]))
+    return list(dict.fromkeys([*_FRONT_ENDS, *registry.frontend_suffixes()]))
+
+
+def frontend_for(suffix: str) -> FrontEnd | None:
+    """The front end of files ending in ``suffix``: registered here, or another package's entry point
+    (a :class:`FrontEnd`, or a bare reader, whose programs are then taken to be for the S7-1200)."""
+    suffix = suffix.lower()
+    found = _FRONT_ENDS.get(suffix)
+    if found is not None or not suffix:
+        return found
+    plugged = registry.frontend(suffix)
+    if plugged is None or isinstance(plugged, FrontEnd):
+        return plugged
+    return FrontEnd(suffix, plugged)
+
+
+def front_ends() -> list[FrontEnd]:
+    """Every registered front end, in suffix order."""
+    return [f for f in (frontend_for(s) for s in sorted(suffixes())) if f is not None]
 
 
 def read_program(path: str | Path) -> SourceProgram:
     """Read a program file with the front end its suffix names (errors name the file and the fix)."""
     path = Path(path)
-    suffix = path.suffix.lower()
-    reader = _READERS.get(suffix) or (registry.frontend(suffix) if suffix else None)
-    if reader is None:
+    front = frontend_for(path.suffix)
+    if front is None:
         known = ", ".join(sorted(suffixes()))
         raise ProgramError(f"{path}: no front end reads {path.suffix or 'files without a suffix'}; use {known}")
-    return reader(path)
+    return front.read(path)
 
 
 def _read_python(path: Path) -> SourceProgram:
@@ -56,7 +109,12 @@ def _read_python(path: Path) -> SourceProgram:
     return Program.from_file(path)
 
 
-register(".py", _read_python)
+register(
+    ".py",
+    _read_python,
+    language="the Python subset",
+    contract="def OB1(t):\n    t.MOTOR = (t.START or t.MOTOR) and not t.STOP\n",
+)
 
 
 def _read_il(path: Path) -> SourceProgram:
@@ -65,4 +123,22 @@ def _read_il(path: Path) -> SourceProgram:
     return read_il(path)  # type: ignore[return-value]
 
 
-register(".il", _read_il)
+register(
+    ".il",
+    _read_il,
+    profile="tecomat-ns950",
+    language="Tecomat NS950 instruction list",
+    contract="LD START\nOR MOTOR\nANC STOP\nWR MOTOR\n",
+)
+
+__all__ = [
+    "CONTRACT_TAGS",
+    "CONTRACT_TASK",
+    "FrontEnd",
+    "front_ends",
+    "frontend_for",
+    "read_program",
+    "register",
+    "suffixes",
+    "unregister",
+]
