@@ -370,10 +370,7 @@ class CPU(TaskRunner, HostAccess):
         new sensor values) is seen by the tasks that start at ``until_ns`` and by no scan before.
         """
         if self.mode == RUN:
-            if self._interrupts:
-                self._run(until_ns, None)
-            else:
-                self._run_cyclic(until_ns, None)
+            self._run(until_ns, None)
         if self.mode != RUN:
             self._refresh_inputs_stopped()
         if self.clock.now < until_ns:

@@ -1,0 +1,83 @@
+"""Issue 11: the scan loop without interrupts (``_run_cyclic``, the hot path) writes out ``_begin_scan`` and
+``_end_scan`` rather than calling them (a measured 3 % of the PLC-only rate, see its docstring). These
+tests run the same programs through it and through the general pre-emptive loop and ask for the same
+trace bit for bit, so that the written-out copy cannot drift from the methods the general loop calls."""
+
+from __future__ import annotations
+
+import pytest
+
+from benchmarks import workload
+from plcsim import CPU, Int, Tag
+from plcsim.recorder import Recorder
+
+COUNTER = """
+def n1(t):
+    t.LED = t.TL and not t.STOP
+    if P(t.TL, "EDGE"):
+        t.COUNT += 1
+
+def n2(t):
+    t.FAST = t.Clock_10Hz and not t.FirstScan
+    t.WORD = t.IN_WORD + t.COUNT
+    if t.COUNT == 7:
+        t.WORD = 100 // t.ZERO
+
+OB1 = [n1, n2]
+"""
+TAGS = {
+    "TL": Tag("%I0.0"),
+    "STOP": Tag("%I0.1"),
+    "IN_WORD": Tag("%IW2", Int),
+    "IN_LOW": Tag("%I3.0"),  # overlaps %IW2: the inputs alias, the image is refreshed tag by tag
+    "LED": Tag("%Q0.0"),
+    "FAST": Tag("%Q0.1"),
+    "EDGE": Tag("%M0.0"),
+    "COUNT": Tag("%MW10", Int),
+    "WORD": Tag("%MW12", Int),
+    "ZERO": Tag("%MW14", Int),
+}
+
+
+def run(make_cpu, schedule, general: bool, step_ns: int | None = None) -> tuple[str, int, str]:
+    cpu = make_cpu()
+    if general:
+        cpu._run_cyclic = cpu._run_preemptive  # the loop a program with interrupts runs in
+    recorder = Recorder(cpu)
+    recorder.attach()
+    for changes in schedule:
+        if changes:
+            cpu.inputs.update(changes)
+        if step_ns is None:
+            cpu.scan()
+        else:
+            cpu.run_until(cpu.now + step_ns)
+    return recorder.trace.digest(), cpu.scan_count, cpu.mode
+
+
+def test_the_workload_runs_alike_in_both_loops():
+    schedule = workload.build_schedule(3000)
+    assert run(workload.new_cpu, schedule, general=False) == run(workload.new_cpu, schedule, general=True)
+
+
+@pytest.mark.parametrize("step_ns", [None, 700_000, 2_500_000], ids=["scan", "0.7ms steps", "2.5ms steps"])
+@pytest.mark.parametrize(
+    "options",
+    [
+        {},
+        {"jitter": "300us", "seed": 4},
+        {"network_cost": "400us", "min_cycle": "1ms"},
+    ],
+    ids=["fixed cycle", "jitter", "network cost"],
+)
+def test_aliased_inputs_forces_clock_and_system_memory_and_a_fault_run_alike_in_both_loops(options, step_ns):
+    schedule = [{"TL": k % 6 < 3, "STOP": k % 50 == 49, "IN_WORD": k} for k in range(200)]
+
+    def make_cpu() -> CPU:
+        cpu = CPU(tags=TAGS, program=COUNTER, clock_memory_byte=20, system_memory_byte=21, **options)
+        cpu.forces["STOP"] = False
+        return cpu
+
+    fast = run(make_cpu, schedule, general=False, step_ns=step_ns)
+    assert fast == run(make_cpu, schedule, general=True, step_ns=step_ns)
+    assert fast[2] == "STOP"  # the seventh rising edge of TL divides by zero: both loops stop alike
