@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from plcsim.errors import ProgramError, SubsetError, UnknownTagError, did_you_mean
-from plcsim.instructions import BOOL_RESULTS, block_named
+from plcsim.instructions import BOOL_RESULTS, block_named, box_hint
 from plcsim.literals import time_ms
 from plcsim.memory import parse_address
 from plcsim.safe_math import SAFE_FUNCTIONS
@@ -441,7 +441,7 @@ def _unknown_name(node: ast.Name, filename: str, visible: set[str]) -> ProgramEr
             f"(no file, network or interpreter access; allowed builtins: {_builtins_list()})"
         )
     return ProgramError(
-        f"{_where(filename, node)}: unknown name {node.id!r}{did_you_mean(node.id, visible)}"
+        f"{_where(filename, node)}: unknown name {node.id!r}{box_hint(node.id) or did_you_mean(node.id, visible)}"
         " (every name a program can use: plcsim reference, docs/instructions.md)"
     )
 

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from plcsim.errors import PlcError, ProgramError, SubsetError
+from plcsim.instructions import box_hint
 
 ALLOWED_FORMS = (
     "a module level only declares: NAME = Int(0) / Tag('%M10.0') / IEC_TIMER() / DB(...) ..., "
@@ -178,7 +179,7 @@ class _Evaluator:
         if node.id in ("True", "False", "None"):
             return {"True": True, "False": False, "None": None}[node.id]
         raise ProgramError(
-            f"{self.filename}, line {node.lineno}: unknown name {node.id!r} in a declaration "
+            f"{self.filename}, line {node.lineno}: unknown name {node.id!r} in a declaration{box_hint(node.id)} "
             f"(a network must be defined with def, a type declared before it is used)"
         )
 

@@ -7,6 +7,8 @@ Function-block instance types are declared in a program (``TON_A = IEC_TIMER()``
 from __future__ import annotations
 
 import datetime as _dt
+import difflib
+import inspect
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Protocol
@@ -54,6 +56,29 @@ F_TRIG = FBType(
     retain=False,
     doc="Falling-edge function block (CLK, Q, Stat_Bit).",
 )
+
+
+def box_hint(name: str) -> str:
+    """Where the box a mistyped name is near lives (``TONN`` -> TON of an IEC_TIMER instance), as the end of
+    an error message; empty if no box is near.
+
+    >>> box_hint("TONN")
+    '; TON is a box of an IEC_TIMER instance: declare TIMER = IEC_TIMER() and call t.TIMER.TON(IN=..., PT=...)'
+    >>> box_hint("LED")
+    ''
+    """
+    boxes = {box: block for block in BLOCKS.values() for box in block.boxes}
+    near = difflib.get_close_matches(name.upper(), boxes, n=1, cutoff=0.75)
+    if not near:
+        return ""
+    box, block = near[0], boxes[near[0]]
+    params = [p for p in inspect.signature(getattr(block.instance, box)).parameters if p != "self"]
+    example = {"IEC_TIMER": "TIMER", "IEC_COUNTER": "COUNTER"}.get(block.name, "EDGE")
+    call = ", ".join(f"{p}=..." for p in params)
+    return (
+        f"; {box} is a box of an {block.name} instance: declare {example} = {block.name}() and call "
+        f"t.{example}.{box}({call})"
+    )
 
 
 @dataclass(frozen=True)
@@ -245,6 +270,7 @@ __all__ = [
     "bind_instructions",
     "BlockMember",
     "block_named",
+    "box_hint",
     "block_of",
     "IEC_TIMER",
     "IEC_COUNTER",

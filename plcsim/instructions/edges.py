@@ -75,7 +75,15 @@ def bit_resolver(t: Any, resolve_path: Callable[[str], tuple[Any, str]]) -> Call
                 f"the edge memory bit must be given by name, e.g. P(t.TL, 'SB1'), not {name!r}; "
                 "the instruction needs to write it"
             )
-        container, key = resolve_path(name)
+        try:
+            container, key = resolve_path(name)
+        except UnknownTagError:
+            if "." in name or name.strip().startswith("%"):
+                raise
+            raise UnknownTagError(
+                f"the edge memory bit {name!r} is not declared: declare it in the program ({name} = Bool()) or "
+                f"in the tag table (a %M bit){did_you_mean(name, t._type.members)}"
+            ) from None
         member = container._type.members.get(key)
         if member is None:
             raise UnknownTagError(f"no edge memory bit {name!r}{did_you_mean(key, container._type.members)}")
