@@ -4,7 +4,8 @@
 inputs and outputs by tag name, ``run_until`` on the one clock, the scan hooks the recorder subscribes
 to, a tag table (names, %I/%Q areas, elementary types) and a namespace ``t`` of the values traced. A
 front end whose programs run on a controller of their own offers ``controller(tags, **options)``;
-:func:`controller_for` picks it, and the S7 CPU otherwise.
+:func:`controller_for` picks it, and the S7 CPU otherwise. Why the Tecomat is a controller of its own
+rather than a profile inside the S7 runtime, and what the two share: ``docs/architecture.md``.
 
 >>> from plcsim.tags import Tag
 >>> cpu = controller_for(program_text("LD TL\\nWR LED\\n"), {"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")})
