@@ -46,7 +46,7 @@ from plcsim.tecomat.assembler import Assembly, assemble
 from plcsim.tecomat.machine import END_CYCLE, Machine, TecomatRuntimeError
 from plcsim.tecomat.memory import Operand, OperandError, Scratchpad, parse_address, read, write
 from plcsim.tecomat.settings import TecomatConfig
-from plcsim.tecomat.symbols import loader, overlapping, reader, storer
+from plcsim.tecomat.symbols import loader, overlapping, reader, snapshot
 from plcsim.types import Bool, Byte, Word
 
 CLOCK_PERIODS_NS = tuple(
@@ -106,7 +106,8 @@ class TecomatCPU:
         self.input_names: list[str] = []
         self.output_names: list[str] = []
         self.symbols: dict[str, Operand] = {}
-        self.t = _Symbols()
+        self._t = _Symbols()
+        self._copies: tuple[bytearray, ...] | None = None
         self.table = TagTable()
         self.program: Assembly | None = None
         self.loaded: LoadedProgram | None = None
@@ -127,6 +128,18 @@ class TecomatCPU:
                 self.start()
 
     on_scan_end = assigned_hook("scan_end", "One :attr:`scan_end` subscriber, set by assignment.")
+
+    @property
+    def t(self) -> _Symbols:
+        """The symbols' values at the last cycle's end, as attributes (what the trace and the checks read).
+
+        A cycle's end copies the registers they live in, and decodes them only if a :attr:`scan_end`
+        subscriber (the recorder) is there to read them; else they are decoded here, when read."""
+        copies = self._copies
+        if copies is not None:
+            self._copies = None
+            self._decode_traced(self._t.__dict__, *copies)
+        return self._t
 
     # -- loading --------------------------------------------------------------------------------
 
@@ -178,16 +191,20 @@ class TecomatCPU:
         self.inputs = {n: self.inputs.get(n, self._off(n)) for n in self.input_names}
         self.image_in = dict(self.inputs)
         self.outputs = {n: self._off(n) for n in self.output_names}
-        self.t.__dict__.clear()
-        self.t.__dict__.update({n: self._off(n) for n in self.symbols})
+        self._copies = None
+        self._t.__dict__.clear()
+        self._t.__dict__.update({n: self._off(n) for n in self.symbols})
         pad = self.machine.pad  # type: ignore[union-attr]
         traced = [n for n in self.symbols if n not in self.inputs]
-        self._store_traced = storer(pad, traced, [self.symbols[n] for n in traced])
-        self._read_outputs = _tuple_getter(self.output_names)
-        """The outputs from the traced values (stored at each cycle's end), as a tuple."""
+        self._take_traced, decode = snapshot(pad, [self.symbols[n] for n in traced])
+        self._decode_traced = decode(traced)
+        self._y_copy = sorted({self.symbols[n].area for n in traced}).index("Y") if self.output_names else None
+        """Which of the cycle end's copies holds Y (the outputs change only when it does)."""
+        self._last_y = None
+        self._read_outputs = reader(pad, [self.symbols[n] for n in self.output_names])
         inputs = [self.symbols[n] for n in self.input_names]
         self._read_terminals = reader(self.terminals, inputs)
-        self._load_terminals = loader(self.terminals, "X", self.input_names, inputs)
+        self._load_terminals = loader(self.terminals, "X", inputs)
         self._aliased_inputs = overlapping(inputs)
         self._writes_x = any(
             i.mnemonic in ("WR", "WRC", "PUT", "SET", "RES", "LET") and getattr(i.arg, "area", "") == "X"
@@ -198,7 +215,7 @@ class TecomatCPU:
         """Two input names share a terminal: only the one the wiring changed may write it."""
         self._input_levels = _tuple_getter(self.input_names)
         self._last_inputs = self._input_levels(self.inputs)
-        self._last_outputs = self._read_outputs(self.t.__dict__)
+        self._last_outputs = tuple(self._off(n) for n in self.output_names)
 
     def _off(self, name: str) -> Any:
         return False if self.symbols[name].width == "bit" else 0
@@ -237,6 +254,7 @@ class TecomatCPU:
         self.mode = STOP
         self._pending = None
         self.outputs = {n: self._off(n) for n in self.output_names}
+        self._last_outputs, self._last_y = tuple(self.outputs.values()), None
         self.output_version += 1
         if was == RUN:
             self._diag("RUN->STOP", f"the CPU switched to STOP ({reason})")
@@ -372,13 +390,19 @@ class TecomatCPU:
         assert end is not None and self.machine is not None
         self._pending = None
         self.clock.now = max(self.clock.now, end)
-        values = self.t.__dict__
-        self._store_traced(values)
-        outputs = self._read_outputs(values)
-        if outputs != self._last_outputs:
-            self._last_outputs = outputs
-            self.outputs.update(zip(self.output_names, outputs, strict=True))
-            self.output_version += 1
+        copies = self._take_traced()
+        if self.scan_end.call is None:
+            self._copies = copies
+        else:  # a subscriber (the recorder) reads them now, maybe from a dict it holds
+            self._copies = None
+            self._decode_traced(self._t.__dict__, *copies)
+        if self._y_copy is not None and copies[self._y_copy] != self._last_y:
+            self._last_y = copies[self._y_copy]
+            outputs = self._read_outputs()
+            if outputs != self._last_outputs:
+                self._last_outputs = outputs
+                self.outputs.update(zip(self.output_names, outputs, strict=True))
+                self.output_version += 1
         self.scan_end_ns = end
         self.scan_count += 1
         self._next_start = end
@@ -403,7 +427,7 @@ class TecomatCPU:
                         write(terminals, self.symbols[name], int(inputs[name]))
                 self._refresh_inputs()
             else:
-                self._load_terminals(inputs)
+                self._load_terminals(levels)
                 self.image_in.update(inputs)
                 self._last_inputs = levels
         if sampled or self._fresh_terminals:  # else X and U still hold what the terminals hold
