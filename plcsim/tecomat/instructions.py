@@ -21,7 +21,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from plcsim.tecomat.assembler import Instruction, Label
-from plcsim.tecomat.blocks import BLOCKS
+from plcsim.tecomat.blocks import BLOCKS, block
 from plcsim.tecomat.fused import fuse
 from plcsim.tecomat.machine import END, END_CYCLE, MAX_NESTING, STACKS, TecomatRuntimeError
 from plcsim.tecomat.memory import Operand
@@ -38,7 +38,7 @@ def link(m: Machine) -> list[Code]:
     """The program's closures, one per instruction."""
     code = []
     for index, instr in enumerate(m.asm.code):
-        builder = BUILDERS.get(instr.mnemonic) or BLOCKS.get(instr.mnemonic) or TABLES[instr.mnemonic]
+        builder = BUILDERS.get(instr.mnemonic) or (block if instr.mnemonic in BLOCKS else TABLES[instr.mnemonic])
         code.append(builder(m, index, instr))
     return fuse(m, code) if m.config.fuse else code
 
