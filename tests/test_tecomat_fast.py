@@ -4,6 +4,8 @@ copied and decoded only when read, the outputs from the copy of Y) and the gener
 
 from __future__ import annotations
 
+import datetime as dt
+
 from plcsim.tecomat.cpu import TecomatCPU
 
 PROGRAM = "#def B x0.0\n#def L y0.0\n#def N r4\nLD B\nWR L\nLD N\nADD 1\nWR N\n"
@@ -53,3 +55,14 @@ def test_input_bits_of_one_register_are_loaded_together_and_other_bits_kept():
     cpu.inputs.update(A=False)
     cpu.scan()
     assert cpu.peek("Y0") == 0b0100_1000
+
+
+def test_the_real_time_clock_rolls_over_midnight_into_the_next_date():
+    cpu = TecomatCPU("LD SW5\nWR RW0\nLD SW7\nWR RW2\nLD SW9\nWR RW4\nLD SW11\nWR RW6\n", cycle="10ms")
+    cpu.set_clock(dt.datetime(2028, 2, 29, 23, 59, 59, 985_000))  # a Tuesday, a leap day
+    cpu.scan()
+    regs = [cpu.peek(f"R{k}") for k in range(8)]
+    assert regs == [98, 59, 59, 23, 2, 29, 2, 28]  # S5 10 ms, s, min, h, weekday, day, month, year
+    cpu.scan(2)
+    regs = [cpu.peek(f"R{k}") for k in range(8)]
+    assert regs == [0, 0, 0, 0, 3, 1, 3, 28]  # 00:00:00.00 on Wednesday 1 March

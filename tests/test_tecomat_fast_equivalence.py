@@ -15,11 +15,13 @@ BITS = [
     for area, n in (("X", 0), ("X", 1), ("Y", 0), ("R", 0), ("R", 1), ("S", 0), ("S", 1))
     for b in (0, 3, 7)
 ]
-BYTES = ["X0", "X1", "Y0", "Y1", "R0", "R1", "R3", "S0", "S1"]
-WORDS = ["XW0", "RW0", "RW1", "YW0", "SW0"]
+BYTES = ["X0", "X1", "Y0", "Y1", "R0", "R1", "R3", "S0", "S1", "R10", "R21"]
+WORDS = ["XW0", "RW0", "RW1", "YW0", "SW0", "RW10", "RW20", "RW23"]
+"""(RW10, R21, RW20 and RW23 share registers with the blocks' words: the generated code must not hold them
+across a block.)"""
 TARGET_BITS = [b for b in BITS if b[0] in "YRS"]
 TARGET_BYTES = [b for b in BYTES if b[0] in "YRS"]
-TARGET_WORDS = ["RW0", "RW1", "YW0", "SW0"]
+TARGET_WORDS = ["RW0", "RW1", "YW0", "SW0", "RW10", "RW20", "RW23"]
 immediates = st.integers(0, 0xFFFF).map(str)
 FLAGS = ["S0.0", "S0.1", "S0.2", "S0.3", "S0", "SW0", "S1.0"]
 """The flags, read often: the generated code defers S0 writes and knows when S0.3 is 0."""

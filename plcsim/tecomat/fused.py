@@ -27,6 +27,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, NamedTuple
 
 from plcsim.tecomat.blocks import BLOCKS
+from plcsim.tecomat.machine import END
 from plcsim.tecomat.memory import Operand
 
 if TYPE_CHECKING:
@@ -74,6 +75,8 @@ def fuse(m: Machine, closures: list[Code]) -> list[Code]:
         if end - start < 2:
             continue
         run.finish()
+        if end < len(code) and code[end].mnemonic == "E" and code[end].process != 60:
+            end = END  # outside P60 nothing is called when a process ends (E checks that), so end it here
         names = ["m", *(f"a{area}" for area in AREAS), *run.bound]
         source = f"def make({', '.join(names)}):\n    def run():\n        s = m.st\n"
         source += "".join(f"        {line}\n" for line in run.lines) + f"        return {end}\n    return run\n"
@@ -92,28 +95,17 @@ def _fusible(instr: Instruction) -> bool:
     return not (instr.mnemonic in ("LTB", "FTB") and isinstance(instr.arg, Operand))
 
 
-def _bit(op: Operand) -> str:
-    """An expression true iff the bit operand is 1."""
-    return f"a{op.area}[{op.index}] & {1 << op.bit}"
-
-
-def _number(op: Operand, negate: bool) -> str:
-    """A byte, word or immediate operand as a number (a byte negated in 8 bits, the rest in 16)."""
-    if op.is_immediate:
-        return str(~op.value & 0xFFFF if negate else op.value)
-    a = f"a{op.area}"
-    if op.width == "byte":
-        return f"({a}[{op.index}] ^ 255)" if negate else f"{a}[{op.index}]"
-    word = f"({a}[{op.index}] | {a}[{op.index + 1}] << 8)"
-    return f"({word} ^ 65535)" if negate else word
-
-
 def _reads_s(op: object) -> bool:
     return isinstance(op, Operand) and op.area == "S"
 
 
 class _Run:
-    """The code of one run, and the stack as the generated code will hold it."""
+    """The code of one run, the stack as the generated code will hold it, and the registers it holds.
+
+    Every register of X, Y, R, D, U the run touches is read into a local once (``mY0``) and written back
+    once at the run's end (or before a closure that may read it, or a block core that works on it). S
+    stays in memory: the system flags are read and written by the cores, the closures and the pending
+    S0 write."""
 
     def __init__(self, keep_a7: bool, ci: bool):
         self.keep_a7, self.ci = keep_a7, ci
@@ -126,18 +118,60 @@ class _Run:
         """The S0 write of the last comparison, not emitted yet (a later one may make it dead)."""
         self.ci_zero = False
         """S0.3 (the carry-in) is known to be 0: a counter or timer cleared it, and nothing set it since."""
+        self.held_registers: dict[tuple[str, int], str] = {}
+        self.changed: dict[tuple[str, int], str] = {}
+        """The held registers written since they were read (to write back), in the order first written."""
+
+    # -- registers ------------------------------------------------------------------------------------
+
+    def reg(self, area: str, index: int) -> str:
+        """The register as the code names it: a local holding it (read now if not held yet), ``aS[i]`` for S."""
+        if area == "S":
+            return f"aS[{index}]"
+        key = (area, index)
+        name = self.held_registers.get(key)
+        if name is None:
+            name = self.held_registers[key] = f"m{area}{index}"
+            self.lines.append(f"{name} = a{area}[{index}]")
+        return name
+
+    def wrote(self, area: str, index: int) -> None:
+        if area != "S":
+            self.changed[(area, index)] = self.held_registers[(area, index)]
+
+    def write_back(self, keys: list[tuple[str, int]] | None = None, forget: bool = False) -> None:
+        """Store the changed held registers (only ``keys`` if given) into memory; ``forget``: stop holding them."""
+        for key in list(self.changed) if keys is None else [k for k in keys if k in self.changed]:
+            self.lines.append(f"a{key[0]}[{key[1]}] = {self.changed.pop(key)}")
+        if forget:
+            for key in list(self.held_registers) if keys is None else keys:
+                self.held_registers.pop(key, None)
+
+    def bit(self, op: Operand) -> str:
+        """An expression true iff the bit operand is 1."""
+        return f"{self.reg(op.area, op.index)} & {1 << op.bit}"
+
+    def number(self, op: Operand, negate: bool) -> str:
+        """A byte, word or immediate operand as a number (a byte negated in 8 bits, the rest in 16)."""
+        if op.is_immediate:
+            return str(~op.value & 0xFFFF if negate else op.value)
+        low = self.reg(op.area, op.index)
+        if op.width == "byte":
+            return f"({low} ^ 255)" if negate else low
+        word = f"({low} | {self.reg(op.area, op.index + 1)} << 8)"
+        return f"({word} ^ 65535)" if negate else word
 
     # -- levels ---------------------------------------------------------------------------------------
 
     def local(self, expr: str, boolean: bool = False) -> Level:
-        """A new local holding ``expr`` now (so later writes to memory do not change it)."""
+        """A new local holding ``expr`` now (so later writes to registers do not change it)."""
         name = f"t{self.count}"
         self.count += 1
         self.lines.append(f"{name} = {expr}")
         return Level(name, boolean)
 
     def held(self, expr: str) -> str:
-        """``expr`` if it is a local or a number (nothing can change it), else a new local holding it."""
+        """``expr`` if it is a level's local or a number (nothing can change it), else a new local holding it."""
         return expr if expr.isdigit() or (expr[0] == "t" and expr[1:].isdigit()) else self.local(expr).expr
 
     @staticmethod
@@ -169,6 +203,7 @@ class _Run:
     def finish(self) -> None:
         self.flush()
         self.sync()
+        self.write_back()
 
     # -- instructions ---------------------------------------------------------------------------------
 
@@ -182,36 +217,39 @@ class _Run:
         top = self.levels[0]
         if m == "NEG":
             self.levels[0] = self.local(f"not {top.expr}", True) if top.boolean else self.local(f"{top.expr} ^ 65535")
-        elif m in ("LD", "LDC") and isinstance(op, Operand):
+        elif m in ("LD", "LDC") and _plain(op):
             negate = m == "LDC"
             if op.width == "bit":
-                self.push(self.local(f"{'not ' if negate else ''}{_bit(op)}", True))
+                self.push(self.local(f"{'not ' if negate else ''}{self.bit(op)}", True))
+            elif op.is_immediate:
+                self.push(Level(self.number(op, negate)))
             else:
-                self.push(self.local(_number(op, negate)))
-        elif m in ("WR", "WRC", "PUT") and isinstance(op, Operand) and not op.is_immediate:
+                self.push(self.local(self.number(op, negate)))
+        elif m in ("WR", "WRC", "PUT") and _plain(op) and not op.is_immediate:
             self._write(op, m == "WRC", m == "PUT", top)
         elif m in ("AND", "OR", "XOR", "ANC", "ORC", "XOC"):
             self._logic(_NEGATED.get(m, m), m in _NEGATED, op, top)
         elif m in ("SET", "RES"):
             self._set_res(op, m == "SET", top)
         elif m == "LET" and op.width == "bit":
-            a, mask = f"a{op.area}[{op.index}]", 1 << op.bit
+            a, mask = self.reg(op.area, op.index), 1 << op.bit
             edge = f"t{self.count}"
             self.count += 1
             self.lines += [
                 f"if {top.expr}: {edge} = not {a} & {mask}; {a} |= {mask}",
                 f"else: {edge} = False; {a} &= {~mask & 0xFF}",
             ]
+            self.wrote(op.area, op.index)
             self.levels[0] = Level(edge, True)
         elif m in _RELATIONS:
             self._compare(_RELATIONS[m], op)
         elif m in BLOCKS:
-            self._block(m, index, closure)
+            self._block(m, index, instr, closure)
         else:
             self._closure(m, index, closure)
 
     def _write(self, op: Operand, negate: bool, conditional: bool, top: Level) -> None:
-        a = f"a{op.area}[{op.index}]"
+        a = self.reg(op.area, op.index)
         if op.width == "bit":
             mask = 1 << op.bit
             on, off = f"{a} |= {mask}", f"{a} &= {~mask & 0xFF}"
@@ -222,7 +260,9 @@ class _Run:
             flip = " ^ 65535" if negate else ""
             lines = [f"v = {self.num(top)}{flip}", f"{a} = v & 255"]
             if op.width == "word":
-                lines.append(f"a{op.area}[{op.index + 1}] = v >> 8")
+                lines.append(f"{self.reg(op.area, op.index + 1)} = v >> 8")
+                self.wrote(op.area, op.index + 1)
+        self.wrote(op.area, op.index)
         if conditional:  # PUT: only if S1.0
             lines = ["if aS[1] & 1:", *(f"    {line}" for line in lines)]
         self.lines += lines
@@ -237,7 +277,7 @@ class _Run:
             else:
                 self.levels[0] = self.local(f"{self.num(a1)} {sign} {self.num(a0)}")
         elif op.width == "bit" and not op.is_immediate:
-            bit = f"{'not ' if negate else ''}{_bit(op)}"
+            bit = f"{'not ' if negate else ''}{self.bit(op)}"
             if top.boolean:
                 self.levels[0] = self._boolean(base, top.expr, bit)
             elif base == "AND":
@@ -248,10 +288,10 @@ class _Run:
                 self.levels[0] = self.local(f"{top.expr} ^ 65535 if {bit} else {top.expr}")
         elif op.width == "byte" and not op.is_immediate:
             a0 = self.local(self.num(top))
-            value = _number(op, negate)
+            value = self.number(op, negate)
             self.levels[0] = self.local(f"{a0.expr} & 65280 | ({a0.expr} & 255 {sign} {value}) & 255")
         else:
-            self.levels[0] = self.local(f"{self.num(top)} {sign} {_number(op, negate)}")
+            self.levels[0] = self.local(f"{self.num(top)} {sign} {self.number(op, negate)}")
 
     def _boolean(self, base: str, left: str, right: str) -> Level:
         if base == "XOR":
@@ -259,31 +299,34 @@ class _Run:
         return self.local(f"{left} {base.lower()} ({right})", True)
 
     def _set_res(self, op: Operand, setting: bool, top: Level) -> None:
-        a = f"a{op.area}[{op.index}]"
+        a = self.reg(op.area, op.index)
         if op.width == "bit":
             change = f"{a} |= {1 << op.bit}" if setting else f"{a} &= {~(1 << op.bit) & 0xFF}"
             self.lines.append(f"if {top.expr}: {change}")
         else:
             value = self.num(top)
             self.lines.append(f"{a} |= {value} & 255" if setting else f"{a} &= ~{value} & 255")
+        self.wrote(op.area, op.index)
 
     def _compare(self, relation: str, op: Operand | None) -> None:
         if op is None:  # A1 is the left side; A0 is replaced
             a, b = self.held(self.num(self.levels[1])), self.held(self.num(self.levels[0]))
         else:
-            a, b = self.held(self.num(self.levels[0])), self.held(_number(op, False))
+            a, b = self.held(self.num(self.levels[0])), self.held(self.number(op, False))
         if self.ci and not self.ci_zero:
             b = self.local(f"{b} + (aS[0] >> 3 & 1)").expr
         self.pending_flags = f"aS[0] = aS[0] & 248 | ({a} == {b}) | ({a} < {b}) << 1 | ({a} <= {b}) << 2"
         self.levels[0] = self.local(f"{a} {relation} {b}", True)
 
-    def _block(self, mnemonic: str, index: int, closure: Code) -> None:
+    def _block(self, mnemonic: str, index: int, instr: Instruction, closure: Code) -> None:
         shape = BLOCKS[mnemonic][1]
         if mnemonic in SETS_S0:
             self.pending_flags = None
             self.ci_zero = True
         else:  # TOF, IMP write S0.3 = 0 or leave S0 alone, the shift registers leave it
             self.flush()
+        word = getattr(instr.arg, "word", instr.arg).index
+        self.write_back([("R", word), ("R", word + 1)], forget=True)  # the core works on its word in R
         name = f"k{index}"
         self.bound[name] = closure.core  # type: ignore[attr-defined]
         inputs = self.levels[shape.inputs - 1 :: -1]
@@ -306,8 +349,14 @@ class _Run:
             self.flush()
             self.ci_zero = False
         self.sync()
+        self.write_back(forget=True)  # the closure may read or write any register
         name = f"c{index}"
         self.bound[name] = closure
         self.lines.append(f"{name}()")
         if mnemonic in SWITCHES:
             self.lines.append("s = m.st")
+
+
+def _plain(op: object) -> bool:
+    """An operand the generated code reads and writes itself (not a long one: those run as closures)."""
+    return isinstance(op, Operand) and op.width != "long"
