@@ -1,6 +1,6 @@
 """The generated code (``plcsim.tecomat.fused``) and the plain closures compute the same machine: random
 small IL programs over every instruction the generator handles (and some it hands to closures: tables,
-stack switches, forward jumps), run on random inputs, leave the same scratchpad, stacks, active stack and
+stack switches, long operands, forward jumps), run on random inputs, leave the same scratchpad, stacks, active stack and
 block state after every cycle."""
 
 from __future__ import annotations
@@ -47,6 +47,7 @@ def _instructions() -> st.SearchStrategy[str]:
         st.sampled_from(["CTU RW10", "CTD RW12", "CNT RW14", "SFL RW16", "SFR RW18"]),
         st.sampled_from(["TON RW20.0", "TOF RW22.0", "IMP RW24.1", "RTO RW26.0", "TOF RW28.0"]),
         st.sampled_from(["LTB tab", "FTB tab"]),
+        st.sampled_from(["LD RL0", "LDC RL9", "LD XL0", "WR RL0", "WRC RL9", "PUT RL20", "WR YL0"]),
     )
 
 

@@ -48,7 +48,7 @@ from plcsim.tecomat.machine import END_CYCLE, Machine, TecomatRuntimeError
 from plcsim.tecomat.memory import Operand, OperandError, Scratchpad, parse_address, read, write
 from plcsim.tecomat.settings import TecomatConfig
 from plcsim.tecomat.symbols import loader, overlapping, reader, snapshot
-from plcsim.types import Bool, Byte, Word
+from plcsim.types import Bool, Byte, DWord, Word
 
 CLOCK_PERIODS_NS = tuple(
     to_ns(p) for p in ("100ms", "500ms", "1s", "10s", "1min", "10min", "1h", "24h")
@@ -188,9 +188,14 @@ class TecomatCPU:
     def _build_table(self) -> None:
         table = TagTable()
         self.input_names, self.output_names = [], []
-        types = {"bit": Bool, "byte": Byte, "word": Word}
+        types = {"bit": Bool, "byte": Byte, "word": Word, "long": DWord}
         for name, op in self.symbols.items():
-            s7 = {"bit": f"{op.index}.{op.bit}", "byte": f"B{op.index}", "word": f"W{op.index}"}[op.width]
+            s7 = {
+                "bit": f"{op.index}.{op.bit}",
+                "byte": f"B{op.index}",
+                "word": f"W{op.index}",
+                "long": f"D{op.index}",
+            }[op.width]
             if op.area == "X":
                 table.add(name, Tag(f"%I{s7}", types[op.width]), source=self.program.filename)
                 self.input_names.append(name)

@@ -25,7 +25,7 @@ from collections.abc import Callable, Sequence
 from functools import partial
 from typing import Any
 
-from plcsim.tecomat.memory import Operand, Scratchpad
+from plcsim.tecomat.memory import SIZE, Operand, Scratchpad
 
 
 def reader(pad: Scratchpad, operands: Sequence[Operand]) -> Callable[[], tuple[Any, ...]]:
@@ -42,7 +42,7 @@ def snapshot(pad: Scratchpad, operands: Sequence[Operand]) -> tuple[Callable[[],
     and ``decode(names)`` making ``f(d, *copies)`` that stores the copied values into a dict by name (only
     when someone reads them: most cycles nobody does)."""
     areas = sorted({op.area for op in operands})
-    ends = {a: max(op.index + (2 if op.width == "word" else 1) for op in operands if op.area == a) for a in areas}
+    ends = {a: max(op.index + SIZE[op.width] for op in operands if op.area == a) for a in areas}
     params = ", ".join(f"a{area}" for area in areas)
     copies = "".join(f"a{area}[:{ends[area]}], " for area in areas)
     take = eval(f"lambda {params}: lambda: ({copies})", {"__builtins__": {}})  # generated from numbers only
@@ -68,7 +68,8 @@ def loader(pad: Scratchpad, area: str, operands: Sequence[Operand]) -> Callable[
         elif op.width == "byte":
             lines.append(f"{a}[{i}] = int({name}) & 255")
         else:
-            lines += [f"v = int({name}) & 65535", f"{a}[{i}] = v & 255", f"{a}[{i + 1}] = v >> 8"]
+            lines.append(f"v = int({name})")
+            lines += [f"{a}[{i + k}] = v >> {8 * k} & 255" for k in range(SIZE[op.width])]
     for i, terms in bits.items():
         keep = 0xFF & ~sum(1 << op.bit for op in operands if op.width == "bit" and op.index == i)
         lines.append(f"{a}[{i}] = {a}[{i}] & {keep} | {' | '.join(terms)}")
@@ -81,7 +82,7 @@ def _expr(op: Operand) -> str:
         return f"{a}[{op.index}] >> {op.bit} & 1 == 1"
     if op.width == "byte":
         return f"{a}[{op.index}]"
-    return f"({a}[{op.index}] | {a}[{op.index + 1}] << 8)"
+    return "(" + " | ".join(f"{a}[{op.index + k}] << {8 * k}" for k in range(SIZE[op.width])) + ")"
 
 
 def _function(params: str, lines: list[str]) -> str:
@@ -101,7 +102,7 @@ def overlapping(operands: Sequence[Operand]) -> bool:
         if op.width == "bit":
             bits = {(op.index, op.bit)}
         else:
-            size = 2 if op.width == "word" else 1
+            size = SIZE[op.width]
             bits = {(op.index + k, b) for k in range(size) for b in range(8)}
         if seen & bits:
             return True
