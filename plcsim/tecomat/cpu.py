@@ -416,9 +416,12 @@ class TecomatCPU:
         end = self._pending
         assert end is not None and self.machine is not None
         self._pending = None
-        self.clock.now = max(self.clock.now, end)
+        clock = self.clock
+        if clock.now < end:
+            clock.now = end
         copies = self._take_traced()
-        if self.scan_end.call is None:
+        subscriber = self.scan_end.call
+        if subscriber is None:
             self._copies = copies
         else:  # a subscriber (the recorder) reads them now, maybe from a dict it holds
             self._copies = None
@@ -438,8 +441,8 @@ class TecomatCPU:
         self.scan_end_ns = end
         self.scan_count += 1
         self._next_start = end
-        if self.scan_end.call is not None:
-            self.scan_end.call(self)
+        if subscriber is not None:
+            subscriber(self)
 
     # -- the turnaround and the processes -------------------------------------------------------
 
@@ -450,8 +453,8 @@ class TecomatCPU:
         m.turnaround(t0)
         terminals, inputs = self.terminals, self.inputs
         levels = self._input_levels(inputs)
-        sampled = self._writes_x or levels != self._last_inputs
-        if levels != self._last_inputs:  # the wiring (or set_input) changed some
+        changed = levels != self._last_inputs
+        if changed:  # the wiring (or set_input) changed some
             if self._aliased_inputs:
                 seen = self.image_in
                 for name in self.input_names:
@@ -461,7 +464,7 @@ class TecomatCPU:
             else:
                 self._load_terminals(levels)
                 self._sampled = self._last_inputs = levels
-        if sampled or self._fresh_terminals:  # else X and U still hold what the terminals hold
+        if changed or self._writes_x or self._fresh_terminals:  # else X and U still hold what the terminals hold
             self._fresh_terminals = False
             pad.areas["X"][:] = pad.areas["U"][:] = terminals.areas["X"]
         s = pad.areas["S"]
