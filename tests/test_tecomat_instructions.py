@@ -5,7 +5,9 @@ from __future__ import annotations
 
 import pytest
 
+from plcsim.controller import controller_for, program_text
 from plcsim.errors import ConfigurationError
+from plcsim.tags import Tag
 from plcsim.tecomat import instructions
 from plcsim.tecomat.assembler import AssemblyError, assemble
 from plcsim.tecomat.cpu import TecomatCPU
@@ -144,6 +146,13 @@ def test_reg_long_reserves_four_registers_and_a_long_symbol_is_traced_as_a_dword
     cpu.write("RL100", 0xDEADBEEF)
     cpu.scan()
     assert cpu.t.total == 0xDEADBEEF and cpu.outputs["TOTAL_OUT"] == 0xDEADBEEF
+
+
+def test_a_double_word_tag_of_the_io_table_is_a_long_symbol():
+    cpu = controller_for(program_text("LD RL0\nWR TOTAL\n", "t.il"), {"TOTAL": Tag("%QD4", DWord)})
+    cpu.write("RL0", 70_000)
+    cpu.scan()
+    assert str(cpu.symbols["TOTAL"]) == "YL4" and cpu.outputs["TOTAL"] == 70_000
 
 
 # -- function blocks ------------------------------------------------------------------------------
