@@ -10,7 +10,8 @@ Inside a run the stack lives in locals: while the code is generated, each level 
 of the stack as the run found it (``s[k]``), a local computed by an earlier instruction, or the fill a
 pop brings in; the real stack is written once, as a whole, before a closure that reads it and at the
 run's end. A level that holds a boolean (a bit LD, a comparison, LET, logic between booleans) is kept as
-a Python truth value and turned into the machine's mask 0000H/FFFFH only where a number is needed.
+a Python truth value and turned into the machine's mask 0000H/FFFFH only where a number is needed. The
+registers of X, Y, R, D and U the run touches are read into locals once and written back once.
 Function blocks call their cores (:mod:`plcsim.tecomat.blocks`) with the levels as arguments; the rest
 (tables, CHG ...) call their closures. The S0 flags a comparison sets are written only if something can
 read them before the next instruction that sets all three again. Pushes past A7 drop it and pops fill
