@@ -83,3 +83,20 @@ def test_the_generated_code_and_the_closures_leave_the_same_machine(program, inp
             cpu.set_input("X1", x[1])
             cpu.scan()
         assert _state(fast) == _state(plain), program
+
+
+def test_the_benchmark_workload_runs_the_same_on_both_paths():
+    """benchmarks/workload.il (what the tecomat benchmark times) on its input schedule, 3000 cycles."""
+    from benchmarks import workload
+    from benchmarks.tecomat import SOURCE
+    from plcsim.controller import controller_for, program_text
+
+    fast, plain = (controller_for(program_text(SOURCE, "workload.il"), workload.tags(), fuse=f) for f in (True, False))
+    outputs = set()
+    for changes in workload.build_schedule(3000):
+        for cpu in (fast, plain):
+            cpu.inputs.update(changes or {})
+            cpu.scan()
+        assert _state(fast) == _state(plain) and fast.outputs == plain.outputs
+        outputs.add(tuple(fast.outputs.values()))
+    assert len(outputs) > 100  # the program is never idle
