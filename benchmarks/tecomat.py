@@ -5,13 +5,16 @@ Figures:
 * ``tecomat_scans_per_s`` -- program cycles per second of wall time of ``benchmarks/workload.il`` (the
   workload network by network in instruction list), best of ``--repeats`` runs, driven exactly as the
   ``plc`` group drives the S7 CPU (same input schedule through ``cpu.inputs``, same scan budget). The S7
-  figure of the same run is in ``s7_scans_per_s``. Budget (issue 15): >= 50 k scans/s.
+  figure of the same run is in ``s7_scans_per_s``, and their ratio (the figure a busy machine changes
+  least) in ``ratio_to_s7``; ``load_1min`` is the machine's load when it was taken. Budget (issue 15):
+  >= 50 k scans/s.
 * ``tecomat_assemble_ms`` -- assembling and linking the workload into a fresh controller.
 """
 
 from __future__ import annotations
 
 import gc
+import os
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -47,6 +50,7 @@ def run(settings: Settings) -> Iterator[Figure]:
         median=round(rates.median),
         s7_scans_per_s=round(s7.best),
         ratio_to_s7=round(rates.best / s7.best, 3),
+        load_1min=round(os.getloadavg()[0], 2) if hasattr(os, "getloadavg") else None,  # not on Windows
         stat="best",
         repeats=settings.repeats,
         scans=rates.best_scans,

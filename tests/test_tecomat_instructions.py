@@ -5,11 +5,14 @@ from __future__ import annotations
 
 import pytest
 
+from plcsim.controller import controller_for, program_text
 from plcsim.errors import ConfigurationError
+from plcsim.tags import Tag
 from plcsim.tecomat import instructions
 from plcsim.tecomat.assembler import AssemblyError, assemble
 from plcsim.tecomat.cpu import TecomatCPU
 from plcsim.tecomat.mnemonics import DEFINED, NAMED_ONLY
+from plcsim.types import DWord
 
 
 @pytest.fixture(autouse=True, params=["fused", "closures"])
@@ -99,6 +102,57 @@ def test_byte_set_and_res_by_mask_and_byte_let():
     cpu.set_input("X0", 0b0111)
     cpu.scan()
     assert cpu.stack[0] == 0b0010  # only the bit that rose
+
+
+# -- long operands (extended set) ------------------------------------------------------------------
+
+
+def test_ld_rl10_loads_r10_to_r13_into_two_levels_low_word_in_a0():
+    """SX-1: ``LD RL10`` loads R10, R11, R12, R13; on the 16-bit stack (G16) as LD RW12 then LD RW10."""
+    cpu = TecomatCPU("LD RL10\nLD RW12\nLD RW10\nLDC RL10\n")
+    cpu.write("RL10", 0x12345678)
+    assert [cpu.peek(f"R{k}") for k in range(10, 14)] == [0x78, 0x56, 0x34, 0x12]
+    cpu.scan()
+    assert cpu.stack[:6] == [0xA987, 0xEDCB, 0x5678, 0x1234, 0x5678, 0x1234]
+
+
+def test_wr_and_wrc_of_a_long_write_both_words_little_endian_and_keep_the_stack():
+    """EX-03's numbers widened: A0 = 9F75H, A1 = 1234H; ``WR RL4`` gives R4 = 75H, R5 = 9FH, R6 = 34H,
+    R7 = 12H, ``WRC RL8`` the complement (R8 = 8AH, R9 = 60H as EX-03's RW4 = 608AH)."""
+    cpu = TecomatCPU("LD $1234\nLD #2# 1001 1111 0111 0101\nWR RL4\nWRC RL8\nWR RL13\n")
+    cpu.scan()
+    assert [cpu.peek(f"R{k}") for k in range(4, 12)] == [0x75, 0x9F, 0x34, 0x12, 0x8A, 0x60, 0xCB, 0xED]
+    assert cpu.stack[:3] == [0x9F75, 0x1234, 0]
+    assert cpu.peek("RL4") == 0x12349F75 and cpu.peek("RW6") == 0x1234
+    assert cpu.peek("RL12") == 0x349F7500  # RL13 overlaps: R13..R16 = 75 9F 34 12, R12 = 0
+
+
+def test_put_of_a_long_depends_on_s1_0_and_the_word_order_is_a_setting():
+    program = "LD $1111\nLD $2222\nLD 1\nFLG\nPOP 1\nPOP 1\nPUT RL0\nLD 3\nFLG\nPOP 1\nPOP 1\nPUT RL4\n"
+    cpu = TecomatCPU(program)  # FLG: S1.0 = N0, the parity of the 1-count: 1 for 1, 0 for 3
+    cpu.scan()
+    assert (cpu.peek("RL0"), cpu.peek("RL4")) == (0x11112222, 0)
+    high_first = TecomatCPU("LD RL0\nWR RL4\n", long_low_word_in_a0=False)
+    high_first.write("RL0", 0xAAAABBBB)
+    high_first.scan()
+    assert high_first.stack[:2] == [0xAAAA, 0xBBBB] and high_first.peek("RL4") == 0xAAAABBBB
+
+
+def test_reg_long_reserves_four_registers_and_a_long_symbol_is_traced_as_a_dword():
+    cpu = TecomatCPU("#reg long total\n#reg word w\n#def TOTAL_OUT yl0\nLD RL100\nWR total\nLD total\nWR TOTAL_OUT\n")
+    symbols = cpu.program.symbols
+    assert (symbols["total"].operand.index, symbols["w"].operand.index) == (0, 4)
+    assert str(cpu.table["TOTAL_OUT"].address) == "%QD0" and cpu.table["TOTAL_OUT"].member.type is DWord
+    cpu.write("RL100", 0xDEADBEEF)
+    cpu.scan()
+    assert cpu.t.total == 0xDEADBEEF and cpu.outputs["TOTAL_OUT"] == 0xDEADBEEF
+
+
+def test_a_double_word_tag_of_the_io_table_is_a_long_symbol():
+    cpu = controller_for(program_text("LD RL0\nWR TOTAL\n", "t.il"), {"TOTAL": Tag("%QD4", DWord)})
+    cpu.write("RL0", 70_000)
+    cpu.scan()
+    assert str(cpu.symbols["TOTAL"]) == "YL4" and cpu.outputs["TOTAL"] == 70_000
 
 
 # -- function blocks ------------------------------------------------------------------------------
@@ -396,7 +450,9 @@ def test_the_instruction_inventory():
         ("LD X0.0\nWX Y0.0\n", r"t\.il, line 2, column 1: no instruction 'WX'; did you mean WR"),
         ("#def START x0.0\nLD STRAT\n", r"line 2, column 4: no name 'STRAT'; did you mean 'START'"),
         ("LD X0.0\nJMP knoec\nkonec:\n", r"line 2, column 5: no label 'knoec'; did you mean 'konec'"),
-        ("LD RL10\n", r"long operand, which only the extended instruction set"),
+        ("AND RL10\n", r"AND RL10: a long operand is not allowed \(in the extended set only LD, LDC, WR, WRC"),
+        ("LD RL10.1\n", r"the manual has no bit of a long"),
+        ("LD XL126\n", r"XL126 is outside X0..X127"),
         ("LD X0.9\n", r"a register has bits 0..7"),
         ("WR D0\n", r"WR does not take D0"),
         ("LD X200\n", r"X200 is outside X0..X127"),

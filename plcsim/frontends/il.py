@@ -85,8 +85,8 @@ AREAS = {"I": "X", "Q": "Y", "M": "R"}
 
 
 def io_symbols(tags: TagTable | Mapping[str, Any] | None) -> dict[str, Operand]:
-    """The I/O table's bit, byte and word tags as operands: inputs in X, outputs in Y, markers in R
-    (%I0.1 -> X0.1, %QW2 -> YW2, %M10.0 -> R10.0); data blocks have no place in the Tecomat's scratchpad."""
+    """The I/O table's bit, byte, word and double-word tags as operands: inputs in X, outputs in Y, markers
+    in R (%I0.1 -> X0.1, %QW2 -> YW2, %MD8 -> RL8); data blocks have no place in the Tecomat's scratchpad."""
     if tags is None:
         return {}
     if not isinstance(tags, TagTable):
@@ -98,9 +98,9 @@ def io_symbols(tags: TagTable | Mapping[str, Any] | None) -> dict[str, Operand]:
     out = {}
     for entry in tags:
         addr = entry.address
-        if addr is None or addr.area not in AREAS or addr.bits not in (1, 8, 16):
+        if addr is None or addr.area not in AREAS or addr.bits not in (1, 8, 16, 32):
             continue
-        width = {1: "bit", 8: "byte", 16: "word"}[addr.bits]
+        width = {1: "bit", 8: "byte", 16: "word", 32: "long"}[addr.bits]
         out[entry.name] = Operand(AREAS[addr.area], width, addr.byte, addr.bit if addr.bits == 1 else 0)
     return out
 

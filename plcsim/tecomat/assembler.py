@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from plcsim.errors import ProgramError, did_you_mean
-from plcsim.tecomat.memory import Operand, OperandError, immediate, low_high, parse_address
+from plcsim.tecomat.memory import SIZE, Operand, OperandError, immediate, low_high, parse_address
 from plcsim.tecomat.mnemonics import DEFINED, NAMED_ONLY, WITHOUT_OPERAND_FORM, refusal
 from plcsim.tecomat.numbers import NumberError, expression
 
@@ -349,8 +349,8 @@ class _Assembler:
     def _reg(self, lineno: int, column: int, text: str) -> None:
         width, _, names = text.partition(" ")
         width = width.lower()
-        if width not in ("bit", "byte", "word"):
-            raise self.fail(lineno, column, f"#reg takes bit, byte or word, not {width!r} (long is extended)")
+        if width not in ("bit", "byte", "word", "long"):
+            raise self.fail(lineno, column, f"#reg takes bit, byte, word or long, not {width!r}")
         for item in filter(None, (n.strip() for n in names.split(","))):
             match = _ITEM.match(item)
             name, count = (match.group(1), int(match.group(2))) if match else (item, 1)
@@ -420,7 +420,7 @@ class _Assembler:
                 operand = Operand("R", "bit", next_bit[0], next_bit[1])
                 next_bit[1] += 1
             else:
-                size = count * (2 if width == "word" else 1)
+                size = count * SIZE[width]
                 start = self._free(used, next_byte, size, lineno, column)
                 operand = Operand("R", width, start)
                 next_byte = start + size
@@ -459,7 +459,7 @@ class _Assembler:
                 except OperandError:
                     continue
                 if op.area == "R":
-                    used.update(range(op.index, op.index + (2 if op.width == "word" else 1)))
+                    used.update(range(op.index, op.index + SIZE[op.width]))
         for r in self.raw:
             if r.mnemonic in ("LMS", "WMS") and r.text.lower() in self.asm.tables:
                 number = self.asm.tables[r.text.lower()].number
@@ -592,7 +592,7 @@ class _Assembler:
             raise self.fail(
                 r.line, r.op_column, f"no table {text!r}{did_you_mean(text, names)}; declare it with #table"
             ) from None
-        if operand.area != "R" or (r.mnemonic == "FTB" and operand.width == "bit"):
+        if operand.area != "R" or operand.width == "long" or (r.mnemonic == "FTB" and operand.width == "bit"):
             raise self.fail(
                 r.line, r.op_column, f"{r.mnemonic} takes a table name or a table in R (its first item), not {text}"
             )
@@ -671,14 +671,17 @@ class OperandSpec:
                 r.line, r.op_column, f"{r.mnemonic} does not take {op} (area {op.area}); it takes {self.describe()}"
             )
         if op.width not in self.widths:
-            extra = " (a word operand is in the extended set)" if op.width == "word" else ""
+            extra = {
+                "word": " (a word operand is in the extended set)",
+                "long": " (in the extended set only LD, LDC, WR, WRC and PUT take a long)",
+            }.get(op.width, "")
             raise asm.fail(
                 r.line, r.op_column, f"{r.mnemonic} {op}: a {op.width} operand is not allowed{extra}; {self.describe()}"
             )
         if self.kind == "pair":
             _check_pair(asm, r, op, r.mnemonic)
         size = {"X": 128, "Y": 128, "S": 64, "R": asm.r_size, "U": 128, "D": len(asm.asm.data)}[op.area]
-        if op.index + (1 if op.width == "word" else 0) >= size:
+        if op.index + SIZE[op.width] - 1 >= size:
             raise asm.fail(r.line, r.op_column, f"{op} is outside {op.area}0..{op.area}{size - 1}")
 
 
@@ -687,8 +690,8 @@ def _check_pair(asm: _Assembler, r: _Raw, op: Operand, mnemonic: str) -> None:
         raise asm.fail(r.line, r.op_column, f"{mnemonic} works on a register pair RW0..RW254, not {op}")
 
 
-_READ = OperandSpec("operand", "XYSRD", ("bit", "byte", "word"), True)
-_WRITE = OperandSpec("operand", "XYSR", ("bit", "byte", "word"))
+_READ = OperandSpec("operand", "XYSRD", ("bit", "byte", "word", "long"), True)
+_WRITE = OperandSpec("operand", "XYSR", ("bit", "byte", "word", "long"))
 _LOGIC = OperandSpec("operand", "XYSRUD", ("bit", "byte"), True)
 _MEMORY = OperandSpec("operand", "XYSR", ("bit", "byte"))
 _COMPARE = OperandSpec("operand", "XYSRD", ("byte", "word"), True)

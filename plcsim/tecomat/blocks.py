@@ -1,6 +1,9 @@
 """Function blocks on register pairs RW0..RW254: counters, shift registers, timers (manual §7.5).
 
-Inputs come from stack levels (a binary input is the OR of its level), outputs go back into them. The
+Inputs come from stack levels (a binary input is the OR of its level), outputs go back into them. Each
+block is a *core*, a function from its input levels to its output levels, and a :class:`Shape` saying
+which levels those are; the plain path wraps the core into a closure working on the stack, the fused
+path (:mod:`plcsim.tecomat.fused`) calls it with the levels it holds in locals. The
 word is read from R at every execution, so ordinary instructions may change it (EX-16 clears a counter
 with ``res low citac``). Each block also keeps hidden state, keyed by its kind and word (G39): the edge
 memories ("dynamic control variables") and a timer's phase. A cold restart initialises them as the
@@ -19,7 +22,8 @@ start, ``global`` counts the ticks of the time base.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 from plcsim.tecomat.assembler import Instruction
 from plcsim.tecomat.settings import TIME_BASES_NS
@@ -29,6 +33,22 @@ if TYPE_CHECKING:
 
 FFFF = 0xFFFF
 Code = Callable[[], int]
+Core = Callable[..., Any]
+
+
+@dataclass(frozen=True)
+class Shape:
+    """Where a block's core finds its inputs and puts its outputs on the stack.
+
+    The core is called with the levels ``A(inputs-1) .. A0`` (the deepest first; a binary input may be any
+    truth value); with ``push`` its first output is pushed, and its outputs then go to the levels
+    ``places`` (counted after the push). A core with one output returns it, one with more a tuple."""
+
+    inputs: int
+    push: bool
+    places: tuple[int, ...]
+    preset: bool = False
+    """The last input (A0) is a number (a timer's preset); the others are binary."""
 
 
 class BlockState:
@@ -65,20 +85,15 @@ def _word(m: Machine, instr: Instruction) -> tuple[bytearray, int]:
 # -- counters -----------------------------------------------------------------------------------------
 
 
-def _counter_flags(flags: bytearray, value: int, carry: int) -> None:
-    flags[0] = (value == 0) | bool(carry) << 1 | (value == 0 or bool(carry)) << 2
-
-
-def _ctu_ctd(m: Machine, index: int, instr: Instruction) -> Code:
-    nxt, up = index + 1, instr.mnemonic == "CTU"
+def _ctu_ctd(m: Machine, instr: Instruction) -> Core:
+    up = instr.mnemonic == "CTU"
     data, i = _word(m, instr)
     flags = m.pad.areas["S"]
     st = _state(m, instr.mnemonic, i)
     preset = m.config.ctd_set_value
 
-    def counter() -> int:  # A1 count input, A0 reset/set -> A2 carry, A1 reset/set, A0 value
-        s = m.st
-        count, clear = s[1] != 0, s[0] != 0
+    def counter(count: int, clear: int) -> tuple[int, int]:  # A1 count, A0 reset/set -> A2 carry, A0 value
+        count = count != 0
         edge = count and not st.prev
         st.prev = count
         value = data[i] | data[i + 1] << 8
@@ -91,24 +106,19 @@ def _ctu_ctd(m: Machine, index: int, instr: Instruction) -> Code:
                 value &= FFFF
                 carry = FFFF
         data[i], data[i + 1] = value & 0xFF, value >> 8
-        _counter_flags(flags, value, carry)
-        s.insert(0, value)
-        del s[8]
-        s[2] = carry
-        return nxt
+        flags[0] = (5 if value == 0 else 0) | (6 if carry else 0)  # S0.0 zero, S0.1 carry, S0.2 either
+        return value, carry
 
     return counter
 
 
-def _cnt(m: Machine, index: int, instr: Instruction) -> Code:
-    nxt = index + 1
+def _cnt(m: Machine, instr: Instruction) -> Core:
     data, i = _word(m, instr)
     flags = m.pad.areas["S"]
     st = _state(m, "CNT", i)
 
-    def cnt() -> int:  # A2 UP, A1 DOWN, A0 RESET -> A3 UPC, A2 DOWNC, A1 RESET, A0 VAL
-        s = m.st
-        up, down, clear = s[2] != 0, s[1] != 0, s[0] != 0
+    def cnt(up: int, down: int, clear: int) -> tuple[int, int, int]:  # -> A3 UPC, A2 DOWNC, A0 VAL
+        up, down = up != 0, down != 0
         rise_up, rise_down = up and not st.prev, down and not st.prev2
         st.prev, st.prev2 = up, down
         value = data[i] | data[i + 1] << 8
@@ -124,11 +134,8 @@ def _cnt(m: Machine, index: int, instr: Instruction) -> Code:
             if value < 0:
                 value, downc = FFFF, FFFF
         data[i], data[i + 1] = value & 0xFF, value >> 8
-        _counter_flags(flags, value, upc | downc)
-        s.insert(0, value)
-        del s[8]
-        s[2], s[3] = downc, upc
-        return nxt
+        flags[0] = (5 if value == 0 else 0) | (6 if upc | downc else 0)
+        return value, upc, downc
 
     return cnt
 
@@ -136,30 +143,27 @@ def _cnt(m: Machine, index: int, instr: Instruction) -> Code:
 # -- shift registers ----------------------------------------------------------------------------------
 
 
-def _shift(m: Machine, index: int, instr: Instruction) -> Code:
-    nxt, left = index + 1, instr.mnemonic == "SFL"
+def _shift(m: Machine, instr: Instruction) -> Core:
+    left = instr.mnemonic == "SFL"
     data, i = _word(m, instr)
     st = _state(m, instr.mnemonic, i)
 
-    def shift() -> int:  # A1 CLK, A0 DATAI -> A2 CLK, A1 DATAO, A0 VAL
-        s = m.st
-        clock, serial = s[1] != 0, s[0] != 0
+    def shift(clock: int, serial: int) -> tuple[int, int]:  # A1 CLK, A0 DATAI -> A1 DATAO, A0 VAL
+        clock = clock != 0
         edge = clock and not st.prev
         st.prev = clock
         value = data[i] | data[i + 1] << 8
         out = 0
         if edge:
+            bit = 1 if serial else 0
             if left:
                 out = FFFF if value & 0x8000 else 0
-                value = value << 1 & FFFF | serial
+                value = value << 1 & FFFF | bit
             else:
                 out = FFFF if value & 1 else 0
-                value = value >> 1 | serial << 15
+                value = value >> 1 | bit << 15
             data[i], data[i + 1] = value & 0xFF, value >> 8
-        s.insert(0, value)
-        del s[8]
-        s[1] = out
-        return nxt
+        return value, out
 
     return shift
 
@@ -220,77 +224,64 @@ def _clear(data: bytearray, i: int, st: BlockState, flags: bytearray) -> None:
     flags[0] = 0
 
 
-def _ton(m: Machine, index: int, instr: Instruction) -> Code:
-    nxt = index + 1
+def _ton(m: Machine, instr: Instruction) -> Core:
     data, i, flags, st, units, top = _timer_parts(m, instr)
 
-    def ton() -> int:  # A1 XT, A0 preset -> A1 XT, A0 YT
-        s = m.st
-        passed = units()
-        if not s[1]:
+    def ton(xt: int, preset: int) -> int:  # A1 XT, A0 preset -> A0 YT
+        if not xt:  # what units() would add is cleared with the rest
+            st.last_pass = m.pass_no
             st.timing = False
             _clear(data, i, st, flags)
-            s[0] = 0
-            return nxt
+            return 0
+        passed = units()
         if not st.timing:  # the rising edge: timing starts at this turnaround
             _clear(data, i, st, flags)
             st.timing = True
             passed = 0
         value, now_over = _advance(data, i, st, passed, top)
-        preset = s[0]
         _timer_flags(flags, preset, value, st, now_over)
-        s[0] = FFFF if value >= preset else 0
-        return nxt
+        return FFFF if value >= preset else 0
 
     return ton
 
 
-def _tof(m: Machine, index: int, instr: Instruction) -> Code:
-    nxt = index + 1
+def _tof(m: Machine, instr: Instruction) -> Core:
     data, i, flags, st, units, top = _timer_parts(m, instr)
 
-    def tof() -> int:  # active while XT = 0, from its falling edge
-        s = m.st
-        passed = units()
-        xt = s[1] != 0
-        falling = not xt and st.prev
-        st.prev = xt
-        if xt:
+    def tof(xt: int, preset: int) -> int:  # active while XT = 0, from its falling edge
+        if xt:  # what units() would add is cleared with the rest
+            st.last_pass = m.pass_no
+            st.prev = True
             st.timing = False
             _clear(data, i, st, flags)
-            s[0] = FFFF
-            return nxt
+            return FFFF
+        passed = units()
+        falling = st.prev
+        st.prev = False
         if falling:
             _clear(data, i, st, flags)
             st.timing = True
             passed = 0
         if not st.timing:  # never switched on since the start: passive, YT = 0
-            s[0] = 0
-            return nxt
+            return 0
         value, now_over = _advance(data, i, st, passed, top)
-        preset = s[0]
         _timer_flags(flags, preset, value, st, now_over)
-        s[0] = FFFF if value < preset else 0
-        return nxt
+        return FFFF if value < preset else 0
 
     return tof
 
 
-def _imp(m: Machine, index: int, instr: Instruction) -> Code:
-    nxt = index + 1
+def _imp(m: Machine, instr: Instruction) -> Core:
     data, i, flags, st, units, top = _timer_parts(m, instr)
 
-    def imp() -> int:  # a pulse of the preset's length from a rising edge of XT
-        s = m.st
+    def imp(xt: int, preset: int) -> int:  # a pulse of the preset's length from a rising edge of XT
         passed = units()
-        xt = s[1] != 0
+        xt = xt != 0
         rising = xt and not st.prev
         st.prev = xt
-        preset = s[0]
         if not st.timing:
             if not rising:
-                s[0] = 0
-                return nxt
+                return 0
             _clear(data, i, st, flags)
             st.timing = True
             passed = 0
@@ -298,28 +289,22 @@ def _imp(m: Machine, index: int, instr: Instruction) -> Code:
         _timer_flags(flags, preset, value, st, now_over)
         if value >= preset:
             st.timing = False
-            s[0] = 0
-        else:
-            s[0] = FFFF
-        return nxt
+            return 0
+        return FFFF
 
     return imp
 
 
-def _rto(m: Machine, index: int, instr: Instruction) -> Code:
-    nxt = index + 1
+def _rto(m: Machine, instr: Instruction) -> Core:
     data, i, flags, st, units, top = _timer_parts(m, instr)
 
-    def rto() -> int:  # A2 XT, A1 RT, A0 preset -> A2 YC, A1 RT, A0 YT
-        s = m.st
-        passed = units(s[2] != 0 and not s[1])
-        if s[1]:  # passive: RT = 1 clears
+    def rto(xt: int, rt: int, preset: int) -> tuple[int, int]:  # A2 XT, A1 RT, A0 preset -> A2 YC, A0 YT
+        passed = units(xt != 0 and not rt)
+        if rt:  # passive: RT = 1 clears
             st.timing = False
             _clear(data, i, st, flags)
-            s[0] = s[2] = 0
-            return nxt
-        preset = s[0]
-        if s[2]:
+            return 0, 0
+        if xt:
             if not st.timing:
                 passed = 0
             st.timing = True
@@ -328,19 +313,64 @@ def _rto(m: Machine, index: int, instr: Instruction) -> Code:
             st.timing = False
             value, now_over = data[i] | data[i + 1] << 8, False
         _timer_flags(flags, preset, value, st, now_over)
-        s[0] = FFFF if value >= preset else 0
-        s[2] = FFFF if st.overflow else 0
-        return nxt
+        return FFFF if value >= preset else 0, FFFF if st.overflow else 0
 
     return rto
 
 
-BLOCKS: dict[str, Callable[[Machine, int, Instruction], Code]] = {
-    **dict.fromkeys(("CTU", "CTD"), _ctu_ctd),
-    "CNT": _cnt,
-    **dict.fromkeys(("SFL", "SFR"), _shift),
-    "TON": _ton,
-    "TOF": _tof,
-    "IMP": _imp,
-    "RTO": _rto,
+# -- the blocks, and their closures on the stack ------------------------------------------------------
+
+COUNTER = Shape(2, True, (0, 2))
+UP_DOWN = Shape(3, True, (0, 3, 2))
+SHIFT = Shape(2, True, (0, 1))
+TIMER = Shape(2, False, (0,), preset=True)
+RETENTIVE = Shape(3, False, (0, 2), preset=True)
+BLOCKS: dict[str, tuple[Callable[[Machine, Instruction], Core], Shape]] = {
+    **dict.fromkeys(("CTU", "CTD"), (_ctu_ctd, COUNTER)),
+    "CNT": (_cnt, UP_DOWN),
+    **dict.fromkeys(("SFL", "SFR"), (_shift, SHIFT)),
+    "TON": (_ton, TIMER),
+    "TOF": (_tof, TIMER),
+    "IMP": (_imp, TIMER),
+    "RTO": (_rto, RETENTIVE),
 }
+"""Each function block: the builder of its core, and its shape."""
+
+
+def block(m: Machine, index: int, instr: Instruction) -> Code:
+    """The closure running the block of ``instr`` on the active stack (its core is ``closure.core``)."""
+    build, shape = BLOCKS[instr.mnemonic]
+    core = build(m, instr)
+    nxt, n, places = index + 1, shape.inputs, shape.places
+    if not shape.push:
+        if len(places) == 1:
+
+            def replace_a0() -> int:
+                s = m.st
+                s[0] = core(s[1], s[0])
+                return nxt
+
+            closure = replace_a0
+        else:
+
+            def replace() -> int:
+                s = m.st
+                for level, value in zip(places, core(*s[n - 1 :: -1]), strict=True):
+                    s[level] = value
+                return nxt
+
+            closure = replace
+    else:
+
+        def push() -> int:
+            s = m.st
+            outputs = core(*s[n - 1 :: -1])
+            s.insert(0, outputs[0])
+            del s[8]
+            for level, value in zip(places[1:], outputs[1:], strict=True):
+                s[level] = value
+            return nxt
+
+        closure = push
+    closure.core = core  # type: ignore[attr-defined]
+    return closure

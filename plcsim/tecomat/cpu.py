@@ -32,6 +32,7 @@ from collections import deque
 from collections.abc import Mapping
 from operator import itemgetter
 from pathlib import Path
+from struct import pack_into
 from typing import Any
 
 from plcsim.clock import NEVER, Clock
@@ -46,12 +47,13 @@ from plcsim.tecomat.assembler import Assembly, assemble
 from plcsim.tecomat.machine import END_CYCLE, Machine, TecomatRuntimeError
 from plcsim.tecomat.memory import Operand, OperandError, Scratchpad, parse_address, read, write
 from plcsim.tecomat.settings import TecomatConfig
-from plcsim.tecomat.symbols import loader, overlapping, reader, storer
-from plcsim.types import Bool, Byte, Word
+from plcsim.tecomat.symbols import loader, overlapping, reader, snapshot
+from plcsim.types import Bool, Byte, DWord, Word
 
 CLOCK_PERIODS_NS = tuple(
     to_ns(p) for p in ("100ms", "500ms", "1s", "10s", "1min", "10min", "1h", "24h")
 )  # S13.0 .. S13.7
+HALF_PERIODS_NS = tuple(p // 2 for p in CLOCK_PERIODS_NS)
 S2_RUNNING = 1 | 1 << 2 | 1 << 5
 """S2 in RUN: SP (external start), RUN, ON (outputs active); MS, MEZ and the first-cycle flags clear."""
 TASK = "cycle"
@@ -102,11 +104,14 @@ class TecomatCPU:
         self.output_version = 0
         self.inputs: dict[str, Any] = {}
         self.outputs: dict[str, Any] = {}
-        self.image_in: dict[str, Any] = {}
+        self._image_in: dict[str, Any] = {}
+        self._sampled: tuple[Any, ...] | None = None
+        """The input levels the last turnaround sampled, not yet in :attr:`image_in` (brought there when read)."""
         self.input_names: list[str] = []
         self.output_names: list[str] = []
         self.symbols: dict[str, Operand] = {}
-        self.t = _Symbols()
+        self._t = _Symbols()
+        self._copies: tuple[bytearray, ...] | None = None
         self.table = TagTable()
         self.program: Assembly | None = None
         self.loaded: LoadedProgram | None = None
@@ -119,14 +124,34 @@ class TecomatCPU:
         self._next_start = 0
         self._restart: str | None = None
         self._started = False
-        self._rtc_base = _parse_rtc(self.config.rtc_start)
-        self._rtc_until = 0
+        self._set_rtc_base(_parse_rtc(self.config.rtc_start))
         if program is not None:
             self.load(program, filename)
             if start:
                 self.start()
 
     on_scan_end = assigned_hook("scan_end", "One :attr:`scan_end` subscriber, set by assignment.")
+
+    @property
+    def image_in(self) -> dict[str, Any]:
+        """Each input as the last sample of the process image read it (what the trace records)."""
+        sampled = self._sampled
+        if sampled is not None:
+            self._sampled = None
+            self._image_in.update(zip(self.input_names, sampled, strict=True))
+        return self._image_in
+
+    @property
+    def t(self) -> _Symbols:
+        """The symbols' values at the last cycle's end, as attributes (what the trace and the checks read).
+
+        A cycle's end copies the registers they live in, and decodes them only if a :attr:`scan_end`
+        subscriber (the recorder) is there to read them; else they are decoded here, when read."""
+        copies = self._copies
+        if copies is not None:
+            self._copies = None
+            self._decode_traced(self._t.__dict__, *copies)
+        return self._t
 
     # -- loading --------------------------------------------------------------------------------
 
@@ -163,9 +188,14 @@ class TecomatCPU:
     def _build_table(self) -> None:
         table = TagTable()
         self.input_names, self.output_names = [], []
-        types = {"bit": Bool, "byte": Byte, "word": Word}
+        types = {"bit": Bool, "byte": Byte, "word": Word, "long": DWord}
         for name, op in self.symbols.items():
-            s7 = {"bit": f"{op.index}.{op.bit}", "byte": f"B{op.index}", "word": f"W{op.index}"}[op.width]
+            s7 = {
+                "bit": f"{op.index}.{op.bit}",
+                "byte": f"B{op.index}",
+                "word": f"W{op.index}",
+                "long": f"D{op.index}",
+            }[op.width]
             if op.area == "X":
                 table.add(name, Tag(f"%I{s7}", types[op.width]), source=self.program.filename)
                 self.input_names.append(name)
@@ -176,18 +206,24 @@ class TecomatCPU:
                 table.add(name, types[op.width], source=self.program.filename)
         self.table = table
         self.inputs = {n: self.inputs.get(n, self._off(n)) for n in self.input_names}
-        self.image_in = dict(self.inputs)
+        self._image_in, self._sampled = dict(self.inputs), None
         self.outputs = {n: self._off(n) for n in self.output_names}
-        self.t.__dict__.clear()
-        self.t.__dict__.update({n: self._off(n) for n in self.symbols})
+        self._copies = None
+        self._t.__dict__.clear()
+        self._t.__dict__.update({n: self._off(n) for n in self.symbols})
         pad = self.machine.pad  # type: ignore[union-attr]
         traced = [n for n in self.symbols if n not in self.inputs]
-        self._store_traced = storer(pad, traced, [self.symbols[n] for n in traced])
-        self._read_outputs = _tuple_getter(self.output_names)
-        """The outputs from the traced values (stored at each cycle's end), as a tuple."""
+        self._take_traced, decode = snapshot(pad, [self.symbols[n] for n in traced])
+        self._decode_traced = decode(traced)
+        self._y_copy = sorted({self.symbols[n].area for n in traced}).index("Y") if self.output_names else None
+        """Which of the cycle end's copies holds Y (the outputs change only when it does)."""
+        self._last_y = None
+        self._read_outputs = reader(pad, [self.symbols[n] for n in self.output_names])
+        self._outputs_of: dict[bytes, tuple[tuple[Any, ...], dict[str, Any]]] = {}
+        """The outputs (as a tuple and by name) of each state of Y seen, decoded once."""
         inputs = [self.symbols[n] for n in self.input_names]
         self._read_terminals = reader(self.terminals, inputs)
-        self._load_terminals = loader(self.terminals, "X", self.input_names, inputs)
+        self._load_terminals = loader(self.terminals, "X", inputs)
         self._aliased_inputs = overlapping(inputs)
         self._writes_x = any(
             i.mnemonic in ("WR", "WRC", "PUT", "SET", "RES", "LET") and getattr(i.arg, "area", "") == "X"
@@ -198,7 +234,7 @@ class TecomatCPU:
         """Two input names share a terminal: only the one the wiring changed may write it."""
         self._input_levels = _tuple_getter(self.input_names)
         self._last_inputs = self._input_levels(self.inputs)
-        self._last_outputs = self._read_outputs(self.t.__dict__)
+        self._last_outputs = tuple(self._off(n) for n in self.output_names)
 
     def _off(self, name: str) -> Any:
         return False if self.symbols[name].width == "bit" else 0
@@ -237,6 +273,7 @@ class TecomatCPU:
         self.mode = STOP
         self._pending = None
         self.outputs = {n: self._off(n) for n in self.output_names}
+        self._last_outputs, self._last_y = tuple(self.outputs.values()), None
         self.output_version += 1
         if was == RUN:
             self._diag("RUN->STOP", f"the CPU switched to STOP ({reason})")
@@ -278,7 +315,7 @@ class TecomatCPU:
         """Every input symbol as the terminals hold it (two names on one terminal agree)."""
         levels = dict(zip(self.input_names, self._read_terminals(), strict=True))
         self.inputs.update(levels)
-        self.image_in.update(levels)
+        self.image_in.update(levels)  # (the property first applies the last sample, which this one replaces)
         self._last_inputs = self._input_levels(self.inputs)
 
     def write(self, name: str, value: Any) -> None:
@@ -304,7 +341,14 @@ class TecomatCPU:
 
     def set_clock(self, moment: _dt.datetime) -> None:
         """Set the real-time clock (S5..S12) to ``moment`` now; it runs on with the simulated time."""
-        self._rtc_base = moment - _dt.timedelta(microseconds=self.clock.now // 1000)
+        self._set_rtc_base(moment - _dt.timedelta(microseconds=self.clock.now // 1000))
+
+    def _set_rtc_base(self, base: _dt.datetime) -> None:
+        """The clock reads ``base`` at time 0; S5..S12 are computed from the microseconds since its midnight."""
+        self._rtc_base = base
+        self._rtc_base_us = ((base.hour * 60 + base.minute) * 60 + base.second) * 1_000_000 + base.microsecond
+        self._rtc_day: int | None = None
+        self._rtc_date = b""
         self._rtc_until = 0
 
     def local_time(self) -> _dt.datetime:
@@ -327,8 +371,9 @@ class TecomatCPU:
         while self.mode == RUN and self.scan_count < target:
             if self._pending is None:
                 self._begin(self._next_start)
-            else:
-                self._end()
+                if self._pending is None:  # the program stopped the CPU
+                    break
+            self._end()
 
     def next_event_ns(self) -> int:
         """When the CPU next does something (a cycle's start or end); far future in STOP."""
@@ -371,19 +416,33 @@ class TecomatCPU:
         end = self._pending
         assert end is not None and self.machine is not None
         self._pending = None
-        self.clock.now = max(self.clock.now, end)
-        values = self.t.__dict__
-        self._store_traced(values)
-        outputs = self._read_outputs(values)
-        if outputs != self._last_outputs:
-            self._last_outputs = outputs
-            self.outputs.update(zip(self.output_names, outputs, strict=True))
-            self.output_version += 1
+        clock = self.clock
+        if clock.now < end:
+            clock.now = end
+        copies = self._take_traced()
+        subscriber = self.scan_end.call
+        if subscriber is None:
+            self._copies = copies
+        else:  # a subscriber (the recorder) reads them now, maybe from a dict it holds
+            self._copies = None
+            self._decode_traced(self._t.__dict__, *copies)
+        if self._y_copy is not None and copies[self._y_copy] != self._last_y:
+            self._last_y = y = bytes(copies[self._y_copy])
+            decoded = self._outputs_of.get(y)
+            if decoded is None:
+                if len(self._outputs_of) >= 4096:
+                    self._outputs_of.clear()
+                outputs = self._read_outputs()
+                decoded = self._outputs_of[y] = (outputs, dict(zip(self.output_names, outputs, strict=True)))
+            if decoded[0] != self._last_outputs:
+                self._last_outputs = decoded[0]
+                self.outputs.update(decoded[1])
+                self.output_version += 1
         self.scan_end_ns = end
         self.scan_count += 1
         self._next_start = end
-        if self.scan_end.call is not None:
-            self.scan_end.call(self)
+        if subscriber is not None:
+            subscriber(self)
 
     # -- the turnaround and the processes -------------------------------------------------------
 
@@ -394,8 +453,8 @@ class TecomatCPU:
         m.turnaround(t0)
         terminals, inputs = self.terminals, self.inputs
         levels = self._input_levels(inputs)
-        sampled = self._writes_x or levels != self._last_inputs
-        if levels != self._last_inputs:  # the wiring (or set_input) changed some
+        changed = levels != self._last_inputs
+        if changed:  # the wiring (or set_input) changed some
             if self._aliased_inputs:
                 seen = self.image_in
                 for name in self.input_names:
@@ -403,13 +462,11 @@ class TecomatCPU:
                         write(terminals, self.symbols[name], int(inputs[name]))
                 self._refresh_inputs()
             else:
-                self._load_terminals(inputs)
-                self.image_in.update(inputs)
-                self._last_inputs = levels
-        if sampled or self._fresh_terminals:  # else X and U still hold what the terminals hold
+                self._load_terminals(levels)
+                self._sampled = self._last_inputs = levels
+        if changed or self._writes_x or self._fresh_terminals:  # else X and U still hold what the terminals hold
             self._fresh_terminals = False
-            pad.areas["X"][:] = terminals.areas["X"]
-            pad.areas["U"][:] = terminals.areas["X"]
+            pad.areas["X"][:] = pad.areas["U"][:] = terminals.areas["X"]
         s = pad.areas["S"]
         if t0 < self._rtc_until and m.pass_no != 1:  # S5..S19 change at most every 10 ms
             s[2] = S2_RUNNING
@@ -420,17 +477,28 @@ class TecomatCPU:
         first = self.machine.pass_no == 1  # type: ignore[union-attr]
         restart = self._restart if first else None
         s[2] = S2_RUNNING | (restart == "warm") << 3 | (restart == "cold") << 4
-        now = self.local_time_at(t0)
-        s[5], s[6], s[7], s[8] = now.microsecond // 10_000, now.second, now.minute, now.hour
-        s[9], s[10], s[11], s[12] = now.isoweekday(), now.day, now.month, now.year % 100
-        self._rtc_until = min(t0 - now.microsecond % 10_000 * 1000, t0 - t0 % 10_000_000) + 10_000_000
-        bits = 0
-        for k, period in enumerate(CLOCK_PERIODS_NS):
-            bits |= (t0 // (period // 2) & 1) << k
-        s[13] = bits
-        for reg, unit in ((14, 100_000_000), (16, 1_000_000_000), (18, 10_000_000_000)):
-            count = t0 // unit & 0xFFFF
-            s[reg], s[reg + 1] = count & 0xFF, count >> 8
+        day, us = divmod(self._rtc_base_us + t0 // 1000, 86_400_000_000)
+        s[5], s[6], s[7], s[8] = us // 10_000 % 100, us // 1_000_000 % 60, us // 60_000_000 % 60, us // 3_600_000_000
+        if day != self._rtc_day:
+            self._rtc_day = day
+            date = self._rtc_base.date() + _dt.timedelta(days=day)
+            self._rtc_date = bytes((date.isoweekday(), date.day, date.month, date.year % 100))
+        s[9:13] = self._rtc_date
+        self._rtc_until = min(t0 - us % 10_000 * 1000, t0 - t0 % 10_000_000) + 10_000_000
+        h = HALF_PERIODS_NS  # S13.k is 1 in the second half of each period
+        s[13] = (
+            t0 // h[0] & 1
+            | (t0 // h[1] & 1) << 1
+            | (t0 // h[2] & 1) << 2
+            | (t0 // h[3] & 1) << 3
+            | (t0 // h[4] & 1) << 4
+            | (t0 // h[5] & 1) << 5
+            | (t0 // h[6] & 1) << 6
+            | (t0 // h[7] & 1) << 7
+        )
+        pack_into(
+            "<HHH", s, 14, t0 // 100_000_000 & 0xFFFF, t0 // 1_000_000_000 & 0xFFFF, t0 // 10_000_000_000 & 0xFFFF
+        )
 
     def local_time_at(self, t_ns: int) -> _dt.datetime:
         return self._rtc_base + _dt.timedelta(microseconds=t_ns // 1000)

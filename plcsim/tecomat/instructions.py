@@ -21,7 +21,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from plcsim.tecomat.assembler import Instruction, Label
-from plcsim.tecomat.blocks import BLOCKS
+from plcsim.tecomat.blocks import BLOCKS, block
 from plcsim.tecomat.fused import fuse
 from plcsim.tecomat.machine import END, END_CYCLE, MAX_NESTING, STACKS, TecomatRuntimeError
 from plcsim.tecomat.memory import Operand
@@ -38,7 +38,7 @@ def link(m: Machine) -> list[Code]:
     """The program's closures, one per instruction."""
     code = []
     for index, instr in enumerate(m.asm.code):
-        builder = BUILDERS.get(instr.mnemonic) or BLOCKS.get(instr.mnemonic) or TABLES[instr.mnemonic]
+        builder = BUILDERS.get(instr.mnemonic) or (block if instr.mnemonic in BLOCKS else TABLES[instr.mnemonic])
         code.append(builder(m, index, instr))
     return fuse(m, code) if m.config.fuse else code
 
@@ -100,6 +100,8 @@ def _load(m: Machine, index: int, instr: Instruction) -> Code:
             return nxt
 
         return ld_byte
+    if op.width == "long":
+        return _load_long(m, nxt, data, i, negate)
     flip = FFFF if negate else 0
 
     def ld_word() -> int:
@@ -111,11 +113,27 @@ def _load(m: Machine, index: int, instr: Instruction) -> Code:
     return ld_word
 
 
+def _load_long(m: Machine, nxt: int, data: bytearray, i: int, negate: bool) -> Code:
+    """LD/LDC of a long: two levels, the low word in A0 and the high one in A1 (``long_low_word_in_a0``)."""
+    flip, low_first = FFFF if negate else 0, m.config.long_low_word_in_a0
+
+    def ld_long() -> int:
+        s = m.st
+        low, high = (data[i] | data[i + 1] << 8) ^ flip, (data[i + 2] | data[i + 3] << 8) ^ flip
+        s[0:0] = (low, high) if low_first else (high, low)
+        del s[8:]
+        return nxt
+
+    return ld_long
+
+
 def _write(m: Machine, index: int, instr: Instruction) -> Code:
     nxt, op = index + 1, instr.arg
     negate, conditional = instr.mnemonic == "WRC", instr.mnemonic == "PUT"
     data, i, b = _area(m, op), op.index, op.bit
     flags = m.pad.areas["S"]
+    if op.width == "long":
+        return _write_long(m, nxt, data, i, negate, conditional)
     if op.width == "bit":
         mask, clear = 1 << b, ~(1 << b) & 0xFF
 
@@ -142,6 +160,23 @@ def _write(m: Machine, index: int, instr: Instruction) -> Code:
         return nxt
 
     return wr
+
+
+def _write_long(m: Machine, nxt: int, data: bytearray, i: int, negate: bool, conditional: bool) -> Code:
+    """WR/WRC/PUT of a long: A0 and A1 as its two words (as LD loads them); the stack is unchanged."""
+    flip = FFFF if negate else 0
+    low, high = (0, 1) if m.config.long_low_word_in_a0 else (1, 0)
+    flags = m.pad.areas["S"]
+
+    def wr_long() -> int:
+        if conditional and not flags[1] & 1:
+            return nxt
+        s = m.st
+        a, b = s[low] ^ flip, s[high] ^ flip
+        data[i : i + 4] = bytes((a & 0xFF, a >> 8, b & 0xFF, b >> 8))
+        return nxt
+
+    return wr_long
 
 
 # -- logic --------------------------------------------------------------------------------------------

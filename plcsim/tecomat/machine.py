@@ -84,13 +84,14 @@ class Machine:
         self.pass_no += 1
         self.jumps = 0
         self.calls.clear()
+        a = self.stacks[0]
         if self.config.clear_all_stacks:
             for stack in self.stacks:
                 stack[:] = ZEROS
         else:
-            self.stacks[0][:] = ZEROS
+            a[:] = ZEROS
         self.active = 0
-        self.st = self.stacks[0]
+        self.st = a
 
     # -- running -------------------------------------------------------------------------------------
 

@@ -2,8 +2,9 @@
 
 Every register is one byte; a word ``RW4`` is R4 (low) and R5 (high), so words overlap (RW1 shares R1
 with RW0), little-endian as the manual's examples show (``WR RW4`` gives R4 = 75H, R5 = 9FH). A bit is
-``R5.0``; ``low``/``high`` name the bytes of a word symbol. Long operands (``RL10``) belong to the
-extended instruction set (D and B CPUs) and are refused with a message saying so.
+``R5.0``; ``low``/``high`` name the bytes of a word symbol. A long ``RL10`` is R10 (lowest) .. R13 (highest),
+overlapping like words (manual §4.1.1: "typ L první byte", the number is the first byte; longs belong to
+the extended instruction set, where LD, LDC, WR, WRC and PUT take them).
 
 >>> pad = Scratchpad.sized(x=128, y=128, s=64, r=16)
 >>> op = parse_address("RW4")
@@ -11,6 +12,8 @@ extended instruction set (D and B CPUs) and are refused with a message saying so
 ('759f', 40821)
 >>> read(pad, parse_address("rw3")), read(pad, parse_address("R4.0"))
 (29952, 1)
+>>> write(pad, parse_address("RL8"), 0x12345678); pad.areas["R"][8:12].hex(), hex(read(pad, parse_address("RL9")))
+('78563412', '0x123456')
 """
 
 from __future__ import annotations
@@ -19,7 +22,9 @@ import re
 from dataclasses import dataclass
 
 AREAS = "XYSRDU"
-WIDTH_BITS = {"bit": 1, "byte": 8, "word": 16}
+WIDTH_BITS = {"bit": 1, "byte": 8, "word": 16, "long": 32}
+SIZE = {"bit": 1, "byte": 1, "word": 2, "long": 4}
+"""Registers (bytes) an operand of each width occupies."""
 _ADDRESS = re.compile(r"^([XYSRDU])\s*([WL])?\s*(\d+)(?:\.(\d+))?$", re.IGNORECASE)
 AREA_NAMES = {
     "X": "input images",
@@ -54,7 +59,10 @@ class Operand:
             return str(self.value)
         if self.width == "bit":
             return f"{self.area}{self.index}.{self.bit}"
-        return f"{self.area}{'W' if self.width == 'word' else ''}{self.index}"
+        return f"{self.area}{_PREFIX[self.width]}{self.index}"
+
+
+_PREFIX = {"byte": "", "word": "W", "long": "L"}
 
 
 def immediate(value: int) -> Operand:
@@ -68,17 +76,13 @@ def parse_address(text: str) -> Operand:
     if match is None:
         raise OperandError(f"{text.strip()!r} is not an address (write X0.5, Y0, R10, RW4 or SW 10)")
     area, wide, index, bit = match.group(1).upper(), (match.group(2) or "").upper(), int(match.group(3)), match.group(4)
-    if wide == "L":
-        raise OperandError(
-            f"{text.strip()!r} is a long operand, which only the extended instruction set (D and B CPUs) has; "
-            f"use the words {area}W{index} and {area}W{index + 2}"
-        )
-    if wide == "W":
+    if wide:
+        kind = "word" if wide == "W" else "long"
         if bit is not None:
             raise OperandError(
-                f"{text.strip()!r}: the manual has no bit of a word; name the byte, e.g. {area}{index}.0"
+                f"{text.strip()!r}: the manual has no bit of a {kind}; name the byte, e.g. {area}{index}.0"
             )
-        return Operand(area, "word", index)
+        return Operand(area, kind, index)
     if bit is not None:
         if int(bit) > 7:
             raise OperandError(f"{text.strip()!r}: a register has bits 0..7")
@@ -117,7 +121,7 @@ class Scratchpad:
         if operand.is_immediate:
             return
         size = len(self.areas[operand.area])
-        last = operand.index + (1 if operand.width == "word" else 0)
+        last = operand.index + SIZE[operand.width] - 1
         if last >= size:
             name = AREA_NAMES[operand.area]
             raise OperandError(
@@ -126,19 +130,17 @@ class Scratchpad:
 
 
 def read(pad: Scratchpad, operand: Operand) -> int:
-    """The operand's value: a bit as 0/1, a byte, a word (little-endian)."""
+    """The operand's value: a bit as 0/1, a byte, a word or a long (little-endian)."""
     if operand.is_immediate:
         return operand.value
     data = pad.areas[operand.area]
     if operand.width == "bit":
         return data[operand.index] >> operand.bit & 1
-    if operand.width == "byte":
-        return data[operand.index]
-    return data[operand.index] | data[operand.index + 1] << 8
+    return int.from_bytes(data[operand.index : operand.index + SIZE[operand.width]], "little")
 
 
 def write(pad: Scratchpad, operand: Operand, value: int) -> None:
-    """Store a bit (any non-zero value is 1), a byte or a word (little-endian)."""
+    """Store a bit (any non-zero value is 1), a byte, a word or a long (little-endian)."""
     data = pad.areas[operand.area]
     i = operand.index
     if operand.width == "bit":
@@ -146,8 +148,6 @@ def write(pad: Scratchpad, operand: Operand, value: int) -> None:
             data[i] |= 1 << operand.bit
         else:
             data[i] &= ~(1 << operand.bit) & 0xFF
-    elif operand.width == "byte":
-        data[i] = value & 0xFF
     else:
-        data[i] = value & 0xFF
-        data[i + 1] = value >> 8 & 0xFF
+        size = SIZE[operand.width]
+        data[i : i + size] = (value & (1 << 8 * size) - 1).to_bytes(size, "little")

@@ -61,6 +61,10 @@ class TecomatConfig:
     watchdog_jumps: int = 1_000_000
     """Backward jumps one cycle may make before the cycle-time watchdog stops the CPU (a jump loop;
     code without backward jumps always ends, so only they are counted)."""
+    long_low_word_in_a0: bool = True
+    """G16: a long operand (``RL10``, extended set) on the 16-bit stack, which the manual does not describe:
+    LD takes two levels, the low word (R10, R11) in A0 and the high word (R12, R13) in A1 (True; as
+    ``LD RW12`` then ``LD RW10``), or the high word in A0 (False); WR/WRC/PUT write them back the same way."""
     fuse: bool = True
     """Run straight-line instruction runs as one generated function each (:mod:`plcsim.tecomat.fused`);
     False runs every instruction's closure (same results, slower)."""

@@ -10,11 +10,13 @@ loop over operands. The function is generated from the operands' numbers only (n
 >>> read = reader(pad, [parse_address("RW0"), parse_address("Y1.2"), parse_address("R1")])
 >>> read()
 (4660, True, 18)
->>> values = {}
->>> storer(pad, ["W", "B"], [parse_address("RW0"), parse_address("Y1.2")])(values); values
+>>> take, decode = snapshot(pad, [parse_address("RW0"), parse_address("Y1.2")])
+>>> copies = take(); pad.areas["R"][0] = 0
+>>> values = {}; decode(["W", "B"])(values, *copies); values
 {'W': 4660, 'B': True}
->>> loader(pad, "R", ["L"], [parse_address("R2.1")])({"L": True}); pad.areas["R"][2]
-2
+>>> loader(pad, "R", [parse_address("R2.1"), parse_address("R2.3"), parse_address("R3")])((True, False, 7))
+>>> pad.areas["R"][2:4].hex()
+'0207'
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ from collections.abc import Callable, Sequence
 from functools import partial
 from typing import Any
 
-from plcsim.tecomat.memory import Operand, Scratchpad
+from plcsim.tecomat.memory import SIZE, Operand, Scratchpad
 
 
 def reader(pad: Scratchpad, operands: Sequence[Operand]) -> Callable[[], tuple[Any, ...]]:
@@ -35,26 +37,43 @@ def reader(pad: Scratchpad, operands: Sequence[Operand]) -> Callable[[], tuple[A
     return partial(fn, *(pad.areas[area] for area in areas))
 
 
-def storer(pad: Scratchpad, names: Sequence[str], operands: Sequence[Operand]) -> Callable[[dict[str, Any]], None]:
-    """A function storing the operands' values into a dict under their names (the traced symbols)."""
-    areas = sorted({op.area for op in operands}) or ["R"]
-    lines = [f"d[{name!r}] = {_expr(op)}" for name, op in zip(names, operands, strict=True)]
-    source = _function("d, " + ", ".join(f"a{area}" for area in areas), lines)
-    return partial(_compile(source), **{f"a{area}": pad.areas[area] for area in areas})
+def snapshot(pad: Scratchpad, operands: Sequence[Operand]) -> tuple[Callable[[], tuple[bytearray, ...]], Any]:
+    """``take()`` copying the registers the operands live in (a few short byte copies, at every cycle's end),
+    and ``decode(names)`` making ``f(d, *copies)`` that stores the copied values into a dict by name (only
+    when someone reads them: most cycles nobody does)."""
+    areas = sorted({op.area for op in operands})
+    ends = {a: max(op.index + SIZE[op.width] for op in operands if op.area == a) for a in areas}
+    params = ", ".join(f"a{area}" for area in areas)
+    copies = "".join(f"a{area}[:{ends[area]}], " for area in areas)
+    take = eval(f"lambda {params}: lambda: ({copies})", {"__builtins__": {}})  # generated from numbers only
+
+    def decode(names: Sequence[str]) -> Callable[..., None]:
+        lines = [f"d[{name!r}] = {_expr(op)}" for name, op in zip(names, operands, strict=True)]
+        return _compile(_function(f"d, {params}" if params else "d", lines))
+
+    return take(*(pad.areas[area] for area in areas)), decode
 
 
-def loader(pad: Scratchpad, area: str, names: Sequence[str], operands: Sequence[Operand]) -> Callable[[dict], None]:
-    """A function writing the values of a dict's names into their operands of ``area`` (the input terminals)."""
-    lines = []
+def loader(pad: Scratchpad, area: str, operands: Sequence[Operand]) -> Callable[[tuple[Any, ...]], None]:
+    """A function writing a tuple of levels into their operands of ``area`` (the input terminals), one
+    store per register: the operands must not overlap (:func:`overlapping`)."""
+    names = [f"v{k}" for k in range(len(operands))]
+    lines = [f"{', '.join(names)}, = levels"] if operands else []
+    a = f"a{area}"
+    bits: dict[int, list[str]] = {}
     for name, op in zip(names, operands, strict=True):
-        a, i = f"a{area}", op.index
+        i = op.index
         if op.width == "bit":
-            lines.append(f"{a}[{i}] = {a}[{i}] | {1 << op.bit} if d[{name!r}] else {a}[{i}] & {~(1 << op.bit) & 0xFF}")
+            bits.setdefault(i, []).append(f"({1 << op.bit} if {name} else 0)")
         elif op.width == "byte":
-            lines.append(f"{a}[{i}] = int(d[{name!r}]) & 255")
+            lines.append(f"{a}[{i}] = int({name}) & 255")
         else:
-            lines += [f"v = int(d[{name!r}]) & 65535", f"{a}[{i}] = v & 255", f"{a}[{i + 1}] = v >> 8"]
-    return partial(_compile(_function(f"d, a{area}", lines)), **{f"a{area}": pad.areas[area]})
+            lines.append(f"v = int({name})")
+            lines += [f"{a}[{i + k}] = v >> {8 * k} & 255" for k in range(SIZE[op.width])]
+    for i, terms in bits.items():
+        keep = 0xFF & ~sum(1 << op.bit for op in operands if op.width == "bit" and op.index == i)
+        lines.append(f"{a}[{i}] = {a}[{i}] & {keep} | {' | '.join(terms)}")
+    return partial(_compile(_function(f"levels, {a}", lines)), **{a: pad.areas[area]})
 
 
 def _expr(op: Operand) -> str:
@@ -63,7 +82,7 @@ def _expr(op: Operand) -> str:
         return f"{a}[{op.index}] >> {op.bit} & 1 == 1"
     if op.width == "byte":
         return f"{a}[{op.index}]"
-    return f"({a}[{op.index}] | {a}[{op.index + 1}] << 8)"
+    return "(" + " | ".join(f"{a}[{op.index + k}] << {8 * k}" for k in range(SIZE[op.width])) + ")"
 
 
 def _function(params: str, lines: list[str]) -> str:
@@ -83,7 +102,7 @@ def overlapping(operands: Sequence[Operand]) -> bool:
         if op.width == "bit":
             bits = {(op.index, op.bit)}
         else:
-            size = 2 if op.width == "word" else 1
+            size = SIZE[op.width]
             bits = {(op.index + k, b) for k in range(size) for b in range(8)}
         if seen & bits:
             return True
