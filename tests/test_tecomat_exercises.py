@@ -123,3 +123,11 @@ def test_the_tecomat_exercises_ship_il_programs_only():
     for exercise in tecomat:
         assert {s.path.suffix for s in exercise.solutions} == {".il"}
         assert sum(s.kind == "wrong" for s in exercise.solutions) >= 2
+
+
+def test_mutation_testing_of_an_il_reference_is_refused_with_the_reason():
+    from plcsim.errors import PlcError
+    from plcsim.mutate import exercise_mutants
+
+    with pytest.raises(PlcError, match=r"T-01: its reference reference\.il is not a Python \(S7\) program"):
+        exercise_mutants(exercises.get("T-01"))
