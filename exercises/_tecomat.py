@@ -11,25 +11,20 @@ from __future__ import annotations
 
 import datetime as dt
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-from exercises._common import SOLUTIONS
+from exercises._common import solution
 from plcsim.check import Condition, Context
 from plcsim.exercise import Solution
 from plcsim.scenario import press
 
 
-def il_solution(
-    number: str,
-    name: str,
-    kind: str = "reference",
-    explanation: str = "",
-    fails: tuple[str, ...] = (),
-    scenarios: tuple[str, ...] | None = None,
-) -> Solution:
-    """A shipped Tecomat program: ``exercises/solutions/T_01/<name>.il`` for exercise ``T-01``."""
-    return Solution(name, SOLUTIONS / number.replace("-", "_") / f"{name}.il", kind, explanation, fails, scenarios)
+def il_solution(number: str, name: str, *args: Any, **kwargs: Any) -> Solution:
+    """A shipped Tecomat program: ``exercises/solutions/T_01/<name>.il`` for exercise ``T-01`` (the arguments
+    of :func:`exercises._common.solution`)."""
+    return solution(number, name, *args, suffix=".il", **kwargs)
 
 
 def start_stop(start: str, stop: str, cycles: int) -> list:
