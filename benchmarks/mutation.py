@@ -25,7 +25,7 @@ def run(settings: Settings) -> Iterator[dict[str, Any]]:
     from exercises import all_exercises, get
     from plcsim.mutate import EQUIVALENT, EXPLAINED, KILLED, STILLBORN, SURVIVED, mutate_exercise
 
-    chosen = [get("4.3.1")] if settings.quick else list(all_exercises())
+    chosen = [get("4.3.1")] if settings.quick else [e for e in all_exercises() if e.reference.path.suffix == ".py"]
     seeds = 1 if settings.quick else SEEDS
     load_before = _load()
     t0 = time.perf_counter()

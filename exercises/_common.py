@@ -16,8 +16,13 @@ def solution(
     explanation: str = "",
     fails: tuple[str, ...] = (),
     scenarios: tuple[str, ...] | None = None,
+    *,
+    suffix: str = ".py",
 ) -> Solution:
-    """A shipped program: ``exercises/solutions/4_3_NN/<name>.py``."""
-    major, minor, item = number.split(".")
-    path = SOLUTIONS / f"{major}_{minor}_{int(item):02d}" / f"{name}.py"
-    return Solution(name, path, kind, explanation, fails, scenarios)
+    """A shipped program: ``exercises/solutions/4_3_NN/<name>.py`` (``T_NN/<name>.il`` for ``T-NN``)."""
+    if "." in number:
+        major, minor, item = number.split(".")
+        folder = f"{major}_{minor}_{int(item):02d}"
+    else:
+        folder = number.replace("-", "_")
+    return Solution(name, SOLUTIONS / folder / f"{name}{suffix}", kind, explanation, fails, scenarios)

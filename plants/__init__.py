@@ -12,6 +12,7 @@ from plants.conveyors import Conv1, Conv2x2, Conv3, ConveyorLine
 from plants.machine import Machine
 from plants.panel import Panel
 from plants.punch import Punch
+from plants.slide import Slide
 from plants.sort import Sort
 from plcsim import registry
 
@@ -43,6 +44,7 @@ __all__ = [
     "Machine",
     "Panel",
     "Punch",
+    "Slide",
     "Sort",
     "StationOccupiedError",
 ]

@@ -156,7 +156,11 @@ class ActionRunner:
         plant, cpu = self.plant, self.cpu
         verb, target, args = action.verb, action.target, action.args
         detail = ""
-        if action.rig is not None:
+        if action.rig is not None and action.rig.controller:
+            if action.rig is not getattr(cpu, "VERBS", {}).get(verb):
+                raise ExerciseError(f"{action.defined_at}: {action.describe()}: the controller does not bring it")
+            detail = getattr(cpu, action.rig.method)(target, **args) or ""
+        elif action.rig is not None:
             if action.rig is not rig_verbs(plant).get(verb):
                 raise ConfigurationError(f"the plant {getattr(plant, 'name', None)} does not bring the verb {verb!r}")
             getattr(plant, action.rig.method)(self.parts.get(target, target), **args)

@@ -41,8 +41,10 @@ class BrokenExercise:
 
     @property
     def number(self) -> str:
-        """The textbook number its module name stands for (``ex_4_3_05`` -> ``4.3.5``)."""
+        """The number its module name stands for (``ex_4_3_05`` -> ``4.3.5``, ``ex_t_01`` -> ``t-01``)."""
         parts = self.module.rpartition(".")[2].removeprefix("ex_").split("_")
+        if not parts[0].isdigit():
+            return "-".join(parts).lower()
         return ".".join(str(int(p)) if p.isdigit() else p for p in parts)
 
     def __str__(self) -> str:
@@ -169,8 +171,12 @@ def _broken(module: str, file: str, exc: Exception) -> BrokenExercise:
     return BrokenExercise(module, file, line, f"{kind}{exc}")
 
 
-def _order(number: str) -> tuple[int, ...]:
-    return tuple(int(p) if p.isdigit() else 0 for p in number.split("."))
+def _order(number: str) -> tuple[int, tuple[int, ...], str]:
+    """Textbook numbers in their order (4.3.2 before 4.3.10), then the other ids (``T-01``) by name."""
+    parts = number.split(".")
+    if not parts[0].isdigit():
+        return (1, (), number)
+    return (0, tuple(int(p) if p.isdigit() else 0 for p in parts), "")
 
 
 @cache
@@ -214,7 +220,7 @@ def broken_exercises() -> tuple[BrokenExercise, ...]:
 
 
 def get(name: str) -> Exercise:
-    """An exercise by number (``4.3.6``), slug (``conveyor-2``) or the path of an exercise file.
+    """An exercise by number (``4.3.6``, ``T-01`` in any case), slug (``conveyor-2``) or the path of an exercise file.
 
     Raises:
         ExerciseError: the exercise's module is broken (its file, line and error are named).
@@ -224,7 +230,7 @@ def get(name: str) -> Exercise:
         return _by_path(name)
     key = name.strip().lower()
     for exercise in all_exercises():
-        if key in (exercise.number, exercise.slug):
+        if key in (exercise.number.lower(), exercise.slug):
             return exercise
     for bad in broken_exercises():
         if key == bad.number:

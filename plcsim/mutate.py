@@ -524,6 +524,11 @@ def exercise_mutants(exercise: Exercise) -> list[Mutant]:
     the reference does not have (see :func:`declared_equivalents`).
     """
     path = exercise.reference.path
+    if Path(path).suffix != ".py":
+        raise PlcError(
+            f"exercise {exercise.number}: its reference {Path(path).name} is not a Python (S7) program; "
+            f"mutation testing derives mutants of Python programs only"
+        )
     nc = [row.tag for row in exercise.io if row.wiring == "NC" and row.direction == "input"]
     mutants = derive_mutants(
         Path(path).read_text(encoding="utf-8"), exercise.tag_table(), nc_inputs=nc, filename=str(path)

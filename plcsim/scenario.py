@@ -213,6 +213,9 @@ class RigVerb:
         state: True if whether it can be done depends on the run (a part that is gone): a failure is then
             recorded as ``action failed``; otherwise it is the instructor's mistake and raises.
         doc: what it does, for the rig's documentation.
+        controller: True for a verb the controller brings rather than the rig (the Tecomat's ``interrupt``):
+            it lists it in its own ``VERBS``, ``method`` and ``targets`` are the controller's, and a run on a
+            controller without it is refused before it starts (:func:`controller_verb_problems`).
     """
 
     name: str
@@ -222,6 +225,7 @@ class RigVerb:
     targets: str = ""
     state: bool = False
     doc: str = ""
+    controller: bool = False
 
     def __call__(
         self, target: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0, **args: Any
@@ -555,6 +559,8 @@ def name_problems(
     problems = []
     caps = None if capabilities is None else set(capabilities)
     for a in scenario.actions:
+        if a.rig is not None and a.rig.controller:
+            continue  # the controller's verb: checked against the controller a run has (controller_verb_problems)
         rig_problem = _rig_verb_problem(a, verbs)
         if rig_problem:
             problems.append((a.defined_at, f"scenario {scenario.name!r}: {a.describe()}: {rig_problem}"))
@@ -586,6 +592,24 @@ def name_problems(
                     f"(it does not declare the capability {need!r})",
                 )
             )
+    return problems
+
+
+def controller_verb_problems(scenario: Scenario, controller: Any) -> list[tuple[str, str]]:
+    """Every action of the scenario that needs a verb ``controller`` does not bring, or names a target it
+    lacks (an interrupt source the Tecomat does not have): ``(file:line, "scenario ...: ...")``."""
+    own = getattr(controller, "VERBS", {})
+    family = getattr(controller, "family", None) or getattr(controller.config, "family", "controller")
+    problems = []
+    for a in scenario.actions:
+        if a.rig is None or not a.rig.controller:
+            continue
+        where, what = a.defined_at, f"scenario {scenario.name!r}: {a.describe()}"
+        if own.get(a.verb) is not a.rig:
+            problems.append((where, f"{what}: the {family} cannot do this ({a.rig.doc or 'another controller'})"))
+        elif a.rig.targets and a.target not in (valid := list(getattr(controller, a.rig.targets))):
+            listed = f"{did_you_mean(a.target, valid)}; valid: {', '.join(valid)}"
+            problems.append((where, f"{what}: no {a.rig.role} {a.target!r}{listed}"))
     return problems
 
 

@@ -38,7 +38,7 @@ from plcsim.errors import ConfigurationError, PlcError
 from plcsim.literals import format_ns, to_ns
 from plcsim.plant import QUIESCENCE, Plant, capable, stations_of
 from plcsim.recorder import Recorder
-from plcsim.scenario import Scenario, check_names, plant_vocabulary
+from plcsim.scenario import Scenario, ScenarioError, check_names, controller_verb_problems, plant_vocabulary
 from plcsim.trace import Trace, TraceEvent
 from plcsim.wiring import Wire, Wiring
 
@@ -148,6 +148,8 @@ class Simulation:
             sensors=sensors,
             **plant_vocabulary(plant),
         )
+        for problem in controller_verb_problems(scenario, self.cpu):
+            raise ScenarioError(": ".join(problem))
 
     # -- running --------------------------------------------------------------------------------
 

@@ -138,6 +138,12 @@ class _Validation:
         """The scenario verbs the rig brings."""
         return list(rig_verbs(self.plant))
 
+    @property
+    def controller_verbs(self) -> list[str]:
+        """The controller's scenario verbs the exercise's scenarios use (the Tecomat's ``interrupt``)."""
+        used = {a.verb for s in self.exercise.scenarios for a in s.actions if a.rig is not None and a.rig.controller}
+        return sorted(used)
+
     # -- scenarios ------------------------------------------------------------------------------
 
     def _scenario(self, scenario: Scenario) -> None:
@@ -267,7 +273,7 @@ class _Validation:
     def _action(self, label: str, where: str, verb: str, target: str | None, applies: list[Scenario]) -> None:
         if verb == "action failed":
             return
-        verbs = [*VERBS, *self.plant_verbs]
+        verbs = [*VERBS, *self.plant_verbs, *self.controller_verbs]
         if verb not in verbs:
             self.add(
                 where,

@@ -86,12 +86,17 @@ def test_all_shipped_exercises_validate_cleanly():
     assert broken_exercises() == ()
     numbers = [e.number for e in all_exercises()]
     modules = sorted(Path(exercises.__file__).parent.glob("ex_*.py"))
-    assert len(numbers) == len(modules) == 25  # every shipped module loads: 4.3.x with 4.3.12, 4.3.17; 6.3.1-6.3.5
-    assert numbers[:5] == ["4.3.1", "4.3.2", "4.3.3", "4.3.4", "4.3.5"] and numbers[-1] == "6.3.5"
+    assert len(numbers) == len(modules) == 31  # 4.3.x with 4.3.12, 4.3.17; 6.3.1-6.3.5; the Tecomat's T-01..T-06
+    assert numbers[:5] == ["4.3.1", "4.3.2", "4.3.3", "4.3.4", "4.3.5"] and numbers[-7] == "6.3.5"
+    assert numbers[-6:] == ["T-01", "T-02", "T-03", "T-04", "T-05", "T-06"]  # after the textbook's numbers
     for ex in all_exercises():
         validate(ex)  # again, explicitly: no ExerciseError
-        major, minor, item = ex.number.split(".")
-        assert re.search(rf"/exercises/ex_{major}_{minor}_{int(item):02d}\.py:\d+$", ex.defined_at), ex.defined_at
+        if ex.number.startswith("T-"):
+            stem = ex.number.lower().replace("-", "_")
+        else:
+            major, minor, item = ex.number.split(".")
+            stem = f"{major}_{minor}_{int(item):02d}"
+        assert re.search(rf"/exercises/ex_{stem}\.py:\d+$", ex.defined_at), ex.defined_at
 
 
 def test_the_errors_are_the_instructors_kind():

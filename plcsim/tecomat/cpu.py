@@ -42,6 +42,7 @@ from plcsim.literals import to_ns
 from plcsim.loaded import LoadedProgram, ProgramFacts
 from plcsim.observers import Subscribers, assigned_hook
 from plcsim.tags import Tag, TagTable
+from plcsim.tecomat import verbs
 from plcsim.tecomat.analysis import IlAnalysis, IlCompiled
 from plcsim.tecomat.assembler import Assembly, assemble
 from plcsim.tecomat.machine import END_CYCLE, Machine, TecomatRuntimeError
@@ -75,6 +76,9 @@ class TecomatCPU:
     """
 
     family = "Tecomat NS950"
+    VERBS = verbs.VERBS
+    """The scenario verbs this controller brings (:mod:`plcsim.tecomat.verbs`)."""
+    interrupt_sources = verbs.SOURCES
 
     def __init__(
         self,
@@ -292,6 +296,15 @@ class TecomatCPU:
         if not 1 <= source <= 8:
             raise ConfigurationError(f"interrupt source {source}: the sources are 1..8 (P41..P48)")
         self.events_raised.add(source)
+
+    def interrupt(self, source: str) -> None:
+        """The scenario verb ``interrupt``: :meth:`raise_event` for the source named ``"1"`` .. ``"8"``."""
+        self.raise_event(int(source))
+
+    def set_time_of_day(self, text: str) -> None:
+        """The scenario verb ``set_clock``: the clock set to ``"HH:MM:SS"`` of its current day."""
+        moment = _dt.datetime.combine(self.local_time().date(), _dt.time.fromisoformat(text))
+        self.set_clock(moment)
 
     # -- host access ----------------------------------------------------------------------------
 
