@@ -28,6 +28,7 @@ from plants.components import draw
 from plants.components.collide import CT_PLATE, PART_CAT, PLATE_CAT
 from plants.components.component import Host
 from plants.components.limit_switch import LimitSwitch
+from plants.components.sketch import Sketch
 from plcsim.plant import Drawable, SignalSpec
 
 NEWTON = 1000.0  # kg·mm/s² (the notes' units: mm, kg, s)
@@ -95,6 +96,7 @@ class Piston:
         self.supply = supply
         self.switches = [sw for sw in (rear, front) if sw is not None]
         self.doc = doc
+        self._sketch = Sketch(self._draw)
 
     # -- protocol -----------------------------------------------------------------------------
     def specs(self) -> list[SignalSpec]:
@@ -226,6 +228,9 @@ class Piston:
         ]
 
     def dynamic_drawables(self) -> list[Drawable]:
+        return self._sketch((self.s, self.jammed, self.open))
+
+    def _draw(self) -> list[Drawable]:
         w, t = self.plate
         dx, dy = self.dir
         nx, ny = -dy, dx

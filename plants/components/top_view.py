@@ -27,6 +27,7 @@ import pymunk
 from plants.components import draw
 from plants.components.collide import BEAM_CAT, CT_BEAM, CT_PART, PART_CAT, STOP_CAT
 from plants.components.component import Assembly, Component
+from plants.components.sketch import Sketch
 from plants.components.workpiece import WorkpieceSpec
 from plcsim.plant import OBSERVABLES, PARTS, QUIESCENCE, SENSOR_SHIFT, Drawable, PlantEvent, SignalSpec, Station
 from plcsim.scenario import RigVerb
@@ -49,6 +50,12 @@ class TopPart:
         self.shape.collision_type = CT_PART
         self.shape.filter = pymunk.ShapeFilter(categories=PART_CAT)
         self.shape.part = self
+        self.color = tuple(self.props.get("color", draw.PART))
+        self._sketch = Sketch(lambda: [Drawable(f"parts/{pid}", "polygon", self.corners(), self.color, text=pid)])
+
+    def drawable(self) -> Drawable:
+        """The part drawn where it lies now."""
+        return self._sketch((self.body.position, self.body.angle))[0]
 
     def corners(self) -> np.ndarray:
         """The four corners in world coordinates, (4, 2)."""
@@ -66,6 +73,7 @@ class SpotSensor:
 
     def __init__(self, name: str, x: float, y: float, radius: float = 3.0, doc: str = "") -> None:
         self.name, self.x, self.y, self.radius, self.doc = name, float(x), float(y), float(radius), doc
+        self._sketch = Sketch(self._draw)
 
     def specs(self) -> list[SignalSpec]:
         return [SignalSpec(self.name, "sensor", doc=self.doc or f"spot at ({self.x:g}, {self.y:g}): True when covered")]
@@ -116,8 +124,10 @@ class SpotSensor:
         return [draw.label(f"sensors/{self.name}/label", self.x + self.radius + 2, self.y + 4, self.name)]
 
     def dynamic_drawables(self) -> list[Drawable]:
-        on = bool(self.parts)
-        color = draw.BEAM_CUT if on else draw.BEAM_FREE
+        return self._sketch((bool(self.parts), self.dx))
+
+    def _draw(self) -> list[Drawable]:
+        color = draw.BEAM_CUT if self.parts else draw.BEAM_FREE
         return [draw.circle(f"sensors/{self.name}", self.x + self.dx, self.y, self.radius, color, self.name)]
 
 
@@ -135,7 +145,7 @@ class Beam(SpotSensor):
     def static_drawables(self) -> list[Drawable]:
         return [draw.label(f"sensors/{self.name}/label", self.x, self.y1 + 6.0, self.name)]
 
-    def dynamic_drawables(self) -> list[Drawable]:
+    def _draw(self) -> list[Drawable]:
         color = draw.BEAM_CUT if self.parts else draw.BEAM_FREE
         x = self.x + self.dx
         return [draw.line(f"sensors/{self.name}", [(x, self.y0 - 4.0), (x, self.y1 + 4.0)], color, self.name)]
@@ -354,9 +364,7 @@ class TopViewPlant:
     def retire(self, pid: str) -> None:
         """Take part ``pid`` out of the physics where it lies (it is done: in a bin); it is still drawn there."""
         p = self.parts.pop(pid)
-        self.retired[pid] = Drawable(
-            f"parts/{pid}", "polygon", p.corners(), tuple(p.props.get("color", draw.PART)), text=pid
-        )
+        self.retired[pid] = p.drawable()
         p.shape.part = None
         self.space.remove(p.shape, p.body, *self._joints.pop(pid))
         self._still = False
@@ -424,8 +432,5 @@ class TopViewPlant:
         return [table, *self.assembly.static_drawables()]
 
     def dynamic_drawables(self) -> list[Drawable]:
-        out = [
-            Drawable(f"parts/{pid}", "polygon", p.corners(), tuple(p.props.get("color", draw.PART)), text=pid)
-            for pid, p in self.parts.items()
-        ]
-        return [*self.retired.values(), *out, *self.assembly.dynamic_drawables()]
+        parts = [p.drawable() for p in self.parts.values()]
+        return [*self.retired.values(), *parts, *self.assembly.dynamic_drawables()]
