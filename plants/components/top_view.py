@@ -58,12 +58,17 @@ class TopPart:
         return self._sketch((self.body.position, self.body.angle))[0]
 
     def corners(self) -> np.ndarray:
-        """The four corners in world coordinates, (4, 2)."""
-        p, a = self.body.position, self.body.angle
+        """The four corners in world coordinates, (4, 2).
+
+        Plain float arithmetic, not a numpy matrix product: that one goes through BLAS, whose kernels may fuse
+        multiply-adds on one machine and not on another (the last bit of a measurement would then depend on it).
+        """
+        (x, y), a = self.body.position, self.body.angle
         hl, hd = self.spec.length / 2, self.spec.depth / 2
         c, s = math.cos(a), math.sin(a)
-        local = np.array([(-hl, -hd), (hl, -hd), (hl, hd), (-hl, hd)])
-        return local @ np.array([[c, s], [-s, c]]) + (p.x, p.y)
+        return np.array(
+            [(u * c - v * s + x, u * s + v * c + y) for u, v in ((-hl, -hd), (hl, -hd), (hl, hd), (-hl, hd))]
+        )
 
 
 class SpotSensor:
@@ -278,15 +283,22 @@ class TopViewPlant:
         if dt_ns <= 0:
             raise ValueError(f"step: dt_ns must be > 0, not {dt_ns}")
         self.now_ns += dt_ns
-        if self.quiescent():
+        assembly = self.assembly
+        if self._still and not assembly.busy:  # quiescent
             return
         dt = dt_ns / 1e9
-        if self.assembly.busy:
-            self.assembly.advance(self, dt)
+        if assembly.busy:
+            assembly.advance(self, dt)
         self.space.step(dt)
-        self._still = not self.assembly.busy and all(
-            p.body.velocity.length < STILL_MM_S and abs(p.body.angular_velocity) < 1e-5 for p in self.parts.values()
-        )
+        self._still = not assembly.busy and self._parts_still()
+
+    def _parts_still(self) -> bool:
+        """Whether no part moves (slower than 1 µm/s, turning slower than 10 µrad/s)."""
+        for p in self.parts.values():
+            body = p.body
+            if not (body.velocity.length < STILL_MM_S and abs(body.angular_velocity) < 1e-5):
+                return False
+        return True
 
     # -- parts --------------------------------------------------------------------------------
     def pose_at(self, station: Station, offset_mm: float, angle_deg: float) -> tuple[float, float, float]:
