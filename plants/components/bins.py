@@ -23,6 +23,7 @@ import pymunk
 from plants.components import draw
 from plants.components.collide import BEAM_CAT, CT_BEAM, PART_CAT
 from plants.components.component import Host
+from plants.components.sketch import Sketch
 from plcsim.plant import Drawable, SignalSpec
 
 GRADED = ("colour", "colour_raw")
@@ -36,6 +37,7 @@ class Bins:
     def __init__(self, bins: Mapping[str, tuple[float, float, float, float]], *, name: str = "bins") -> None:
         self.name = name
         self.bins = {k: tuple(float(v) for v in box) for k, box in bins.items()}
+        self._sketch = Sketch(self._draw)
 
     def specs(self) -> list[SignalSpec]:
         return []
@@ -83,6 +85,9 @@ class Bins:
         return out
 
     def dynamic_drawables(self) -> list[Drawable]:
+        return self._sketch(tuple(map(len, self.contents.values())))
+
+    def _draw(self) -> list[Drawable]:
         return [
             draw.label(f"bins/{k}/count", 0.5 * (x0 + x1), y1 - 8.0, str(len(self.contents[k])))
             for k, (x0, y0, x1, y1) in self.bins.items()

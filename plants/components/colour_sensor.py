@@ -20,6 +20,7 @@ import pymunk
 from plants.components import draw
 from plants.components.collide import BEAM_CAT, CT_BEAM, PART_CAT
 from plants.components.component import Host
+from plants.components.sketch import Sketch
 from plcsim.plant import Drawable, SignalSpec
 
 RAW_MAX = 27_648
@@ -46,6 +47,7 @@ class ColourSensor:
         self.colours = dict(colours or {})
         self.bare, self.noise = float(bare), float(noise)
         self.doc = doc or f"colour sensor at ({x:g}, {y:g}): raw 0..{RAW_MAX} (σ {noise:g})"
+        self._sketch = Sketch(self._draw)
 
     def specs(self) -> list[SignalSpec]:
         return [SignalSpec(self.name, "sensor", "analog", doc=self.doc, unit="raw", lo=0.0, hi=float(RAW_MAX))]
@@ -103,5 +105,8 @@ class ColourSensor:
         return [draw.label(f"sensors/{self.name}/label", self.x, self.y - self.radius - 6.0, self.name)]
 
     def dynamic_drawables(self) -> list[Drawable]:
+        return self._sketch(self.value)
+
+    def _draw(self) -> list[Drawable]:
         grey = int(255 * self.value / RAW_MAX)  # the reading as a grey level: dark = low raw value
         return [draw.circle(f"sensors/{self.name}", self.x, self.y, self.radius, (grey, grey, grey), str(self.value))]

@@ -25,6 +25,7 @@ from typing import Any
 
 from plants.components import draw
 from plants.components.component import Host
+from plants.components.sketch import Sketch
 from plcsim.plant import Drawable, SignalSpec
 
 SETTLED = 1e-4  # below this pressure (or this close to full) the reservoir counts as settled
@@ -52,6 +53,7 @@ class Compressor:
         self.at = at
         self.doc = doc or f"compressor {name}: builds pressure while True (τ {tau_up_s:g} s; decays τ {tau_down_s:g} s)"
         self._decay: tuple[float, float, float] = (-1.0, 0.0, 0.0)
+        self._sketch = Sketch(self._draw)
 
     def specs(self) -> list[SignalSpec]:
         return [SignalSpec(self.actuator, "actuator", doc=self.doc)]
@@ -96,6 +98,9 @@ class Compressor:
         return [draw.label(f"compressor/{self.name}/label", x, y - 14.0, self.name)]
 
     def dynamic_drawables(self) -> list[Drawable]:
+        return self._sketch((self.on, self.p))
+
+    def _draw(self) -> list[Drawable]:
         x, y = self.at
         gauge = [(x - 10.0, y), (x - 10.0 + 20.0 * self.p, y), (x - 10.0 + 20.0 * self.p, y + 6.0), (x - 10.0, y + 6.0)]
         out = [draw.circle(f"compressor/{self.name}", x, y - 6.0, 6.0, draw.LAMP_ON if self.on else draw.LAMP_OFF)]

@@ -28,6 +28,7 @@ from plants.components import draw
 from plants.components.collide import CT_PLATE, PART_CAT, PLATE_CAT
 from plants.components.component import Host
 from plants.components.limit_switch import LimitSwitch
+from plants.components.sketch import Sketch
 from plcsim.plant import Drawable, SignalSpec
 
 NEWTON = 1000.0  # kg·mm/s² (the notes' units: mm, kg, s)
@@ -95,6 +96,7 @@ class Piston:
         self.supply = supply
         self.switches = [sw for sw in (rear, front) if sw is not None]
         self.doc = doc
+        self._sketch = Sketch(self._draw)
 
     # -- protocol -----------------------------------------------------------------------------
     def specs(self) -> list[SignalSpec]:
@@ -114,6 +116,7 @@ class Piston:
         self.at_front = False  # arrived at the full stroke, not yet backed off it by LEAVE mm
         self.at_rear = True
         self.reached = 0.0  # the farthest stroke since the valve last opened
+        self._recheck = False  # an end switch was moved: update them even if the plate did not move
         body = pymunk.Body(MASS_KG, float("inf"))
         body.position = self._point(-0.5 * self.plate[1])
         w, t = self.plate
@@ -158,35 +161,36 @@ class Piston:
         next(sw for sw in self.switches if sw.name == name).shift(dx)
         self._recheck = True
 
-    def pressure(self) -> float:
-        return 1.0 if self.supply is None else self.supply()
-
     def advance(self, host: Host, dt: float) -> bool:
         if self.due_ns is not None and host.now_ns >= self.due_ns:
             self.open, self.due_ns = self.command, None
             if self.open:
                 self.reached = 0.0
         body = self.body
-        p = body.position
-        s = (p.x - self.origin[0]) * self.dir[0] + (p.y - self.origin[1]) * self.dir[1] + 0.5 * self.plate[1]
-        v = body.velocity.x * self.dir[0] + body.velocity.y * self.dir[1]
+        (ox, oy), (dx, dy) = self.origin, self.dir
+        p, vel = body.position, body.velocity
+        s = (p.x - ox) * dx + (p.y - oy) * dy + 0.5 * self.plate[1]
+        v = vel.x * dx + vel.y * dy
         if self.jammed:
             body.velocity = (0.0, 0.0)
-            target, cap = 0.0, 0.0
+            target = 0.0
         else:
-            pressure = self.pressure()
-            out = self.open and pressure >= self.threshold
-            target, cap = (self.extend_speed, self.force * pressure) if out else (-self.retract_speed, self.spring)
+            pressure = 1.0 if self.supply is None else self.supply()
+            if self.open and pressure >= self.threshold:
+                target, cap = self.extend_speed, self.force * pressure
+            else:
+                target, cap = -self.retract_speed, self.spring
             f = max(-cap, min(cap, MASS_KG * (target - v) / dt))
-            body.force = (f * self.dir[0], f * self.dir[1])
-        self._sense(host, s)
+            body.force = (f * dx, f * dy)
+        if s != self.s or s > self.reached or self._recheck:  # else _sense would change nothing
+            self._sense(host, s)
         at_rest = s <= RETRACTED_WITHIN and target < 0 and abs(v) < 1e-3
         if at_rest:
             body.velocity = (0.0, 0.0)
         return not at_rest or self.open or self.due_ns is not None or self.jammed  # open: waiting for pressure
 
     def _sense(self, host: Host, s: float) -> None:
-        moved = abs(s - self.s) > 1e-9 or getattr(self, "_recheck", False)
+        moved = abs(s - self.s) > 1e-9 or self._recheck
         self.s, self._recheck = s, False
         self.reached = max(self.reached, s)
         if not self.at_front and s >= self.full - EXTENDED_WITHIN:
@@ -226,6 +230,9 @@ class Piston:
         ]
 
     def dynamic_drawables(self) -> list[Drawable]:
+        return self._sketch((self.s, self.jammed, self.open))
+
+    def _draw(self) -> list[Drawable]:
         w, t = self.plate
         dx, dy = self.dir
         nx, ny = -dy, dx

@@ -17,6 +17,7 @@ import pymunk
 from plants.components import draw
 from plants.components.collide import BEAM_CAT, CT_BEAM, PART_CAT
 from plants.components.component import Host
+from plants.components.sketch import Sketch
 from plcsim.plant import Drawable, SignalSpec
 
 
@@ -38,6 +39,7 @@ class TopBelt:
         self.name, self.actuator, self.area = name, actuator, tuple(float(v) for v in area)
         self.speed, self.tau_s = float(speed), float(tau_s)
         self.doc = doc or f"belt {name} forward at {speed:g} mm/s while True (τ {tau_s * 1e3:g} ms)"
+        self._sketch = Sketch(self._draw)
 
     def specs(self) -> list[SignalSpec]:
         return [SignalSpec(self.actuator, "actuator", doc=self.doc)]
@@ -81,6 +83,9 @@ class TopBelt:
         return [draw.polygon(f"belt/{self.name}", draw.rect(x0, y0, x1, y1), draw.BELT, self.name)]
 
     def dynamic_drawables(self) -> list[Drawable]:
+        return self._sketch(self.v == 0.0)
+
+    def _draw(self) -> list[Drawable]:
         if self.v == 0.0:
             return []
         x0, y0, x1, _ = self.area

@@ -27,6 +27,7 @@ import pymunk
 from plants.components import draw
 from plants.components.collide import BEAM_CAT, CT_BEAM, CT_PART, PART_CAT, STOP_CAT
 from plants.components.component import Assembly, Component
+from plants.components.sketch import Sketch
 from plants.components.workpiece import WorkpieceSpec
 from plcsim.plant import OBSERVABLES, PARTS, QUIESCENCE, SENSOR_SHIFT, Drawable, PlantEvent, SignalSpec, Station
 from plcsim.scenario import RigVerb
@@ -49,14 +50,25 @@ class TopPart:
         self.shape.collision_type = CT_PART
         self.shape.filter = pymunk.ShapeFilter(categories=PART_CAT)
         self.shape.part = self
+        self.color = tuple(self.props.get("color", draw.PART))
+        self._sketch = Sketch(lambda: [Drawable(f"parts/{pid}", "polygon", self.corners(), self.color, text=pid)])
+
+    def drawable(self) -> Drawable:
+        """The part drawn where it lies now."""
+        return self._sketch((self.body.position, self.body.angle))[0]
 
     def corners(self) -> np.ndarray:
-        """The four corners in world coordinates, (4, 2)."""
-        p, a = self.body.position, self.body.angle
+        """The four corners in world coordinates, (4, 2).
+
+        Plain float arithmetic, not a numpy matrix product: that one goes through BLAS, whose kernels may fuse
+        multiply-adds on one machine and not on another (the last bit of a measurement would then depend on it).
+        """
+        (x, y), a = self.body.position, self.body.angle
         hl, hd = self.spec.length / 2, self.spec.depth / 2
         c, s = math.cos(a), math.sin(a)
-        local = np.array([(-hl, -hd), (hl, -hd), (hl, hd), (-hl, hd)])
-        return local @ np.array([[c, s], [-s, c]]) + (p.x, p.y)
+        return np.array(
+            [(u * c - v * s + x, u * s + v * c + y) for u, v in ((-hl, -hd), (hl, -hd), (hl, hd), (-hl, hd))]
+        )
 
 
 class SpotSensor:
@@ -66,6 +78,7 @@ class SpotSensor:
 
     def __init__(self, name: str, x: float, y: float, radius: float = 3.0, doc: str = "") -> None:
         self.name, self.x, self.y, self.radius, self.doc = name, float(x), float(y), float(radius), doc
+        self._sketch = Sketch(self._draw)
 
     def specs(self) -> list[SignalSpec]:
         return [SignalSpec(self.name, "sensor", doc=self.doc or f"spot at ({self.x:g}, {self.y:g}): True when covered")]
@@ -116,8 +129,10 @@ class SpotSensor:
         return [draw.label(f"sensors/{self.name}/label", self.x + self.radius + 2, self.y + 4, self.name)]
 
     def dynamic_drawables(self) -> list[Drawable]:
-        on = bool(self.parts)
-        color = draw.BEAM_CUT if on else draw.BEAM_FREE
+        return self._sketch((bool(self.parts), self.dx))
+
+    def _draw(self) -> list[Drawable]:
+        color = draw.BEAM_CUT if self.parts else draw.BEAM_FREE
         return [draw.circle(f"sensors/{self.name}", self.x + self.dx, self.y, self.radius, color, self.name)]
 
 
@@ -135,7 +150,7 @@ class Beam(SpotSensor):
     def static_drawables(self) -> list[Drawable]:
         return [draw.label(f"sensors/{self.name}/label", self.x, self.y1 + 6.0, self.name)]
 
-    def dynamic_drawables(self) -> list[Drawable]:
+    def _draw(self) -> list[Drawable]:
         color = draw.BEAM_CUT if self.parts else draw.BEAM_FREE
         x = self.x + self.dx
         return [draw.line(f"sensors/{self.name}", [(x, self.y0 - 4.0), (x, self.y1 + 4.0)], color, self.name)]
@@ -268,15 +283,22 @@ class TopViewPlant:
         if dt_ns <= 0:
             raise ValueError(f"step: dt_ns must be > 0, not {dt_ns}")
         self.now_ns += dt_ns
-        if self.quiescent():
+        assembly = self.assembly
+        if self._still and not assembly.busy:  # quiescent
             return
         dt = dt_ns / 1e9
-        if self.assembly.busy:
-            self.assembly.advance(self, dt)
+        if assembly.busy:
+            assembly.advance(self, dt)
         self.space.step(dt)
-        self._still = not self.assembly.busy and all(
-            p.body.velocity.length < STILL_MM_S and abs(p.body.angular_velocity) < 1e-5 for p in self.parts.values()
-        )
+        self._still = not assembly.busy and self._parts_still()
+
+    def _parts_still(self) -> bool:
+        """Whether no part moves (slower than 1 µm/s, turning slower than 10 µrad/s)."""
+        for p in self.parts.values():
+            body = p.body
+            if not (body.velocity.length < STILL_MM_S and abs(body.angular_velocity) < 1e-5):
+                return False
+        return True
 
     # -- parts --------------------------------------------------------------------------------
     def pose_at(self, station: Station, offset_mm: float, angle_deg: float) -> tuple[float, float, float]:
@@ -354,9 +376,7 @@ class TopViewPlant:
     def retire(self, pid: str) -> None:
         """Take part ``pid`` out of the physics where it lies (it is done: in a bin); it is still drawn there."""
         p = self.parts.pop(pid)
-        self.retired[pid] = Drawable(
-            f"parts/{pid}", "polygon", p.corners(), tuple(p.props.get("color", draw.PART)), text=pid
-        )
+        self.retired[pid] = p.drawable()
         p.shape.part = None
         self.space.remove(p.shape, p.body, *self._joints.pop(pid))
         self._still = False
@@ -424,8 +444,5 @@ class TopViewPlant:
         return [table, *self.assembly.static_drawables()]
 
     def dynamic_drawables(self) -> list[Drawable]:
-        out = [
-            Drawable(f"parts/{pid}", "polygon", p.corners(), tuple(p.props.get("color", draw.PART)), text=pid)
-            for pid, p in self.parts.items()
-        ]
-        return [*self.retired.values(), *out, *self.assembly.dynamic_drawables()]
+        parts = [p.drawable() for p in self.parts.values()]
+        return [*self.retired.values(), *parts, *self.assembly.dynamic_drawables()]
