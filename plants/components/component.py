@@ -47,6 +47,13 @@ class Host(Protocol):
     def wake(self, component: Component) -> None:
         """Advance ``component`` from the next step on (a part arrived in its zone, a supply changed)."""
 
+    def defer(self, component: Any) -> None:
+        """Call ``component.commit(host)`` at the start of the next step, before the clock advances (the commands
+        of one scan taken together); ``commit`` returns True if the component now has to be advanced."""
+
+    def after_step(self, component: Any) -> None:
+        """Call ``component.settle(host)`` after the next physics step (a moved sensor re-detected its parts)."""
+
 
 @runtime_checkable
 class Component(Protocol):
@@ -173,6 +180,7 @@ class Bench:
         self.now_ns = 0
         self.rng = np.random.default_rng(seed)
         self.woken: list[Any] = []
+        self.deferred: list[Any] = []
 
     def emit(self, kind: str, subject: str, part: str | None = None, **data: Any) -> None:
         self.events.append(PlantEvent(self.now_ns, kind, subject, part, data))
@@ -180,7 +188,18 @@ class Bench:
     def wake(self, component: Any) -> None:
         self.woken.append(component)
 
+    def defer(self, component: Any) -> None:
+        if component not in self.deferred:
+            self.deferred.append(component)
+
+    def after_step(self, component: Any) -> None:
+        component.settle(self)
+
     def step(self, *components: Any) -> None:
+        """Commit the deferred commands, advance the clock by ``dt_ns`` and ``components`` by one step."""
+        deferred, self.deferred = self.deferred, []
+        for c in deferred:
+            c.commit(self)
         self.now_ns += self.dt_ns
         for c in components:
             c.advance(self, self.dt_ns / 1e9)
