@@ -32,6 +32,8 @@ The rig is an assembly of components (:mod:`plants.components.side_view`): the t
 (:class:`~plants.components.belt.Belt`) and the press. Commands are taken at the start of the next physics step,
 all outputs of a scan together, so the order in which one scan's outputs reach the plant never makes a violation
 (``R M1_VZAD`` and ``S M1_VPRED`` in one scan reverse the belt cleanly; the press does the same for its two relays).
+The tool tip height is traced in every row as the analog column ``plant:M2.z`` (``TRACED_OBSERVABLES``), so a
+timing diagram draws the ram's strokes as a line under KS1/KS2.
 
 Nominal figures, measured at dt = 1 ms by ``tests/test_punch_plant.py`` (§5.10 in brackets): OS1 → OS2 forward
 with the part placed centred on OS1 ≈ 4.28 s (4.3 s); OS2 → OS1 return ≈ 3.9 s (3.9 s); one stroke KS1 → KS2 → KS1
@@ -80,6 +82,9 @@ class Punch(SideViewPlant):
             text's reading).
         name, seed: as every rig.
     """
+
+    TRACED_OBSERVABLES = ("M2.z",)
+    """The ram's tool tip height (mm) is recorded in every trace row, as column ``plant:M2.z``."""
 
     def __init__(self, *, ks1: str = "upper", name: str = "PUNCH", seed: int = 0) -> None:
         if ks1 not in ("upper", "lower"):
@@ -166,6 +171,10 @@ class Punch(SideViewPlant):
         out[f"{self.press.name}.z"] = self.press.z
         out[f"{self.press.name}.v"] = -self.press.axis.v
         return out
+
+    def sample_observables(self) -> tuple[float, ...]:
+        """The traced observables (``TRACED_OBSERVABLES``): the tool tip height."""
+        return (self.press.z0 - self.press.axis.s,)
 
     # --- drawing -----------------------------------------------------------------------------------------------
     def bounds(self) -> tuple[float, float, float, float]:
