@@ -118,7 +118,7 @@ class Punch(SideViewPlant):
             Station("OS1", OS1_X, TOP, "the loading place: a part centred on the OS1 beam"),
             Station("OS2", PRESS_X + 5.0, TOP, "under the press: a part centred 5 mm past the press axis cuts OS2"),
         ]
-        self._axis, self._upper = self.press.axis, self.press.upper
+        self._axis, self._upper, self._z0 = self.press.axis, self.press.upper, self.press.z0
         super().__init__(name, components=[*barriers, self.belt, self.press], stations=stations, seed=seed)
 
     # --- lifecycle -----------------------------------------------------------------------------------------------
@@ -174,7 +174,7 @@ class Punch(SideViewPlant):
 
     def sample_observables(self) -> tuple[float, ...]:
         """The traced observables (``TRACED_OBSERVABLES``): the tool tip height."""
-        return (self.press.z0 - self.press.axis.s,)
+        return (self._z0 - self._axis.s,)
 
     # --- drawing -----------------------------------------------------------------------------------------------
     def bounds(self) -> tuple[float, float, float, float]:

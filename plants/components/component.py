@@ -125,8 +125,17 @@ class Assembly:
             self.busy.append(component)
 
     def advance(self, host: Host, dt: float) -> None:
-        """One step of every busy component, in the order they were woken; the settled ones leave the list."""
-        self.busy = [c for c in list(self.busy) if c.advance(host, dt)]
+        """One step of every busy component, in the order they were woken; the settled ones leave the list (as
+        does one woken during this step)."""
+        busy = self.busy
+        if len(busy) == 1:  # the common case (a ram moving, a belt settling): the list is kept while it stays busy
+            c = busy[0]
+            if not c.advance(host, dt):
+                self.busy = []
+            elif len(busy) != 1:
+                self.busy = [c]
+            return
+        self.busy = [c for c in list(busy) if c.advance(host, dt)]
 
     def has(self, name: str) -> bool:
         """Whether ``name`` is a component or one of their signals."""
