@@ -60,9 +60,10 @@ from dataclasses import dataclass
 
 from plants.components.belt import Belt
 from plants.components.component import Component
+from plants.components.frame import DeadPlate, EndStop
 from plants.components.light_barrier import LightBarrier
 from plants.components.panel import OperatorPanel
-from plants.components.side_view import DeadPlate, EndStop, SideViewPlant
+from plants.components.side_view import SideViewPlant
 from plcsim.plant import Station
 
 TOP = 40.0  # belt surface above the base, mm
@@ -133,16 +134,21 @@ class ConveyorLine(SideViewPlant):
         self.end = end
         self.layout = (tuple(belts), tuple(barriers))
         comps: list[Belt] = []
-        motors: dict[str, tuple[Belt, int]] = {}
-        docs: dict[str, str] = {}
         x = 0.0
         for bl in belts:
-            b = Belt(bl.name, x, bl.length, top, speed=speed, tau_s=tau_s, friction=friction)
-            comps.append(b)
-            motors[bl.actuator] = (b, 1)
-            docs[bl.actuator] = (
-                f"belt {bl.name} ({bl.length:g} mm) forward at {speed:g} mm/s while True (τ {tau_s * 1e3:g} ms)"
+            doc = f"belt {bl.name} ({bl.length:g} mm) forward at {speed:g} mm/s while True (τ {tau_s * 1e3:g} ms)"
+            b = Belt(
+                bl.name,
+                x,
+                bl.length,
+                top,
+                speed=speed,
+                tau_s=tau_s,
+                friction=friction,
+                forward=bl.actuator,
+                docs={bl.actuator: doc},
             )
+            comps.append(b)
             x += bl.length + gap
         by_name = {b.name: b for b in comps}
         plates = [DeadPlate(f"plate_{a.name}_{b.name}", a.x1, b.x0, top) for a, b in itertools.pairwise(comps)]
@@ -169,24 +175,19 @@ class ConveyorLine(SideViewPlant):
         for sname, b in belt_stations.items():
             stations.append(Station(sname, b.x0, top, f"upstream end of belt {b.name}; offset_mm = position along it"))
         stops = [EndStop("end_stop", comps[-1].x1, top)] if end == "stop" else []
-        panel = None
+        panel = []
         lamps, buttons, switches = tuple(lamps), tuple(buttons), tuple(switches)
         if lamps or buttons or switches:
-            panel = OperatorPanel(
-                buttons, switches, lamps, origin=(comps[-1].x1 + 30.0, 0.0), lamp_colors={"LED": (255, 60, 40)}
+            panel.append(
+                OperatorPanel(
+                    buttons, switches, lamps, origin=(comps[-1].x1 + 30.0, 0.0), lamp_colors={"LED": (255, 60, 40)}
+                )
             )
         super().__init__(
             name,
-            belts=comps,
-            motors=motors,
-            barriers=lbs,
+            components=[*lbs, *comps, *plates, *stops, *panel, *components],
             stations=stations,
             belt_stations=belt_stations,
-            end_stops=stops,
-            dead_plates=plates,
-            panel=panel,
-            components=components,
-            signal_docs=docs,
             seed=seed,
         )
 

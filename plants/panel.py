@@ -59,8 +59,11 @@ class Panel:
         self.now_ns = 0
         self.events.clear()
         self.sensors.clear()
-        self.sensors.update(self.panel.initial_sensors())
-        self.panel.reset()
+        self.panel.reset(self)
+
+    def emit(self, kind: str, subject: str, part: str | None = None, **data: Any) -> None:
+        """Record a plant event at the current time (the panel component's events)."""
+        self.events.append(PlantEvent(self.now_ns, kind, subject, part, data))
 
     @property
     def lamps(self) -> dict[str, bool]:
@@ -70,10 +73,10 @@ class Panel:
     def actuate(self, name: str, value: Any) -> None:
         if name not in self.panel.lamp_state:
             raise KeyError(f"{self.name} has no lamp {name!r} (lamps: {list(self.panel.lamps)})")
-        self.panel.set_lamp(name, value)
+        self.panel.actuate(self, name, value)
 
     def operate(self, name: str, value: Any) -> None:
-        self.panel.operate(name, value, self.sensors, self.events, self.now_ns)
+        self.panel.operate(self, name, value)
 
     def event_subjects(self) -> set[str]:
         """Its events name the button or switch."""
@@ -92,7 +95,7 @@ class Panel:
         return self.panel.static_drawables("panel")
 
     def dynamic_drawables(self) -> list[Drawable]:
-        return self.panel.dynamic_drawables(self.sensors, "panel")
+        return self.panel.dynamic_drawables("panel")
 
     def bounds(self) -> tuple[float, float, float, float]:
         x0, y0, x1, y1 = self.panel.extent()

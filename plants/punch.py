@@ -28,9 +28,12 @@ Events besides the belt line's:
   (the motor then stops), the belt driven while the press is away from the top, the press driven while the belt
   is driven.
 
-Commands are taken at the start of the next physics step, all outputs of a scan together, so the order in which
-one scan's outputs reach the plant never makes a violation (``R M1_VZAD`` and ``S M1_VPRED`` in one scan reverse
-the belt cleanly; the press does the same for its two relays).
+The rig is an assembly of components (:mod:`plants.components.side_view`): the two beams, the belt
+(:class:`~plants.components.belt.Belt`) and the press. Commands are taken at the start of the next physics step,
+all outputs of a scan together, so the order in which one scan's outputs reach the plant never makes a violation
+(``R M1_VZAD`` and ``S M1_VPRED`` in one scan reverse the belt cleanly; the press does the same for its two relays).
+The tool tip height is traced in every row as the analog column ``plant:M2.z`` (``TRACED_OBSERVABLES``), so a
+timing diagram draws the ram's strokes as a line under KS1/KS2.
 
 Nominal figures, measured at dt = 1 ms by ``tests/test_punch_plant.py`` (§5.10 in brackets): OS1 → OS2 forward
 with the part placed centred on OS1 ≈ 4.28 s (4.3 s); OS2 → OS1 return ≈ 3.9 s (3.9 s); one stroke KS1 → KS2 → KS1
@@ -54,7 +57,6 @@ spanning ≈ 44–74 mm, not 14–44 mm (§5.10 counted the trailing face); the 
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import Any
 
 from plants.components import draw
 from plants.components.belt import Belt
@@ -81,13 +83,30 @@ class Punch(SideViewPlant):
         name, seed: as every rig.
     """
 
+    TRACED_OBSERVABLES = ("M2.z",)
+    """The ram's tool tip height (mm) is recorded in every trace row, as column ``plant:M2.z``."""
+
     def __init__(self, *, ks1: str = "upper", name: str = "PUNCH", seed: int = 0) -> None:
         if ks1 not in ("upper", "lower"):
             raise ValueError(f"{name}: ks1 must be 'upper' or 'lower', not {ks1!r}")
         self.ks1 = ks1
         upper, lower = ("KS1", "KS2") if ks1 == "upper" else ("KS2", "KS1")
         self.press = Press("M2", parts_under=self._parts_under, x=PRESS_X, upper=upper, lower=lower)
-        belt = Belt("M1", 0.0, LENGTH, TOP, speed=SPEED, tau_s=0.05, friction=0.6, reversible=True)
+        self.belt = Belt(
+            "M1",
+            0.0,
+            LENGTH,
+            TOP,
+            speed=SPEED,
+            tau_s=0.05,
+            friction=0.6,
+            forward=FORWARD,
+            backward=BACKWARD,
+            docs={
+                FORWARD: f"belt M1 forward (towards the press) at {SPEED:g} mm/s while True",
+                BACKWARD: f"belt M1 backward (towards OS1) at {SPEED:g} mm/s while True",
+            },
+        )
         beam = f"{BEAM_HEIGHT:g} mm above the belt: True while interrupted"
         barriers = [
             LightBarrier(
@@ -99,74 +118,33 @@ class Punch(SideViewPlant):
             Station("OS1", OS1_X, TOP, "the loading place: a part centred on the OS1 beam"),
             Station("OS2", PRESS_X + 5.0, TOP, "under the press: a part centred 5 mm past the press axis cuts OS2"),
         ]
-        self._belt_commands = dict.fromkeys((FORWARD, BACKWARD), False)
-        super().__init__(
-            name,
-            belts=[belt],
-            motors={FORWARD: (belt, 1), BACKWARD: (belt, -1)},
-            barriers=barriers,
-            stations=stations,
-            components=[self.press],
-            signal_docs={
-                FORWARD: f"belt M1 forward (towards the press) at {SPEED:g} mm/s while True",
-                BACKWARD: f"belt M1 backward (towards OS1) at {SPEED:g} mm/s while True",
-            },
-            seed=seed,
-        )
-        self.belt = belt
+        self._axis, self._upper, self._z0 = self.press.axis, self.press.upper, self.press.z0
+        super().__init__(name, components=[*barriers, self.belt, self.press], stations=stations, seed=seed)
 
     # --- lifecycle -----------------------------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None) -> None:
-        """As every side-view rig (the press at rest at the top, its motor off), and no command pending."""
+        """As every side-view rig (the press at rest at the top, its motor off), no interlock violated."""
         super().reset(seed=seed)
-        for k in self._belt_commands:
-            self._belt_commands[k] = False
-        self._pending = False
         self._violations: set[tuple[str, str]] = set()
         self._at_top = True
 
-    def quiescent(self) -> bool:
-        return super().quiescent() and not self._pending
-
     def step(self, dt_ns: int) -> None:
-        """Take the belt's new commands, advance belt, press and parts, then look at the interlocks."""
+        """Take the new commands, advance belt, press and parts, then look at the interlocks."""
         if dt_ns > self.max_step_ns or dt_ns <= 0:
             self._step_split(dt_ns)
             return
-        press = self.press
-        changed = self._pending or press.pending
-        if self._pending:
-            self._apply_commands()
-        if self.belt.v != 0.0 and press.axis.s >= press.s_reach:  # a part may be carried under the lowered tool
+        press, upper = self.press, self._upper
+        changed = press.pending or bool(self._deferred)
+        if self.belt.v != 0.0 and self._axis.s >= press.s_reach:  # a part may be carried under the lowered tool
             self.wake(press)
-        super().step(dt_ns)
-        at_top = press.upper.actuated
-        if changed or at_top != self._at_top:
-            self._at_top = at_top
+        SideViewPlant.step(self, dt_ns)
+        if changed or upper.actuated != self._at_top:
+            self._at_top = upper.actuated
             self._check_interlocks()
-
-    # --- actuators ---------------------------------------------------------------------------------------------
-    def actuate(self, name: str, value: Any) -> None:
-        """A PLC output changed: the belt's two relays take effect together at the next step (the press's too)."""
-        if name not in self._belt_commands:
-            super().actuate(name, value)  # the press, or an unknown name: the base names the actuators there are
-            return
-        value = bool(value)
-        if self._belt_commands[name] != value:
-            self._belt_commands[name] = value
-            self._pending = True
-
-    def _apply_commands(self) -> None:
-        self._pending = False
-        fwd, back = self._belt_commands[FORWARD], self._belt_commands[BACKWARD]
-        if fwd and back:
-            self.emit("interlock violated", self.belt.name, reason="both directions commanded")
-        if self.belt.command(0 if fwd == back else (1 if fwd else -1)) and self.belt not in self._transient:
-            self._transient.append(self.belt)
 
     def _check_interlocks(self) -> None:
         """Belt and press must not move together: each violation is logged once, when it begins."""
-        belt_on = self._belt_commands[FORWARD] or self._belt_commands[BACKWARD]
+        belt_on = any(self.belt.commands.values())
         active = set()
         if belt_on and not self.press.at_top:
             active.add((self.belt.name, "belt driven while the press is away from the top"))
@@ -193,6 +171,10 @@ class Punch(SideViewPlant):
         out[f"{self.press.name}.z"] = self.press.z
         out[f"{self.press.name}.v"] = -self.press.axis.v
         return out
+
+    def sample_observables(self) -> tuple[float, ...]:
+        """The traced observables (``TRACED_OBSERVABLES``): the tool tip height."""
+        return (self._z0 - self._axis.s,)
 
     # --- drawing -----------------------------------------------------------------------------------------------
     def bounds(self) -> tuple[float, float, float, float]:

@@ -16,7 +16,10 @@ for methods; :func:`capable` reads the declaration and :func:`check_plant` check
 * :data:`QUIESCENCE` — ``quiescent()``: True when a step would only advance the clock, so any number
   of steps may be taken at once (the simulator then skips an idle machine's steps);
 * :data:`SENSOR_SHIFT` — ``shift_sensor(name, dx_mm)``; :data:`MOTOR_JAM` — ``jam_motor(name, jammed)``;
-* :data:`OBSERVABLES` — ``observables() -> dict[str, float]``: analog values worth tracing.
+* :data:`OBSERVABLES` — ``observables() -> dict[str, float]``: analog values worth tracing. Those the
+  trace records in every row are named in ``TRACED_OBSERVABLES`` (optional; a press's ram height), read
+  together by ``sample_observables()`` (a tuple in that order, cheap: it runs once per scan); the trace
+  calls their columns ``plant:<name>`` (kind ``analog``; :func:`traced_observables`).
 
 A plant declares its **event vocabulary**: ``EVENTS`` (every kind it can emit) and
 ``event_subjects()`` (every name its events can be about, a part's id aside). An exercise whose check
@@ -243,6 +246,23 @@ def rig_verbs(plant: Any) -> Mapping[str, RigVerb]:
     return {} if plant is None else plant.VERBS
 
 
+def traced_observables(plant: Any) -> tuple[list[str], Any] | None:
+    """The trace columns of the plant's ``TRACED_OBSERVABLES`` and the function sampling them (None: none).
+
+    >>> class Press:
+    ...     CAPABILITIES = frozenset({OBSERVABLES})
+    ...     TRACED_OBSERVABLES = ("M2.z",)
+    ...     def sample_observables(self): return (105.5,)
+    >>> names, sample = traced_observables(Press())
+    >>> names, sample()
+    (['plant:M2.z'], (105.5,))
+    """
+    names = getattr(plant, "TRACED_OBSERVABLES", ()) if capable(plant, OBSERVABLES) else ()
+    if not names:
+        return None
+    return [f"plant:{n}" for n in names], plant.sample_observables
+
+
 def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int = 1_000_000) -> dict[str, Any]:
     """Check that ``plant`` keeps the protocol; raise ``AssertionError`` listing every problem found.
 
@@ -395,6 +415,16 @@ def _check_declarations(plant: Any, need: Any) -> None:
             continue
         missing = [m for m in members if not hasattr(plant, m)]
         need(not missing, f"declares {cap!r} but lacks {missing}")
+    traced = getattr(plant, "TRACED_OBSERVABLES", ())
+    if traced and OBSERVABLES in declared:
+        values = plant.observables()
+        sample = plant.sample_observables()
+        need(set(traced) <= set(values), f"TRACED_OBSERVABLES {list(traced)} are not all among observables()")
+        need(
+            len(sample) == len(traced) and all(isinstance(v, float) for v in sample),
+            f"sample_observables() must give {len(traced)} floats, one per TRACED_OBSERVABLES, not {sample!r}",
+        )
+        need(all(values.get(n) == v for n, v in zip(traced, sample)), "sample_observables() != observables()")
     verbs = getattr(plant, "VERBS", None)
     if not isinstance(verbs, Mapping):
         need(False, f"VERBS must be a mapping of rig verbs (empty if none), not {verbs!r}")

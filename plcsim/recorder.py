@@ -72,9 +72,19 @@ class Recorder:
         cpu: the CPU to observe.
         signals: names to record (``"S1"``, ``"DATA.D1_OBS"``, ``"TON_A.ET"``); default: :func:`default_signals`.
         changes_only: write a row only when a value changed (for hours-long runs).
+        observed: ``(names, sample)``: analog values of the plant recorded after the tags in every row (kind
+            ``analog``, type ``real``); ``sample()`` returns them in that order, as the plant is when the row is
+            written (a press's ram height: see ``TRACED_OBSERVABLES`` in :mod:`plcsim.plant`).
     """
 
-    def __init__(self, cpu: CPU, signals: Sequence[str] | None = None, *, changes_only: bool = False):
+    def __init__(
+        self,
+        cpu: CPU,
+        signals: Sequence[str] | None = None,
+        *,
+        changes_only: bool = False,
+        observed: tuple[Sequence[str], Callable[[], tuple[float, ...]]] | None = None,
+    ):
         self.cpu = cpu
         names = list(signals) if signals is not None else default_signals(cpu)
         kinds, types, sources = {}, {}, []
@@ -82,11 +92,16 @@ class Recorder:
             kind, dtype, source = self._locate(name)
             kinds[name], types[name] = kind, dtype
             sources.append(source)
-        self.trace = Trace(names, kinds, types)
-        self.row = _compile_getter(sources)
-        self._full_row = _compile_getter(sources, head=True)
+        extra, sample = (list(observed[0]), observed[1]) if observed else ([], None)
+        for name in extra:
+            if name in kinds:
+                raise UnknownTagError(f"cannot trace the plant's {name!r}: a traced tag has that name")
+            kinds[name], types[name] = "analog", "real"
+        self.trace = Trace(names + extra, kinds, types)
+        self.row = _compile_getter(sources, sample=sample)
+        self._full_row = _compile_getter(sources, head=True, sample=sample)
         physical = [f"o[{n!r}]" if kinds[n] == "output" else src for n, src in zip(names, sources)]
-        self._stopped_row = _compile_getter(physical, outputs=True)
+        self._stopped_row = _compile_getter(physical, outputs=True, sample=sample)
         self.changes_only = changes_only
         self._last: tuple[Any, ...] | None = None
         self._subscriptions: list[tuple[Subscribers, Callable[..., None]]] = []
@@ -193,14 +208,20 @@ class Recorder:
         self.trace.add_row(t_ns, end_ns, 0, values)
 
 
-def _compile_getter(sources: list[str], head: bool = False, outputs: bool = False) -> Callable[..., tuple[Any, ...]]:
+def _compile_getter(
+    sources: list[str],
+    head: bool = False,
+    outputs: bool = False,
+    sample: Callable[[], tuple[float, ...]] | None = None,
+) -> Callable[..., tuple[Any, ...]]:
     """A function returning the row as a tuple, generated once from the access paths (our code, not a
     program's): ``d`` is the CPU's tags, ``i`` the inputs as delivered (:attr:`CPU.image_in`). With
     ``head`` it takes the scan's start, end and task number and returns the whole trace row; with ``outputs`` it
-    takes the output modules' values ``o`` (the sources name them)."""
-    body = "".join(f"{source}, " for source in sources)
+    takes the output modules' values ``o`` (the sources name them); ``sample()``'s values end the row."""
+    body = "".join(f"{source}, " for source in sources) + ("*s()" if sample is not None else "")
+    scope = {"__builtins__": {}, "s": sample}
     if head:
-        return eval(f"lambda d, i, a, b, n: (a, b, n, {body})", {"__builtins__": {}})  # built from tag names
+        return eval(f"lambda d, i, a, b, n: (a, b, n, {body})", scope)  # built from tag names
     if outputs:
-        return eval(f"lambda d, i, o: ({body})", {"__builtins__": {}})  # built from tag names
-    return eval(f"lambda d, i: ({body})", {"__builtins__": {}})  # built from tag names, not program text
+        return eval(f"lambda d, i, o: ({body})", scope)  # built from tag names
+    return eval(f"lambda d, i: ({body})", scope)  # built from tag names, not program text

@@ -36,7 +36,7 @@ from plcsim.config import RUN
 from plcsim.controller import Controller
 from plcsim.errors import ConfigurationError, PlcError
 from plcsim.literals import format_ns, to_ns
-from plcsim.plant import QUIESCENCE, Plant, capable, stations_of
+from plcsim.plant import QUIESCENCE, Plant, capable, stations_of, traced_observables
 from plcsim.recorder import Recorder
 from plcsim.scenario import Scenario, ScenarioError, check_names, controller_verb_problems, plant_vocabulary
 from plcsim.trace import Trace, TraceEvent
@@ -98,7 +98,7 @@ class Simulation:
             self.wiring = Wiring(plant, cpu.table, wiring, seed=seed)
         self.scenario = scenario
         self.now = cpu.clock.now
-        self.recorder = Recorder(cpu, signals, changes_only=changes_only)
+        self.recorder = Recorder(cpu, signals, changes_only=changes_only, observed=traced_observables(plant))
         self.recorder.attach()
         self.trace: Trace = self.recorder.trace
         self.trace.meta.update(

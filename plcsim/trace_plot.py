@@ -1,7 +1,8 @@
 """Timing diagrams of a :class:`~plcsim.trace.Trace` with matplotlib, for notebooks, reports and failed checks.
 
 One lane per signal, top to bottom in the order given: a Bool as a 0/1 step (shaded while TRUE), a
-number as a step scaled to its lane with its values written at each change. The x axis is simulated
+number as a step scaled to its lane with its values written at each change, a plant's analog value
+(kind ``analog``: a press's ram height) as a line scaled to its lane, labelled with its range. The x axis is simulated
 time in seconds. Each value is drawn from the moment it became valid: outputs at the end of the scan
 that wrote them, inputs and internal tags at the start of the scan (:meth:`Trace.signal_times`).
 
@@ -41,7 +42,7 @@ MAX_VALUE_LABELS = 16
 
 LANE = 1.0
 HIGH = 0.7  # height of TRUE / of a number's range inside a lane
-COLORS = {"input": "#2b8a3e", "output": "#c92a2a", "number": "#6741d9", "internal": "#1864ab"}
+COLORS = {"input": "#2b8a3e", "output": "#c92a2a", "number": "#6741d9", "internal": "#1864ab", "analog": "#e8590c"}
 EVENT_COLORS = {"plant": "#495057", "cpu": "#e03131", "scenario": "#1971c2", "wiring": "#e8590c"}
 
 
@@ -61,11 +62,13 @@ def _figure_class() -> type:
 
 
 def default_signals(trace: TraceTable) -> list[str]:
-    """The lanes drawn when none are named: inputs, outputs, internal Bools, then numbers (at most
-    :data:`MAX_DEFAULT_LANES`)."""
+    """The lanes drawn when none are named: inputs, outputs, internal Bools and the plant's analog values,
+    then numbers (at most :data:`MAX_DEFAULT_LANES`)."""
 
     def rank(name: str) -> int:
         kind, typ = trace.kinds.get(name, "memory"), trace.types.get(name)
+        if kind == "analog":
+            return 2
         if typ != "bool":
             return 3
         return {"input": 0, "output": 1}.get(kind, 2)
@@ -161,6 +164,12 @@ def timing_diagram(
             y = base + HIGH * v
             ax.fill_between(x, base, y, step="post", color=color, alpha=0.18, lw=0, zorder=1)
             ax.plot(x, y, drawstyle="steps-post", color=color, lw=1.4, gid=f"lane:{name}", zorder=3)
+        elif kind == "analog":  # sampled every scan: a line through the samples (a plateau's ends are samples)
+            vmin, vmax = float(v.min()), float(v.max())
+            span = vmax - vmin
+            y = base + (HIGH * (v - vmin) / span if span else np.full(len(v), HIGH / 2))
+            ax.plot(x, y, color=COLORS["analog"], lw=1.3, gid=f"lane:{name}", zorder=3)
+            labels[-1] = f"{name}\n{_fmt(vmin)}..{_fmt(vmax)}"
         else:
             vmin, vmax = float(v.min()), float(v.max())
             span = vmax - vmin

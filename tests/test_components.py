@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import pytest
 
-from plants.components import Axis, LimitSwitch
+from plants import RIGS
+from plants.components import Axis, Belt, EndStop, LightBarrier, LimitSwitch, OperatorPanel, SideViewPlant
 from plants.conveyors import BarrierLayout, BeltLayout, ConveyorLine
 from plcsim import CPU, Tag
 from plcsim.check import action, count, event
 from plcsim.errors import ExerciseError
-from plcsim.plant import check_plant
+from plcsim.plant import OPERATOR, Station, check_plant
 from plcsim.scenario import RigVerb, Scenario, place
 from plcsim.sim import Simulation
 from plcsim.wiring import Wire
@@ -173,3 +174,56 @@ def test_a_plant_that_declares_nothing_is_refused_with_the_reason():
     old = SimpleNamespace(name="OLD", VERBS={}, event_subjects=set)  # a plant of the old protocol
     with pytest.raises(ConfigurationError, match=r"'OLD' does not declare \['EVENTS', 'CAPABILITIES'\]"):
         plant_vocabulary(old)
+
+
+# --- the side-view rigs as assemblies ----------------------------------------------------------------------------
+
+
+def shuttle_rig(*extra) -> SideViewPlant:
+    """A reversible belt with two beams, made of components only (the shape of PUNCH's belt)."""
+    belt = Belt("M1", 0.0, 280.0, 50.0, speed=40.0, forward="FWD", backward="BACK")
+    beams = [LightBarrier("OS1", 45.0, 60.0), LightBarrier("OS2", 230.0, 60.0)]
+    stations = [Station("OS1", 45.0, 50.0), Station("OS2", 230.0, 50.0)]
+    return SideViewPlant("SHUTTLE", components=[*beams, belt, *extra], stations=stations)
+
+
+def test_a_side_view_rig_is_the_sum_of_its_components():
+    plain = shuttle_rig()
+    assert list(plain.signals) == ["OS1", "OS2", "FWD", "BACK"]
+    assert {"part entered", "interlock violated", "motor jammed"} <= plain.EVENTS
+    assert "end stop hit" not in plain.EVENTS and "button pressed" not in plain.EVENTS
+    assert OPERATOR not in plain.CAPABILITIES
+    assert plain.event_subjects() == {"OS1", "OS2", "M1", "FWD", "BACK"}
+    fitted = shuttle_rig(EndStop("stop", 280.0, 50.0), OperatorPanel(buttons=("START",), origin=(320.0, 0.0)))
+    assert {"end stop hit", "button pressed"} <= fitted.EVENTS and OPERATOR in fitted.CAPABILITIES
+    assert check_plant(fitted)["signals"] == 5
+    paths = [d.path for d in fitted.static_drawables()]
+    assert paths.index("belt/M1") < paths.index("frame/stop") < paths.index("sensors/OS1") < paths.index("panel/plate")
+    assert "end stop hit" not in RIGS["CONV1"]().EVENTS and "end stop hit" in RIGS["CONV1"](end="stop").EVENTS
+
+
+def run_shuttle(program: str, seconds: str = "300ms") -> Simulation:
+    tags = {"OS1": Tag("%I0.0"), "FWD": Tag("%Q0.0"), "BACK": Tag("%Q0.1")}
+    wires = [Wire("OS1", "OS1"), Wire("FWD", "FWD"), Wire("BACK", "BACK")]
+    sim = Simulation(
+        CPU(tags, program), shuttle_rig(), wires, Scenario("run", place("p1", at="OS1", t="0s"), duration=seconds)
+    )
+    sim.run()
+    return sim
+
+
+def test_a_reversal_across_one_scan_boundary_is_no_interlock_violation():
+    """The belt reverses in every scan: FWD and BACK are never TRUE in the same scan, but one of them is written
+    first when the outputs reach the plant (FWD on while BACK is still on, every second scan). The relays are
+    taken together at the next step, so nothing is reported (6.3: only both TRUE is the relay H-bridge's short)."""
+    sim = run_shuttle("def OB1(t):\n    t.FWD = not t.FWD\n    t.BACK = not t.FWD\n")
+    tr = sim.trace
+    assert not (tr.column("FWD") & tr.column("BACK")).any() and tr.column("FWD").sum() == 150
+    assert tr.events_of("interlock violated") == []
+
+
+def test_both_relays_on_in_one_scan_stop_the_belt_and_are_reported_once():
+    sim = run_shuttle("def OB1(t):\n    t.FWD = True\n    t.BACK = t.FWD\n")
+    (e,) = sim.trace.events_of("interlock violated")
+    assert (e.subject, e.data["reason"], e.t_ns) == ("M1", "both directions commanded", 1_000_000)
+    assert sim.plant.belt_speeds() == {"M1": 0.0}

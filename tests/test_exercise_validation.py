@@ -37,8 +37,8 @@ from plcsim.validation import validate
 from plcsim.wiring import NO
 
 HERE = re.escape(__file__)
-CONV1_EVENTS = (
-    "end stop hit, interlock violated, motor jammed, part entered, part fell off, part jammed, "
+CONV1_EVENTS = (  # an open end: no end stop, no "end stop hit"
+    "interlock violated, motor jammed, part entered, part fell off, part jammed, "
     "part knocked off, part left, part placed, part released, part removed"
 )
 IO_TABLE = [

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from plants import RIGS, Conv1, Machine, Panel
-from plants.components import Belt, LimitSwitch, OperatorPanel, WorkpieceSpec
+from plants.components import Belt, Bench, LimitSwitch, OperatorPanel, WorkpieceSpec
 from plcsim.plant import PARTS, Plant, PlantEvent, capable, check_plant
 
 MS = 1_000_000
@@ -126,14 +126,16 @@ def test_belt_drive_is_first_order():
     assert b.command(1) is True
     v = []
     for _ in range(50):  # 50 ms = one time constant
-        b.advance(0.001)
+        b.drive(0.001)
         v.append(b.v)
     assert v[-1] == pytest.approx(50.0 * (1 - math.exp(-1.0)), rel=1e-9)
-    while b.advance(0.001):
+    while b.drive(0.001):
         pass
     assert b.v == 50.0
-    assert b.jam(True) is True and b.target == 0.0
-    b.jam(False)
+    host = Bench()
+    assert b.jam(host, True) is True and b.target == 0.0
+    assert [(e.kind, e.subject) for e in host.events] == [("motor jammed", "D1")]
+    b.jam(host, False)
     assert b.target == 50.0
     with pytest.raises(ValueError, match="forward only"):
         b.command(-1)

@@ -3,12 +3,18 @@ spec/exercises.md §5.10, the press's stall and its effect on parts, the interlo
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from plants import RIGS, Punch
 from plants.components.component import Bench
 from plants.components.press import Press
+from plcsim import CPU, Tag
 from plcsim.plant import check_plant
+from plcsim.scenario import Scenario
+from plcsim.sim import Simulation
+from plcsim.trace_plot import default_signals, timing_diagram
+from plcsim.wiring import Wire
 
 MS = 1_000_000
 
@@ -218,3 +224,46 @@ def test_same_seed_same_run():
         return tuple((e.t_ns, e.kind, e.part) for e in p.events), p.press.z
 
     assert run() == run()
+
+
+def one_stroke_run() -> Simulation:
+    """A program that drives the press down to KS2 and back up to KS1, once."""
+    tags = {n: Tag(a) for n, a in (("KS1", "%I0.2"), ("KS2", "%I0.3"), ("M2_DOLE", "%Q0.2"), ("M2_HORE", "%Q0.3"))}
+    tags["DONE"] = Tag("%M0.0")
+    program = (
+        "def OB1(t):\n"
+        "    if t.KS2:\n        t.DONE = True\n"
+        "    t.M2_DOLE = not t.DONE and not t.KS2\n"
+        "    t.M2_HORE = t.DONE and not t.KS1\n"
+    )
+    wires = [Wire(n, n) for n in ("KS1", "KS2", "M2_DOLE", "M2_HORE")]
+    sim = Simulation(CPU(tags, program), Punch(), wires, Scenario("stroke", duration="4s"))
+    sim.run()
+    return sim
+
+
+def test_the_ram_height_is_traced_as_an_analog_value_and_drawn_as_a_line():
+    """The tool tip height is a trace column of kind analog (the plant's TRACED_OBSERVABLES), sampled with the
+    inputs of each scan: 105.5 mm at rest, down at 25 mm/s to the KS2 make point (72 mm) and back."""
+    tr = one_stroke_run().trace
+    z = tr.column("plant:M2.z")
+    assert (tr.kinds["plant:M2.z"], tr.types["plant:M2.z"]) == ("analog", "real")
+    assert z[0] == 105.5 and z[-1] == pytest.approx(105.5, abs=0.05)  # stopped at KS1: it coasts ≈ 0.5 mm
+    made = int(np.argmax(tr.column("KS2")))  # the first scan that reads KS2
+    assert z[made] == pytest.approx(72.0, abs=0.03) and tr.times[made] / 1e9 == pytest.approx(1.361, abs=0.002)
+    assert 71.5 < z.min() < 72.0  # reversed at KS2 the ram turns within τ 20 ms (a stop there coasts to 71.5 mm)
+    assert np.diff(z[300:1000]) == pytest.approx(-0.025, abs=1e-6)  # at 25 mm/s (after 15 τ): 0.025 mm per scan
+    fig = timing_diagram(tr, ["KS1", "KS2", "plant:M2.z"])
+    (lane,) = [ln for ln in fig.axes[0].lines if ln.get_gid() == "lane:plant:M2.z"]
+    assert lane.get_drawstyle() == "default" and len(lane.get_xdata()) > 2000  # a line through the samples
+    assert "plant:M2.z" in default_signals(tr)
+
+
+def test_a_plant_whose_traced_observables_disagree_is_refused():
+    class Wrong(Punch):
+        def sample_observables(self) -> tuple[float, ...]:
+            return (0.0,)
+
+    with pytest.raises(AssertionError, match=r"sample_observables\(\) != observables\(\)"):
+        check_plant(Wrong())
+    assert check_plant(Punch())["signals"] == 8

@@ -116,7 +116,23 @@ class Axis:
             cam.reset()
             cam.update(self.s)
             host.sensors[cam.name] = cam.actuated
+        self._quiet = self._quiet_range()
         return False
+
+    def _quiet_range(self) -> tuple[float, float]:
+        """The positions ``[lo, hi]`` around ``s`` at which no cam changes state (as
+        :meth:`~plants.components.limit_switch.LimitSwitch.update` decides it): a moving axis updates its cams only
+        when it leaves this range, so a stroke costs two cam updates per switch instead of two per step."""
+        lo, hi = -math.inf, math.inf
+        for cam in self.cams:
+            a, b = cam.lo + cam.dx, cam.hi + cam.dx
+            if cam.actuated:  # stays on while a - h <= s <= b + h
+                lo, hi = max(lo, a - cam.hysteresis), min(hi, b + cam.hysteresis)
+            elif self.s < a:  # stays off while s < a
+                hi = min(hi, math.nextafter(a, -math.inf))
+            else:  # s > b: stays off while s > b
+                lo = max(lo, math.nextafter(b, math.inf))
+        return lo, hi
 
     def actuate(self, host: Host, signal: str, value: Any) -> bool:
         value = bool(value)
@@ -169,10 +185,14 @@ class Axis:
             self.stalled = False
         self.v = v
         if s != self.s or self._recheck:
+            lo, hi = self._quiet
+            if self._recheck or not lo <= s <= hi:
+                for cam in self.cams:
+                    if cam.update(s):
+                        host.sensors[cam.name] = cam.actuated
+                self.s = s
+                self._quiet = self._quiet_range()
             self.s, self._recheck = s, False
-            for cam in self.cams:
-                if cam.update(s):
-                    host.sensors[cam.name] = cam.actuated
         return v != 0.0 or target != 0.0
 
     def static_drawables(self) -> list[Drawable]:

@@ -47,6 +47,13 @@ class Host(Protocol):
     def wake(self, component: Component) -> None:
         """Advance ``component`` from the next step on (a part arrived in its zone, a supply changed)."""
 
+    def defer(self, component: Any) -> None:
+        """Call ``component.commit(host)`` at the start of the next step, before the clock advances (the commands
+        of one scan taken together); ``commit`` returns True if the component now has to be advanced."""
+
+    def after_step(self, component: Any) -> None:
+        """Call ``component.settle(host)`` after the next physics step (a moved sensor re-detected its parts)."""
+
 
 @runtime_checkable
 class Component(Protocol):
@@ -118,8 +125,17 @@ class Assembly:
             self.busy.append(component)
 
     def advance(self, host: Host, dt: float) -> None:
-        """One step of every busy component, in the order they were woken; the settled ones leave the list."""
-        self.busy = [c for c in list(self.busy) if c.advance(host, dt)]
+        """One step of every busy component, in the order they were woken; the settled ones leave the list (as
+        does one woken during this step)."""
+        busy = self.busy
+        if len(busy) == 1:  # the common case (a ram moving, a belt settling): the list is kept while it stays busy
+            c = busy[0]
+            if not c.advance(host, dt):
+                self.busy = []
+            elif len(busy) != 1:
+                self.busy = [c]
+            return
+        self.busy = [c for c in list(busy) if c.advance(host, dt)]
 
     def has(self, name: str) -> bool:
         """Whether ``name`` is a component or one of their signals."""
@@ -173,6 +189,7 @@ class Bench:
         self.now_ns = 0
         self.rng = np.random.default_rng(seed)
         self.woken: list[Any] = []
+        self.deferred: list[Any] = []
 
     def emit(self, kind: str, subject: str, part: str | None = None, **data: Any) -> None:
         self.events.append(PlantEvent(self.now_ns, kind, subject, part, data))
@@ -180,7 +197,18 @@ class Bench:
     def wake(self, component: Any) -> None:
         self.woken.append(component)
 
+    def defer(self, component: Any) -> None:
+        if component not in self.deferred:
+            self.deferred.append(component)
+
+    def after_step(self, component: Any) -> None:
+        component.settle(self)
+
     def step(self, *components: Any) -> None:
+        """Commit the deferred commands, advance the clock by ``dt_ns`` and ``components`` by one step."""
+        deferred, self.deferred = self.deferred, []
+        for c in deferred:
+            c.commit(self)
         self.now_ns += self.dt_ns
         for c in components:
             c.advance(self, self.dt_ns / 1e9)

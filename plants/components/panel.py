@@ -1,24 +1,29 @@
-"""Operator panel: push-buttons, switches and lamps. No physics.
+"""Operator panel: push-buttons, switches and lamps. No physics. A component (:mod:`plants.components.component`).
 
 Buttons and switches are **sensors** driven by the operator (``SignalSpec.operator = True``): the plant reports
 ``True`` while a button is pressed or a switch is on, and the wiring decides whether the PLC sees that as an NO or an
 NC contact. Lamps (LEDs, signal lamps) are actuators. The component keeps the states and produces the events
-(``button pressed`` / ``button released``; a switch uses the same kinds with ``data={"control": "switch"}``); a rig
-embeds it and shares its ``sensors`` dict and event list.
+(``button pressed`` / ``button released``; a switch uses the same kinds with ``data={"control": "switch"}``) in the
+rig that hosts it; it declares the :data:`~plcsim.plant.OPERATOR` capability for that rig.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import Any
 
 from plants.components import draw
-from plcsim.plant import Drawable, PlantEvent, SignalSpec
+from plants.components.component import Host
+from plcsim.plant import OPERATOR, Drawable, SignalSpec
 
 
 class OperatorPanel:
     """Buttons, switches and lamps laid out in a row from ``origin`` (mm), 50 mm apart."""
 
     EVENTS = frozenset({"button pressed", "button released"})
+    CAPABILITIES = frozenset({OPERATOR})
+    """What it adds to the rig it is part of."""
+    name = "panel"
 
     def __init__(
         self,
@@ -42,15 +47,32 @@ class OperatorPanel:
         self.pitch = float(pitch)
         self.lamp_colors = dict(lamp_colors or {})
         self.docs = dict(docs or {})
-        self.lamp_state: dict[str, bool] = {}
-        self.reset()
+        self.lamp_state: dict[str, bool] = dict.fromkeys(self.lamps, False)
+        self._sensors: dict[str, Any] = self.initial_sensors()
 
     @property
     def controls(self) -> tuple[str, ...]:
         return self.buttons + self.switches
 
-    def reset(self) -> None:
+    # --- the component protocol --------------------------------------------------------------------------------
+    def subjects(self) -> set[str]:
+        """Its events name the button or switch."""
+        return set(self.controls)
+
+    def reset(self, host: Host) -> bool:
+        """Every control released, every lamp dark."""
         self.lamp_state = dict.fromkeys(self.lamps, False)
+        self._sensors = host.sensors
+        host.sensors.update(self.initial_sensors())
+        return False
+
+    def actuate(self, host: Host, signal: str, value: Any) -> bool:
+        """A lamp is switched."""
+        self.lamp_state[signal] = bool(value)
+        return False
+
+    def advance(self, host: Host, dt: float) -> bool:
+        return False
 
     def specs(self) -> list[SignalSpec]:
         out = []
@@ -65,21 +87,18 @@ class OperatorPanel:
     def initial_sensors(self) -> dict[str, bool]:
         return dict.fromkeys(self.controls, False)
 
-    def operate(self, name: str, value, sensors: dict, events: list, now_ns: int) -> None:
+    def operate(self, host: Host, name: str, value: Any) -> None:
         """The operator sets a button or switch; an event is logged when its state changes."""
         if name not in self.controls:
             if name in self.lamps:
                 raise ValueError(f"{name} is a lamp (an actuator), the operator cannot set it")
             raise KeyError(f"no button or switch {name!r} on this panel (have {list(self.controls)})")
         value = bool(value)
-        if sensors[name] == value:
+        if host.sensors[name] == value:
             return
-        sensors[name] = value
+        host.sensors[name] = value
         data = {"control": "switch"} if name in self.switches else {}
-        events.append(PlantEvent(now_ns, "button pressed" if value else "button released", name, None, data))
-
-    def set_lamp(self, name: str, value) -> None:
-        self.lamp_state[name] = bool(value)
+        host.emit("button pressed" if value else "button released", name, None, **data)
 
     # --- drawing ---------------------------------------------------------------------------------------------
     def _slot(self, i: int) -> tuple[float, float]:
@@ -99,7 +118,8 @@ class OperatorPanel:
             out.append(draw.label(f"{prefix}/labels/{n}", x, y - 20.0, n))
         return out
 
-    def dynamic_drawables(self, sensors: dict, prefix: str = "panel") -> list[Drawable]:
+    def dynamic_drawables(self, prefix: str = "panel") -> list[Drawable]:
+        sensors = self._sensors
         out: list[Drawable] = []
         i = 0
         for n in self.buttons:

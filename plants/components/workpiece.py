@@ -8,6 +8,7 @@ given by the caller (the scenario draws it from its own seeded generator); the p
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -16,6 +17,7 @@ import numpy as np
 import pymunk
 
 from plants.components.collide import CT_PART, FALL_CAT, OFF_CAT, PART_CAT
+from plcsim.plant import Drawable
 
 
 @dataclass(frozen=True)
@@ -54,6 +56,7 @@ class Part:
     state: str = "on"
     joints: tuple = ()
     at_stop: bool = False  # touching an end stop (debounces the "end stop hit" event)
+    drawn: tuple = ()  # (pose, colour, drawable) of the last drawing, reused while the part rests
 
     @classmethod
     def create(
@@ -85,11 +88,28 @@ class Part:
         p = self.body.position
         return (p.x, p.y, self.body.angle)
 
-    def outline(self) -> np.ndarray:
-        """The four corners in world coordinates, (4, 2)."""
-        x, y, a = self.pose()
-        hl, hh = self.spec.length / 2, self.spec.height / 2
+    def outline(self, pose: tuple[float, float, float] | None = None) -> np.ndarray:
+        """The four corners in world coordinates, (4, 2) (at ``pose``, default: where the part is)."""
+        x, y, a = self.pose() if pose is None else pose
         c, s = math.cos(a), math.sin(a)
-        local = np.array([(-hl, -hh), (hl, -hh), (hl, hh), (-hl, hh)])
         rot = np.array([[c, s], [-s, c]])
-        return local @ rot + (x, y)
+        return _corners(self.spec) @ rot + (x, y)
+
+    def drawable(self, color: tuple[int, int, int]) -> Drawable:
+        """The part's outline as drawn; the same drawable (they are frozen) while it rests in one pose."""
+        pose = self.pose()
+        last = self.drawn
+        if last and last[0] == pose and last[1] == color:
+            return last[2]
+        d = Drawable(f"parts/{self.id}", "polygon", self.outline(pose), color, text=self.id)
+        self.drawn = (pose, color, d)
+        return d
+
+
+@functools.cache
+def _corners(spec: WorkpieceSpec) -> np.ndarray:
+    """A block's corners around its centre, (4, 2) (read only: shared by every part of the spec)."""
+    hl, hh = spec.length / 2, spec.height / 2
+    local = np.array([(-hl, -hh), (hl, -hh), (hl, hh), (-hl, hh)])
+    local.flags.writeable = False
+    return local
