@@ -86,6 +86,13 @@ EXERCISE = Exercise(
         ),
         solution(
             NUMBER,
+            "wrong-strokes-greater-than",
+            "wrong",
+            "(a slip) strokes done as count > required instead of >=: every visit gets one stroke too many",
+            fails=("every stay under the press gets M2_ZIADANY_POCET strokes",),
+        ),
+        solution(
+            NUMBER,
             "wrong-no-count-reset",
             "wrong",
             "(not from the textbook) the stroke count is never cleared: later visits get no stroke",
@@ -99,6 +106,9 @@ EXERCISE = Exercise(
         "The textbook names neither stroke count; M2_ZIADANY_POCET and M2_AKTUALNY_POCET are proposed (spec 6.3.5). "
         "Its text cites Figs. 6.44-6.50 but lists eight rungs; the reference has the eight (6.44-6.51). The jam "
         "comes on the way down to the second stroke: the program must neither count a stroke nor move the belt "
-        "before the press is back at KS1 after the last one."
+        "before the press is back at KS1 after the last one. Not a scenario: bouncing KS2. The textbook counts "
+        "strokes on P(KS2), and each bounce of the contact is a rising edge, so a bouncing KS2 counts one stroke "
+        "several times (the textbook's program is not debounced; 6.3.3 grades the bounce, where only levels are "
+        "used)."
     ),
 )
