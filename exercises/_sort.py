@@ -106,19 +106,23 @@ class Phantom(Condition):
 
 @dataclass(frozen=True)
 class WrongType(Condition):
-    """An object is at position ``k`` and the position's type is not its colour."""
+    """Position ``k``'s type is not the colour of the object there, or not 0 with no object there (a stale type
+    would be pushed off with the next object that reads out of range); its piston's pulse may end first."""
 
     k: int
 
     def rows(self, ctx: Context) -> np.ndarray:
         colour = at_position(ctx.trace, self.k)
-        return (colour > 0) & (ctx.trace.column(f"DATA.{TYPES[self.k]}").astype(np.int64) != colour)
+        kind = ctx.trace.column(f"DATA.{TYPES[self.k]}").astype(np.int64)
+        piston = PISTON_AT[self.k]
+        pushing = ctx.trace.column(piston).astype(bool) if piston else np.zeros(len(colour), dtype=bool)
+        return (kind != colour) & ((colour > 0) | ~pushing)
 
     def describe(self) -> str:
-        return f"DATA.{TYPES[self.k]} differs from the colour of the object at position {self.k + 1}"
+        return f"DATA.{TYPES[self.k]} differs from the colour of the object at position {self.k + 1} (0: none)"
 
     def signals(self) -> list[str]:
-        return [f"DATA.{TYPES[self.k]}", "FARBA"]
+        return [f"DATA.{TYPES[self.k]}", "FARBA", *([PISTON_AT[self.k]] if PISTON_AT[self.k] else [])]
 
     def names(self) -> Names:
         return Names(tuple(self.signals()), EVENTS)

@@ -265,6 +265,20 @@ EXERCISE = Exercise(
             fails=("the compressor is off when no piston is out (within 1 scan)",),
         ),
     ],
+    spec_equivalent={
+        "OB1: network compressor moved to the end": (
+            "the compressor follows the pistons in the same scan: criterion 2 as the spec words it ('Kompresor == "
+            "Piest1 or Piest2 or Piest3 in every scan'), which the textbook's rung order misses by a scan"
+        ),
+        "OB1: network conveyor moved to the end": (
+            "the belt stops in the scan that clears the last position: criterion 4 as the spec words it ('D1_VPRED "
+            "TRUE iff at least one occupancy bit is TRUE')"
+        ),
+        "OB1: networks compressor and piston_1 swapped": (
+            "the compressor follows piston 1 in the same scan and pistons 2 and 3 a scan later: inside criterion 2's "
+            "'within 1 scan' (spec §4 item 1)"
+        ),
+    },
     notes=(
         "Addresses of OS2_Detekcia (%I0.4) and FARBA (%IW64) are proposals (the table lacks them); the prose names "
         "are used (D1_VPRED for 'Dopravník', OS3_Farba1… for 'OS2_Farba 1'…, names without spaces). Colour means and "
