@@ -8,8 +8,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from exercises._truth import GONE, Parts
-from plcsim.check import Check, Condition, Context, Verdict, all_of, any_of, event, event_data, never, off
+from exercises._truth import GONE, Parts, parts_equal
+from plcsim.check import Check, Condition, Context, Verdict, all_of, always, any_of, event, event_data, never, off
 from plcsim.check.base import Names
 from plcsim.exercise import IO
 from plcsim.scenario import after_event, held, place, remove, write
@@ -388,6 +388,13 @@ def waits_at_os1() -> Check:
     )
 
 
+def counts_arrivals() -> Check:
+    """6.3.2 criterion 2 (kept by 6.3.4 and 6.3.5): M1_AKTUALNY_POCET follows the object's arrivals at OS2."""
+    return always(parts_equal("M1_AKTUALNY_POCET", Arrivals())).named(
+        "M1_AKTUALNY_POCET counts the object's arrivals at OS2 and is 0 after its removal"
+    )
+
+
 def strokes_land_on_objects() -> Check:
     """The plant's account of each stroke: it came down on an object, near the object's centre (a stroke on an
     empty place has no offset and fails)."""
@@ -434,6 +441,7 @@ def punching_checks(
             reads=("M1_ZIADANY_POCET",),
             events=(("part entered", "OS2"),),
         ),
+        counts_arrivals(),
         # criterion 2
         *belt_waits_for_the_press(),
         # criterion 3

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from exercises._common import solution
 from plants.align import JAM_PISTON, Align
-from plcsim.check import count, event, event_data, final, holds, never, on, rises
+from plcsim.check import all_of, count, event, event_data, final, holds, never, off, on, rises
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, after_event, place, remove
+from plcsim.scenario import Scenario, after_event, place, remove, wire_break
 
 NUMBER = "4.3.12"
 CROOKED = {"offset_mm": (0.0, 15.0), "angle_deg": (-15.0, 15.0)}  # §5.5: 0–15 mm off the fence, ±15°
@@ -22,6 +22,7 @@ TWO = "two objects"
 STAYS = "object stays"
 BRIEF = "object passes"
 JAMMED = "piston jammed"
+DEAD = "rear sensor dead"
 
 EXERCISE = Exercise(
     number=NUMBER,
@@ -79,6 +80,13 @@ EXERCISE = Exercise(
             duration="5s",
             description="the piston rod sticks half-way out (the task defines no timeout: the program waits)",
         ),
+        Scenario(
+            DEAD,
+            wire_break("PIEST_SNIMAC_VZAD", t="0s"),
+            place("p1", at="table", t="0.3s..0.8s", **CROOKED),
+            duration="6s",
+            description="the rear end-position sensor's wire is broken: the piston is never seen at home",
+        ),
     ],
     checks=[
         # criterion 1
@@ -96,7 +104,7 @@ EXERCISE = Exercise(
             TWO,
         ),
         only(count(event("piston retracted")).equals(2).named("the piston is back at the rear after each stroke"), TWO),
-        only(final("PIEST_CHOD_VPRED").equals(0).named("the piston output is off at the end"), TWO, STAYS, BRIEF),
+        only(final("PIEST_CHOD_VPRED").equals(0).named("the piston output is off at the end"), TWO, STAYS, BRIEF, DEAD),
         # criterion 3
         only(
             event_data("alignment measured", "gap_mm").at_most(1.0).named("each object ends within 1 mm of the fence"),
@@ -129,6 +137,18 @@ EXERCISE = Exercise(
         ),
         # a jammed piston aligns nothing: the program must not say it did
         only(never(on("OBJ_ZAROVNANY")).named("a jammed piston is not reported as an aligned object"), JAMMED),
+        # OBJ_ZAROVNANY tells the robot it may take the object: the plate must be out of its way by then
+        only(
+            never(all_of("OBJ_ZAROVNANY", off("PIEST_SNIMAC_VZAD"))).named(
+                "OBJ_ZAROVNANY only once the piston is back at the rear"
+            ),
+            TWO,
+            STAYS,
+        ),
+        only(
+            never(on("OBJ_ZAROVNANY")).named("with the rear sensor dead nothing is reported aligned"),
+            DEAD,
+        ),
     ],
     solutions=[
         solution(NUMBER, "reference", explanation="solution 1 (Figs. 4.108-4.112) with the resets the text omits"),
@@ -182,6 +202,17 @@ EXERCISE = Exercise(
             "is left crooked and off the fence",
             fails=("each object ends within 1 mm of the fence",),
         ),
+        solution(
+            NUMBER,
+            "wrong-done-off-the-front",
+            "wrong",
+            "(a slip) solution 2 with step 2 ended when the front sensor is released, not at the rear: 'aligned' "
+            "while the plate is still on its way back, where the robot would meet it",
+            fails=(
+                "OBJ_ZAROVNANY only once the piston is back at the rear",
+                "with the rear sensor dead nothing is reported aligned",
+            ),
+        ),
     ],
     notes=(
         "Addresses, NO wiring and the memory addresses are proposals (the textbook gives none). The rung 3 reset of "
@@ -190,6 +221,9 @@ EXERCISE = Exercise(
         "Criterion 1's window is 1 s … 1 s + 2 scans after OS (the TON expires in the first scan with ET ≥ 1 s). "
         "Objects are placed 0–15 mm off the fence and turned ±15° (drawn with the seed); the robot takes an "
         "object 0.5–1 s after the plate is back. The jammed piston is informational in the task; the check there is "
-        "only that nothing is reported aligned."
+        "only that nothing is reported aligned. So with the rear sensor dead (a broken wire): the program cannot see "
+        "the piston home and must not say the object is aligned (solution 1 never starts the stroke, solution 2 "
+        "strokes and waits in step 2). OBJ_ZAROVNANY tells the robot it may take the object, so it may be TRUE only "
+        "while the rear sensor reports the piston home."
     ),
 )

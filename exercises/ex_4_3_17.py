@@ -9,10 +9,11 @@ Where each object ends is the plant's record (``part in bin`` with the object's 
 from __future__ import annotations
 
 from exercises._common import solution
+from exercises._sort import NoMissort, OnlyAfter, Phantom, Unmarked, WrongType
 from plants.sort import FAIL_COMPRESSOR, SET_AMBIENT, Sort
 from plcsim.check import all_of, any_of, count, durations, event, event_data, final, never, not_, off
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, place
+from plcsim.scenario import Scenario, after_event, place
 from plcsim.tags import DB
 from plcsim.types import Bool, Int
 
@@ -29,7 +30,16 @@ THREE = "three colours"
 SIX = "six mixed"
 AMBIENT = "ambient light"
 NO_AIR = "compressor fails"
-SORTED = (THREE, SIX, AMBIENT)
+SPACED = "mixed spacing"
+EDGES = "colours near the interval edges"
+CLOSE = "objects too close"
+SORTED = (THREE, SIX, AMBIENT, SPACED, EDGES)
+ONE_AT_A_TIME = (THREE, EDGES)
+"""Where criterion 6 can hold: at 3..5 s a colour-3 object followed by a colour-1 one puts P3 (7.9 s after its
+loading) and P1 (3.9 s after the next's) out together whatever the program does; these load colours in
+ascending order."""
+EDGE_RAW = ((1, 4000), (1, 7000), (2, 11000), (2, 15000), (3, 19000), (3, 23000))
+"""Worn and tinted objects: 2000 raw (4 σ) inside an edge of the §5.8 intervals (2000 / 9000 / 17000 / 25000)."""
 
 
 def loads(colours: tuple[int, ...], *, spacing_s: float = 3.2) -> list:
@@ -38,6 +48,17 @@ def loads(colours: tuple[int, ...], *, spacing_s: float = 3.2) -> list:
         place(f"p{k + 1}", at="OS1", t=f"{0.5 + k * spacing_s:.1f}s..{0.7 + k * spacing_s:.1f}s", colour=c)
         for k, c in enumerate(colours)
     ]
+
+
+def spaced(*objects: tuple) -> list:
+    """Objects p1, p2 … as ``(colour, gap)`` or ``(colour, gap, raw mean)``: each loaded a seeded ``gap``
+    (``"3s..3.4s"``) after the one before (the first at 0.5..0.7 s)."""
+    actions = []
+    for k, (colour, gap, *raw) in enumerate(objects, start=1):
+        when = {"t": "0.5s..0.7s"} if k == 1 else {"when": after_event("part placed", f"p{k - 1}"), "delay": gap}
+        extra = {"colour_raw": raw[0]} if raw else {}
+        actions.append(place(f"p{k}", at="OS1", colour=colour, **when, **extra))
+    return actions
 
 
 EXERCISE = Exercise(
@@ -104,12 +125,32 @@ EXERCISE = Exercise(
             duration="10s",
             description="the compressor runs but builds no pressure: the piston cannot move, the object ends unsorted",
         ),
+        Scenario(
+            SPACED,
+            *spaced((3, ""), (1, "3s..3.4s"), (1, "5s..5.5s"), (2, "3s..3.3s"), (3, "4s..4.5s"), (2, "6s..6.5s")),
+            duration="34s",
+            description="six objects of mixed colours at gaps of 3 to 6.5 s (never under the 3 s of §5.8)",
+        ),
+        Scenario(
+            EDGES,
+            *spaced(*((c, "3s..3.4s", raw) for c, raw in EDGE_RAW)),
+            duration="28s",
+            description="worn and tinted objects whose colour reads 2000 raw inside an edge of its interval",
+        ),
+        Scenario(
+            CLOSE,
+            *spaced((1, ""), (2, "1.4s..1.6s"), (3, "1.4s..1.6s"), (1, "1.4s..1.6s")),
+            duration="20s",
+            description="four objects 1.5 s apart, closer than the sorter can take them (§5.8: 3 s): its positions "
+            "lose objects, which end unsorted or stuck; a piston may still only push an object of its colour",
+        ),
     ],
     checks=[
         # criterion 1
         only(event_data("part in bin", "colour", "bin1").equals(1).named("bin 1 receives colour 1 only"), *SORTED),
         only(event_data("part in bin", "colour", "bin2").equals(2).named("bin 2 receives colour 2 only"), *SORTED),
         only(event_data("part in bin", "colour", "bin3").equals(3).named("bin 3 receives colour 3 only"), *SORTED),
+        NoMissort().named("no object lands in another colour's bin"),
         only(count(event("part in bin", "unsorted")).equals(0).named("no object ends unsorted"), *SORTED),
         only(
             durations("Piest1_Farba1")
@@ -132,6 +173,10 @@ EXERCISE = Exercise(
             )
             for p in PISTONS
         ],
+        *[
+            OnlyAfter(p, barrier, k).named(f"{p} goes out only just after an object of colour {k} passed {barrier}")
+            for k, (p, barrier) in enumerate(zip(PISTONS, ("OS3_Farba1", "OS4_Farba2", "OS5_Farba3"), strict=True), 1)
+        ],
         # criterion 4, within 1 scan (the conveyor rung runs before the rungs that clear the positions)
         never(all_of("D1_VPRED", not_(ANY_OCCUPIED)))
         .for_more_than("1 scan")
@@ -140,6 +185,32 @@ EXERCISE = Exercise(
         .for_more_than("1 scan")
         .named("the belt runs while a position is occupied (within 1 scan)"),
         only(final("D1_VPRED").equals(0).named("the belt stops after the last piece"), *SORTED),
+        # criterion 5, within 1 scan (a position is taken over in the scan whose input image shows the object)
+        only(
+            never(any_of(*(Unmarked(k) for k in range(5))))
+            .for_more_than("1 scan")
+            .named("every object's position is marked occupied (within 1 scan)"),
+            *SORTED,
+        ),
+        only(
+            never(any_of(*(Phantom(k) for k in range(5))))
+            .for_more_than("1 scan")
+            .named("no position is marked occupied without its object, but while its piston is out (within 1 scan)"),
+            *SORTED,
+        ),
+        only(
+            never(any_of(*(WrongType(k) for k in range(1, 5))))
+            .for_more_than("1 scan")
+            .named("each position's type is the colour of its object (within 1 scan)"),
+            *SORTED,
+        ),
+        # criterion 6 (optional in the spec), where the loading order allows it
+        only(
+            never(any_of(*(all_of(a, b) for i, a in enumerate(PISTONS) for b in PISTONS[i + 1 :]))).named(
+                "no two pistons are out at once"
+            ),
+            *ONE_AT_A_TIME,
+        ),
     ],
     solutions=[
         solution(NUMBER, "reference", explanation="the textbook's rungs 1-10 (Figs. 4.150-4.159)"),
@@ -158,13 +229,69 @@ EXERCISE = Exercise(
             "object never reaches its piston",
             fails=("the belt runs while a position is occupied (within 1 scan)",),
         ),
+        solution(
+            NUMBER,
+            "wrong-narrow-intervals",
+            "wrong",
+            "(a slip) the colour intervals drawn ±1000 raw around the lab's means: daylight or a worn object reads "
+            "between them, the object gets no type and ends unsorted",
+            fails=("no object ends unsorted", "each position's type is the colour of its object (within 1 scan)"),
+        ),
+        solution(
+            NUMBER,
+            "wrong-piston-in-the-beam",
+            "wrong",
+            "(a slip) the piston rungs without 'its sensor free': a piston fires as the object breaks its barrier, "
+            "35 mm before the piston",
+            fails=tuple(
+                f"{p} goes out only just after an object of colour {k} passed {b}"
+                for k, (p, b) in enumerate(zip(PISTONS, ("OS3_Farba1", "OS4_Farba2", "OS5_Farba3"), strict=True), 1)
+            ),
+        ),
+        solution(
+            NUMBER,
+            "wrong-type-cleared-first",
+            "wrong",
+            "(a slip) in rungs 3-5 the previous type is cleared before it is copied: every type after the detection "
+            "is 0, no piston fires",
+            fails=("each position's type is the colour of its object (within 1 scan)", "no object ends unsorted"),
+        ),
+        solution(
+            NUMBER,
+            "wrong-compressor-with-belt",
+            "wrong",
+            "(a slip) the compressor switched with the conveyor, as the caption of Fig. 4.156 reads: it runs while no "
+            "piston needs air",
+            fails=("the compressor is off when no piston is out (within 1 scan)",),
+        ),
     ],
+    spec_equivalent={
+        "OB1: network compressor moved to the end": (
+            "the compressor follows the pistons in the same scan: criterion 2 as the spec words it ('Kompresor == "
+            "Piest1 or Piest2 or Piest3 in every scan'), which the textbook's rung order misses by a scan"
+        ),
+        "OB1: network conveyor moved to the end": (
+            "the belt stops in the scan that clears the last position: criterion 4 as the spec words it ('D1_VPRED "
+            "TRUE iff at least one occupancy bit is TRUE')"
+        ),
+        "OB1: networks compressor and piston_1 swapped": (
+            "the compressor follows piston 1 in the same scan and pistons 2 and 3 a scan later: inside criterion 2's "
+            "'within 1 scan' (spec §4 item 1)"
+        ),
+    },
     notes=(
         "Addresses of OS2_Detekcia (%I0.4) and FARBA (%IW64) are proposals (the table lacks them); the prose names "
         "are used (D1_VPRED for 'Dopravník', OS3_Farba1… for 'OS2_Farba 1'…, names without spaces). Colour means and "
         "noise as §5.8 (σ 500 raw); the intervals of the reference are §5.8's. Criteria 2 and 4 are checked within 1 "
-        "scan (spec §4 item 1). Criterion 5 (occupancy matches the objects) and 6 (one piston at a time) are not "
-        "graded yet; neither are the out-of-range colour and too-small spacing scenarios. With the compressor failed "
-        "the program cannot tell (the task gives no pressure switch): it is graded on its outputs only."
+        "scan (spec §4 item 1). Criterion 5 compares DB DATA with the plant's account of each object: an object is "
+        "at position n from breaking barrier n until it breaks the next one or lands in a bin; a position pushed "
+        "off stays occupied until its piston's 1 s pulse ends, as the textbook clears it. Criterion 6 (optional) is "
+        "graded where the loading order lets any program meet it (colours in ascending order): at 3-5 s spacing a "
+        "colour 3 followed by a colour 1 puts P3 and P1 out together whatever the program does. 'Objects too close' "
+        "(1.5 s, under §5.8's 3 s) grades only what a sorter that cannot keep up must still do: no mis-sort, the "
+        "compressor, the pulses and the belt following the occupancy; which objects it loses depends on the seed. "
+        "The out-of-range colour (text issue e) is not a scenario: the textbook's program never stops the belt then. "
+        "With the compressor failed the program cannot tell (the task gives no pressure switch): it is graded on "
+        "its outputs only."
     ),
 )

@@ -138,6 +138,8 @@ EXERCISE = Exercise(
         "removal edge needs the belt-standing test only from 6.3.2 on (here the object leaving OS1 at the start "
         "resets a bit that is not yet set), so a program without it is correct. 'Object taken on its way' is a "
         "fault: the belt runs on forward with nothing on it until the next object is loaded, which the textbook's "
-        "program then serves normally."
+        "program then serves normally. Not a scenario: a flickering OS1. The removal edge P(OS1) with the belt "
+        "standing takes a flicker of the returning object's beam for a removal and sets off again (the textbook's "
+        "program is not debounced)."
     ),
 )

@@ -20,10 +20,11 @@ from exercises._punch import (
 from plants import Punch
 from plcsim.check import all_of, count, final, never, off, rises
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, after_event, free_motor, held, jam_motor, place, remove
+from plcsim.scenario import Scenario, after_event, chatter, free_motor, held, jam_motor, place, remove
 
 NUMBER = "6.3.3"
 OBJECTS = 3
+BOUNCE = "bouncing limit switches"
 HOLDS = ("4s", "4.5s", "4.2s")  # the operator takes the object away this long after placing it (a stroke: 2.7 s)
 
 EXERCISE = Exercise(
@@ -53,6 +54,15 @@ EXERCISE = Exercise(
             duration="22s",
             description="three objects, one after the other, put under the press at OS2 and taken away 4..4.5 s "
             "later; the next is put there 1..2 s after the removal",
+        ),
+        Scenario(
+            BOUNCE,
+            chatter("KS1", t="0s"),
+            chatter("KS2", t="0s"),
+            *cycles(OBJECTS, at="OS2", rest=HOLDS),
+            duration="22s",
+            description="the limit switches are contacts and bounce: each change of KS1 and KS2 comes with 3..5 "
+            "extra toggles of 2..10 ms; three objects as in 'three objects'",
         ),
         Scenario(
             "jammed press",
@@ -87,13 +97,15 @@ EXERCISE = Exercise(
             PerVisit("every object under the press is punched exactly once", constant(1)),
             "three objects",
             "jammed press",
+            BOUNCE,
         ),
         only(
             PerObject("every object gets exactly one stroke", "was punched", strokes_on, constant(1)),
             "three objects",
             "jammed press",
+            BOUNCE,
         ),
-        only(strokes_land_on_objects(), "three objects", "jammed press"),
+        only(strokes_land_on_objects(), "three objects", "jammed press", BOUNCE),
         only(
             count(rises("M2_DOLE")).equals(OBJECTS).named("the press starts once per object, never without one"),
             "three objects",
@@ -144,6 +156,8 @@ EXERCISE = Exercise(
         "M2_DOLE on while the press stands (it has no watchdog) and finishes the stroke once the press is freed. "
         "'Object taken during the stroke' grades only what must hold then: the press finishes its stroke and waits "
         "at KS1 (the textbook's OBJEKT_BOL_DOLE is set after the removal edge, so an object put there next would "
-        "not be punched; the textbook does not consider this case)."
+        "not be punched; the textbook does not consider this case). 'Bouncing limit switches': KS1 and KS2 are "
+        "contacts (the model text's 'kontaktné snímače'); the textbook's program only sets and resets on their "
+        "levels, so a bounce repeats a SET or a RESET and changes nothing."
     ),
 )

@@ -86,6 +86,13 @@ EXERCISE = Exercise(
         ),
         solution(
             NUMBER,
+            "wrong-strokes-greater-than",
+            "wrong",
+            "(a slip) strokes done as count > required instead of >=: every visit gets one stroke too many",
+            fails=("every stay under the press gets M2_ZIADANY_POCET strokes",),
+        ),
+        solution(
+            NUMBER,
             "wrong-no-count-reset",
             "wrong",
             "(not from the textbook) the stroke count is never cleared: later visits get no stroke",
@@ -95,10 +102,43 @@ EXERCISE = Exercise(
             ),
         ),
     ],
+    spec_equivalent={
+        "line 50: t.KS2 → not t.KS2": (
+            "P(NOT KS2) counts a stroke as the press leaves KS2, the same stroke a moment later: the spec bounds the "
+            "strokes per visit and the count being 0 once the object left OS2 (criteria 1, 2), not that instant"
+        ),
+        "P(t.KS2, 'POM_P_KS2') → N(t.KS2, 'POM_P_KS2')": (
+            "N(KS2) counts a stroke as the press leaves KS2, the same stroke a moment later: the spec bounds the "
+            "strokes per visit and the count being 0 once the object left OS2 (criteria 1, 2), not that instant"
+        ),
+        "OB1: networks counting and removal swapped": (
+            "OBJEKT_PRI_OS2, the program's own bit, follows the removal in the same scan instead of the next; the "
+            "moves, the wait at OS1 and the count (6.3.2 criteria 1, 2) are the same"
+        ),
+        "OB1: network counting moved to the end": (
+            "OBJEKT_PRI_OS2, the program's own bit, is read a scan after it changes, long before the object is "
+            "back at OS1: the moves and the count (6.3.2 criteria 1, 2) are the same"
+        ),
+        "OB1: networks bottom and strokes_done swapped": (
+            "OBJEKT_BOL_DOLE follows the count a scan later, while the press is still on its way up: the reverse "
+            "still comes within 1 scan of KS1 after the last stroke (criterion 2, 6.3.4 criterion 3)"
+        ),
+        "OB1: network bottom moved to the end": (
+            "the count goes up at the end of the scan that sees KS2, so OBJEKT_BOL_DOLE follows a scan later while "
+            "the press is on its way up: the strokes and the reverse are the same (criteria 1, 2)"
+        ),
+        "OB1: networks strokes_done and leaving swapped": (
+            "OBJEKT_BOL_DOLE falls in the scan the object leaves OS2 instead of the next, when no stroke can start "
+            "(no object at OS2): criteria 1 and 2 are the same"
+        ),
+    },
     notes=(
         "The textbook names neither stroke count; M2_ZIADANY_POCET and M2_AKTUALNY_POCET are proposed (spec 6.3.5). "
         "Its text cites Figs. 6.44-6.50 but lists eight rungs; the reference has the eight (6.44-6.51). The jam "
         "comes on the way down to the second stroke: the program must neither count a stroke nor move the belt "
-        "before the press is back at KS1 after the last one."
+        "before the press is back at KS1 after the last one. Not a scenario: bouncing KS2. The textbook counts "
+        "strokes on P(KS2), and each bounce of the contact is a rising edge, so a bouncing KS2 counts one stroke "
+        "several times (the textbook's program is not debounced; 6.3.3 grades the bounce, where only levels are "
+        "used)."
     ),
 )
