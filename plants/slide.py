@@ -127,8 +127,7 @@ class Slide:
         self.now_ns = 0
         self.events.clear()
         self.sensors.clear()
-        self.panel.reset()
-        self.sensors.update(self.panel.initial_sensors())
+        self.panel.reset(self)
         self.assembly.reset(self)
 
     def emit(self, kind: str, subject: str, part: str | None = None, **data: Any) -> None:
@@ -143,7 +142,7 @@ class Slide:
         self.assembly.actuate(self, name, value)
 
     def operate(self, name: str, value: Any) -> None:
-        self.panel.operate(name, value, self.sensors, self.events, self.now_ns)
+        self.panel.operate(self, name, value)
 
     def step(self, dt_ns: int) -> None:
         if dt_ns <= 0:
@@ -193,4 +192,4 @@ class Slide:
         ]
         rear = SLIDE_X0 + self.slide.s - SLIDE_LENGTH
         rod = draw.line("rod", [(20.0, BED_Y + 15.0), (rear, BED_Y + 15.0)], draw.BELT, "piston rod")
-        return [rod, *self.assembly.dynamic_drawables(), *cams, *self.panel.dynamic_drawables(self.sensors, "panel")]
+        return [rod, *self.assembly.dynamic_drawables(), *cams, *self.panel.dynamic_drawables("panel")]
