@@ -214,6 +214,15 @@ EXERCISE = Exercise(
             ),
         ),
     ],
+    spec_equivalent={
+        **{
+            m: (
+                "ZAROVNAJ is set at the end of the scan in which the TON expires, so the stroke starts a scan later: "
+                "inside criterion 1's 1 s … 1 s + 2 scans after OS"
+            )
+            for m in ("OB1: networks delay and align swapped", "OB1: network delay moved to the end")
+        },
+    },
     notes=(
         "Addresses, NO wiring and the memory addresses are proposals (the textbook gives none). The rung 3 reset of "
         "OBJ_ZAROVNANY and the reset of BOL_VPRED are the text's omissions (§4 item 6) and part of the reference. "

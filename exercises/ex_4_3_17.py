@@ -274,6 +274,17 @@ EXERCISE = Exercise(
             "the belt stops in the scan that clears the last position: criterion 4 as the spec words it ('D1_VPRED "
             "TRUE iff at least one occupancy bit is TRUE')"
         ),
+        "OB1: network loading moved to the end": (
+            "position 1 is taken at the end of the scan that sees the object, so the belt starts a scan later: "
+            "criterion 4 bounds the belt by the occupancy within 1 scan, and it follows it within 1 scan"
+        ),
+        **{
+            f"line {line}: if-blocks at lines {line} and {line + 2} swapped": (
+                "the piston's TON runs before the SET, so it starts timing a scan after the piston goes out: the "
+                "pulse lasts 1 s + 1 scan, inside criterion 3's 1 s ± 2 scans"
+            )
+            for line in (79, 89, 99)
+        },
         "OB1: networks compressor and piston_1 swapped": (
             "the compressor follows piston 1 in the same scan and pistons 2 and 3 a scan later: inside criterion 2's "
             "'within 1 scan' (spec §4 item 1)"

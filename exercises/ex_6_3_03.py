@@ -148,6 +148,13 @@ EXERCISE = Exercise(
             ),
         ),
     ],
+    spec_equivalent={
+        "P(t.OS2, 'POM_P_OS2') → t.OS2": (
+            "OBJEKT_BOL_DOLE is cleared in every scan without an object at OS2 instead of once as it leaves: 'the "
+            "sequence may restart only after the object has been removed and a new one loaded' holds either way "
+            "(after an object taken during the stroke it even lets the next one be punched, as criterion 3 asks)"
+        ),
+    },
     notes=(
         "The object is put straight under the press: the OS2 station places it 5 mm past the press axis (the "
         "operator's ±5 mm), so it always cuts the OS2 beam and lies under the tool. A stroke is counted by the "
