@@ -332,6 +332,19 @@ class Punched(Condition):
         return Names(("OS2",), (("part entered", "OS2"), ("part left", "OS2"), ("press stroke", None)))
 
 
+COUNT_RUNG_MOVED = {
+    "OB1: networks counting and removal swapped": (
+        "OBJEKT_PRI_OS2, the program's own bit, follows the removal in the same scan instead of the next; the "
+        "moves, the wait at OS1 and the count (6.3.2 criteria 1, 2) are the same"
+    ),
+    "OB1: network counting moved to the end": (
+        "OBJEKT_PRI_OS2, the program's own bit, is read a scan after it changes, long before the object is "
+        "back at OS1: the moves and the count (6.3.2 criteria 1, 2) are the same"
+    ),
+}
+"""The mutants of 6.3.4's and 6.3.5's count rung that are correct programs by the spec's words (``spec_equivalent``)."""
+
+
 # --------------------------------------------------------------------------------------------
 # Checks every task shares
 # --------------------------------------------------------------------------------------------

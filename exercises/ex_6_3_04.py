@@ -3,7 +3,17 @@
 from __future__ import annotations
 
 from exercises._common import solution
-from exercises._punch import MODEL, PUNCH_IO, constant, counts, cycles, edge_bits, parameter, punching_checks
+from exercises._punch import (
+    COUNT_RUNG_MOVED,
+    MODEL,
+    PUNCH_IO,
+    constant,
+    counts,
+    cycles,
+    edge_bits,
+    parameter,
+    punching_checks,
+)
 from plants import Punch
 from plcsim.exercise import IO, Exercise
 from plcsim.scenario import Scenario, after_event, free_motor, jam_motor
@@ -79,6 +89,7 @@ EXERCISE = Exercise(
             fails=("every stay under the press gets exactly one stroke",),
         ),
     ],
+    spec_equivalent=COUNT_RUNG_MOVED,
     notes=(
         "The textbook builds task 4 from task 2's solution 2 (ADD), so OBJEKT_PRI_OS2 and M1_AKTUALNY_POCET are "
         "kept. Criterion 2 is graded twice: on the PLC's outputs (the belt never runs while the press is away from "

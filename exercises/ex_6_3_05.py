@@ -3,7 +3,17 @@
 from __future__ import annotations
 
 from exercises._common import solution
-from exercises._punch import MODEL, PUNCH_IO, counts, cycles, edge_bits, parameter, product, punching_checks
+from exercises._punch import (
+    COUNT_RUNG_MOVED,
+    MODEL,
+    PUNCH_IO,
+    counts,
+    cycles,
+    edge_bits,
+    parameter,
+    product,
+    punching_checks,
+)
 from plants import Punch
 from plcsim.check import all_of, never, value
 from plcsim.exercise import IO, Exercise
@@ -111,14 +121,7 @@ EXERCISE = Exercise(
             "N(KS2) counts a stroke as the press leaves KS2, the same stroke a moment later: the spec bounds the "
             "strokes per visit and the count being 0 once the object left OS2 (criteria 1, 2), not that instant"
         ),
-        "OB1: networks counting and removal swapped": (
-            "OBJEKT_PRI_OS2, the program's own bit, follows the removal in the same scan instead of the next; the "
-            "moves, the wait at OS1 and the count (6.3.2 criteria 1, 2) are the same"
-        ),
-        "OB1: network counting moved to the end": (
-            "OBJEKT_PRI_OS2, the program's own bit, is read a scan after it changes, long before the object is "
-            "back at OS1: the moves and the count (6.3.2 criteria 1, 2) are the same"
-        ),
+        **COUNT_RUNG_MOVED,
         "OB1: networks bottom and strokes_done swapped": (
             "OBJEKT_BOL_DOLE follows the count a scan later, while the press is still on its way up: the reverse "
             "still comes within 1 scan of KS1 after the last stroke (criterion 2, 6.3.4 criterion 3)"
