@@ -101,11 +101,7 @@ class Wiring:
                     self._inputs_analog.append((w, spec))
             else:
                 self._outputs.append((w, spec))
-        self._copy_levels = _level_copier(self._inputs_bool)
-        self._scaled = [
-            (w.tag, w.signal, spec.lo, spec.hi - spec.lo, w.raw[0], w.raw[1] - w.raw[0], w.noise)
-            for w, spec in self._inputs_analog
-        ]
+        self._copy_inputs = _input_copier(self._inputs_bool, self._inputs_analog)
         self.faults: dict[str, _Fault] = {}
         self._chatter: dict[str, list[tuple[int, int]]] = {}
         self._last_physical: dict[str, Any] = {}
@@ -182,12 +178,7 @@ class Wiring:
             for wire, spec in self._inputs_analog:
                 inputs[wire.tag] = self._raw(wire, spec, sensors[wire.signal], wire.signal)
             return
-        self._copy_levels(sensors, inputs)
-        for tag, signal, lo, span, lo_raw, raw_span, noise in self._scaled:  # _raw without its faults
-            raw = lo_raw + (sensors[signal] - lo) / span * raw_span
-            if noise:
-                raw += self.rng.gauss(0.0, noise)
-            inputs[tag] = max(-32_768, min(32_767, round(raw)))
+        self._copy_inputs(sensors, inputs, self.rng)
 
     def write_outputs(self, outputs: Mapping[str, Any]) -> None:
         """Send changed PLC outputs to the plant's actuators."""
@@ -312,17 +303,34 @@ class Wiring:
 _UNSET = object()
 
 
-def _level_copier(inputs: list[tuple[str, str, bool]]) -> Callable[[Mapping[str, Any], dict[str, Any]], None]:
-    """One function copying every Boolean sensor to its input, NC contacts inverted: the fault-free
-    loop of :meth:`Wiring.read_inputs` written out once per wiring (a step's largest cost in the wiring).
-    Built from the wiring's signal and tag names (``repr`` literals), never from a program's text.
+def _input_copier(
+    levels: list[tuple[str, str, bool]], analogs: list[tuple[Wire, SignalSpec]]
+) -> Callable[[Mapping[str, Any], dict[str, Any], random.Random], None]:
+    """One function copying every sensor to its input, the fault-free loop of :meth:`Wiring.read_inputs`
+    written out once per wiring: Boolean sensors NC-inverted, analog ones scaled as :meth:`Wiring._raw`
+    scales them (the same operations in the same order, the same noise draws). Built from the wiring's
+    signal and tag names (``repr`` literals) and numbers, never from a program's text.
 
-    >>> copy, image = _level_copier([("S1", "I_S1", False), ("S2", "I_S2", True)]), {}
-    >>> copy({"S1": True, "S2": True}, image)
+    >>> sensors = {"S1": True, "S2": True, "T": 50.0}
+    >>> copy, image = _input_copier([("S1", "I_S1", False), ("S2", "I_S2", True)], []), {}
+    >>> copy(sensors, image, random.Random(0))
     >>> image
     {'I_S1': True, 'I_S2': False}
+    >>> copy = _input_copier([], [(analog("T", "IW_T"), SignalSpec("T", "sensor", "analog", lo=0.0, hi=100.0))])
+    >>> copy(sensors, image, random.Random(0))
+    >>> image["IW_T"]
+    13824
     """
-    lines = [f"    i[{tag!r}] = {'not ' if invert else ''}s[{signal!r}]" for signal, tag, invert in inputs]
-    scope: dict[str, Any] = {"__builtins__": {}}
-    exec("def copy(s, i):\n" + ("\n".join(lines) or "    pass"), scope)  # built from wiring names
+    lines = [f"    i[{tag!r}] = {'not ' if invert else ''}s[{signal!r}]" for signal, tag, invert in levels]
+    scope: dict[str, Any] = {"__builtins__": {}, "max": max, "min": min, "round": round}
+    for k, (wire, spec) in enumerate(analogs):
+        lo_raw, hi_raw = wire.raw
+        scope.update({f"lo{k}": spec.lo, f"span{k}": spec.hi - spec.lo})
+        scope.update({f"raw{k}": lo_raw, f"rspan{k}": hi_raw - lo_raw})
+        lines.append(f"    raw = raw{k} + (s[{wire.signal!r}] - lo{k}) / span{k} * rspan{k}")
+        if wire.noise:
+            scope[f"noise{k}"] = wire.noise
+            lines.append(f"    raw += r.gauss(0.0, noise{k})")
+        lines.append(f"    i[{wire.tag!r}] = max(-32_768, min(32_767, round(raw)))")
+    exec("def copy(s, i, r):\n" + ("\n".join(lines) or "    pass"), scope)  # built from wiring names
     return scope["copy"]
