@@ -318,8 +318,8 @@ def _input_copier(
     {'I_S1': True, 'I_S2': False}
     >>> copy = _input_copier([], [(analog("T", "IW_T"), SignalSpec("T", "sensor", "analog", lo=0.0, hi=100.0))])
     >>> copy(sensors, image, random.Random(0))
-    >>> image["IW_T"]
-    13824
+    >>> image["IW_T"], copy({"T": 100.0}, image, random.Random(0)), image["IW_T"]
+    (13824, None, 27648)
     """
     lines = [f"    i[{tag!r}] = {'not ' if invert else ''}s[{signal!r}]" for signal, tag, invert in levels]
     scope: dict[str, Any] = {"__builtins__": {}, "max": max, "min": min, "round": round}
@@ -327,10 +327,18 @@ def _input_copier(
         lo_raw, hi_raw = wire.raw
         scope.update({f"lo{k}": spec.lo, f"span{k}": spec.hi - spec.lo})
         scope.update({f"raw{k}": lo_raw, f"rspan{k}": hi_raw - lo_raw})
-        lines.append(f"    raw = raw{k} + (s[{wire.signal!r}] - lo{k}) / span{k} * rspan{k}")
-        if wire.noise:
+        raw = f"raw{k} + (v - lo{k}) / span{k} * rspan{k}" + (f" + r.gauss(0.0, noise{k})" if wire.noise else "")
+        scaled = f"max(-32_768, min(32_767, round({raw})))"
+        lines.append(f"    v = s[{wire.signal!r}]")
+        if wire.noise:  # a fresh draw in every step
             scope[f"noise{k}"] = wire.noise
-            lines.append(f"    raw += r.gauss(0.0, noise{k})")
-        lines.append(f"    i[{wire.tag!r}] = max(-32_768, min(32_767, round(raw)))")
+            lines.append(f"    i[{wire.tag!r}] = {scaled}")
+        else:  # a function of the value alone: computed again only when the value changed
+            scope[f"last{k}"] = [_UNSET, None]
+            lines += [
+                f"    if v != last{k}[0]:",
+                f"        last{k}[0], last{k}[1] = v, {scaled}",
+                f"    i[{wire.tag!r}] = last{k}[1]",
+            ]
     exec("def copy(s, i, r):\n" + ("\n".join(lines) or "    pass"), scope)  # built from wiring names
     return scope["copy"]
