@@ -12,6 +12,8 @@ network ran. A program that writes an input tag changes what it reads itself, ne
 
 from __future__ import annotations
 
+import re
+from collections import Counter
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -218,10 +220,31 @@ def _compile_getter(
     program's): ``d`` is the CPU's tags, ``i`` the inputs as delivered (:attr:`CPU.image_in`). With
     ``head`` it takes the scan's start, end and task number and returns the whole trace row; with ``outputs`` it
     takes the output modules' values ``o`` (the sources name them); ``sample()``'s values end the row."""
+    bases, sources = _shared_bases(sources)
     body = "".join(f"{source}, " for source in sources) + ("*s()" if sample is not None else "")
-    scope = {"__builtins__": {}, "s": sample}
-    if head:
-        return eval(f"lambda d, i, a, b, n: (a, b, n, {body})", scope)  # built from tag names
-    if outputs:
-        return eval(f"lambda d, i, o: ({body})", scope)  # built from tag names
-    return eval(f"lambda d, i: ({body})", scope)  # built from tag names, not program text
+    scope: dict[str, Any] = {"__builtins__": {}, "s": sample}
+    args = "d, i, a, b, n" if head else "d, i, o" if outputs else "d, i"
+    locals_ = "".join(f"    {name} = {base}\n" for base, name in bases.items())
+    row = f"(a, b, n, {body})" if head else f"({body})"
+    exec(f"def row({args}):\n{locals_}    return {row}\n", scope)  # built from tag names, not program text
+    return scope["row"]
+
+
+_BASE = re.compile(r"""(d\[(?:'[^'\\]*'|"[^"\\]*")\](?:\.__dict__)?)(\[.+|\..+)""")
+"""A source read through a block or a data block: ``d['DB'].__dict__`` + ``['member']``, ``d['T1']`` + ``._et``."""
+
+
+def _shared_bases(sources: list[str]) -> tuple[dict[str, str], list[str]]:
+    """The blocks that several sources read through, each looked up once per row into a local (a DB with
+    nine traced members: one lookup instead of nine), and the sources rewritten to read the locals.
+
+    >>> _shared_bases(["i['S1']", "d['DB'].__dict__['A']", "d['DB'].__dict__['B']", "d['T1']._q"])
+    ({"d['DB'].__dict__": '_b0'}, ["i['S1']", "_b0['A']", "_b0['B']", "d['T1']._q"])
+    """
+    split = [_BASE.fullmatch(source) for source in sources]
+    counts = Counter(m.group(1) for m in split if m)
+    bases = {base: f"_b{k}" for k, base in enumerate(b for b, count in counts.items() if count > 1)}
+    rewritten = [
+        bases[m.group(1)] + m.group(2) if m and m.group(1) in bases else source for m, source in zip(split, sources)
+    ]
+    return bases, rewritten

@@ -226,6 +226,8 @@ class Simulation:
         if wiring is not None and cpu.output_version != self._out_version:  # the outputs as the run starts
             self._out_version = cpu.output_version
             wiring.write_outputs(cpu.outputs)
+        # what the loop compares in every step, as locals (written back to self where they change)
+        out_version, diag_seen, next_frame = self._out_version, self._diag_seen, self._next_frame
         try:
             while t < end_ns and not self.paused:
                 if t >= actions.next_due:
@@ -236,8 +238,9 @@ class Simulation:
                 run_cpu(t + dt)
                 if cpu.mode != RUN:
                     self.recorder.on_stopped(t, t + dt)
-                if len(cpu.diagnostics) != self._diag_seen:
+                if len(cpu.diagnostics) != diag_seen:
                     self._cpu_events()
+                    diag_seen = self._diag_seen
                 if plant_step is not None:
                     try:
                         plant_step(dt)
@@ -252,18 +255,20 @@ class Simulation:
                         actions.on_events(events)
                         events.clear()
                         self._frame_still = False  # something happened on a still machine: draw it
-                if cpu.output_version != self._out_version:
-                    self._out_version = cpu.output_version
+                if cpu.output_version != out_version:
+                    out_version = self._out_version = cpu.output_version
                     if wiring is not None:
                         wiring.write_outputs(cpu.outputs)
                 t += dt
                 self.now = t
-                if frame_ns and t >= self._next_frame:
+                if frame_ns and t >= next_frame:
                     self._sample_frame(t, quiet)
+                    next_frame = self._next_frame
                 if actions.polled:
                     actions.poll(t, sensors)
                 if quiet is not None and cpu.mode == RUN and quiet():
                     t = self._skip_quiet(t, end_ns)
+                    next_frame = self._next_frame
                 if t >= next_report:
                     progress(t - start, end_ns - start)  # type: ignore[misc]
                     next_report = t + report_every

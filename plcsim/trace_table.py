@@ -43,6 +43,7 @@ from __future__ import annotations
 import json
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import asdict, dataclass, field
+from itertools import chain
 from pathlib import Path
 from typing import Any
 
@@ -124,9 +125,18 @@ class TraceTable:
             self._pack()
 
     def _pack(self) -> None:
-        if self._pending:
-            self._blocks.append(np.array(self._pending, dtype=np.float64))
-            self._pending.clear()
+        rows = self._pending
+        if rows:
+            count = len(rows) * (HEAD + len(self.names))
+            if sum(map(len, rows)) == count:  # every row as wide as the table: read them as one stream
+                try:  # the same float64 conversion of each value as np.array's, a third cheaper (the hot path)
+                    block = np.fromiter(chain.from_iterable(rows), np.float64, count).reshape(len(rows), -1)
+                except (TypeError, ValueError):  # a value fromiter cannot convert (None): numpy's general path
+                    block = np.array(rows, dtype=np.float64)
+            else:
+                block = np.array(rows, dtype=np.float64)
+            self._blocks.append(block)
+            rows.clear()
             self._packed = None
 
     def row_sink(self) -> tuple[list[tuple[Any, ...]], Callable[[], None]]:

@@ -12,7 +12,7 @@ False
 from __future__ import annotations
 
 import random
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -101,6 +101,7 @@ class Wiring:
                     self._inputs_analog.append((w, spec))
             else:
                 self._outputs.append((w, spec))
+        self._copy_inputs = _input_copier(self._inputs_bool, self._inputs_analog)
         self.faults: dict[str, _Fault] = {}
         self._chatter: dict[str, list[tuple[int, int]]] = {}
         self._last_physical: dict[str, Any] = {}
@@ -174,12 +175,10 @@ class Wiring:
         if self.faults or self._chatter:
             for signal, tag, invert in self._inputs_bool:
                 inputs[tag] = self._faulted_level(signal, invert, sensors[signal], now_ns)
-        else:
-            for signal, tag, invert in self._inputs_bool:
-                value = sensors[signal]
-                inputs[tag] = (not value) if invert else value
-        for wire, spec in self._inputs_analog:
-            inputs[wire.tag] = self._raw(wire, spec, sensors[wire.signal], wire.signal)
+            for wire, spec in self._inputs_analog:
+                inputs[wire.tag] = self._raw(wire, spec, sensors[wire.signal], wire.signal)
+            return
+        self._copy_inputs(sensors, inputs, self.rng)
 
     def write_outputs(self, outputs: Mapping[str, Any]) -> None:
         """Send changed PLC outputs to the plant's actuators."""
@@ -302,3 +301,44 @@ class Wiring:
 
 
 _UNSET = object()
+
+
+def _input_copier(
+    levels: list[tuple[str, str, bool]], analogs: list[tuple[Wire, SignalSpec]]
+) -> Callable[[Mapping[str, Any], dict[str, Any], random.Random], None]:
+    """One function copying every sensor to its input, the fault-free loop of :meth:`Wiring.read_inputs`
+    written out once per wiring: Boolean sensors NC-inverted, analog ones scaled as :meth:`Wiring._raw`
+    scales them (the same operations in the same order, the same noise draws). Built from the wiring's
+    signal and tag names (``repr`` literals) and numbers, never from a program's text.
+
+    >>> sensors = {"S1": True, "S2": True, "T": 50.0}
+    >>> copy, image = _input_copier([("S1", "I_S1", False), ("S2", "I_S2", True)], []), {}
+    >>> copy(sensors, image, random.Random(0))
+    >>> image
+    {'I_S1': True, 'I_S2': False}
+    >>> copy = _input_copier([], [(analog("T", "IW_T"), SignalSpec("T", "sensor", "analog", lo=0.0, hi=100.0))])
+    >>> copy(sensors, image, random.Random(0))
+    >>> image["IW_T"], copy({"T": 100.0}, image, random.Random(0)), image["IW_T"]
+    (13824, None, 27648)
+    """
+    lines = [f"    i[{tag!r}] = {'not ' if invert else ''}s[{signal!r}]" for signal, tag, invert in levels]
+    scope: dict[str, Any] = {"__builtins__": {}, "max": max, "min": min, "round": round}
+    for k, (wire, spec) in enumerate(analogs):
+        lo_raw, hi_raw = wire.raw
+        scope.update({f"lo{k}": spec.lo, f"span{k}": spec.hi - spec.lo})
+        scope.update({f"raw{k}": lo_raw, f"rspan{k}": hi_raw - lo_raw})
+        raw = f"raw{k} + (v - lo{k}) / span{k} * rspan{k}" + (f" + r.gauss(0.0, noise{k})" if wire.noise else "")
+        scaled = f"max(-32_768, min(32_767, round({raw})))"
+        lines.append(f"    v = s[{wire.signal!r}]")
+        if wire.noise:  # a fresh draw in every step
+            scope[f"noise{k}"] = wire.noise
+            lines.append(f"    i[{wire.tag!r}] = {scaled}")
+        else:  # a function of the value alone: computed again only when the value changed
+            scope[f"last{k}"] = [_UNSET, None]
+            lines += [
+                f"    if v != last{k}[0]:",
+                f"        last{k}[0], last{k}[1] = v, {scaled}",
+                f"    i[{wire.tag!r}] = last{k}[1]",
+            ]
+    exec("def copy(s, i, r):\n" + ("\n".join(lines) or "    pass"), scope)  # built from wiring names
+    return scope["copy"]
