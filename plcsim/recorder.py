@@ -231,15 +231,15 @@ def _compile_getter(
 
 
 _BASE = re.compile(r"""(d\[(?:'[^'\\]*'|"[^"\\]*")\](?:\.__dict__)?)(\[.+|\..+)""")
-"""A source read through a block or a data block: ``d['DB'].__dict__`` + ``['member']``, ``d['T1']`` + ``._et``."""
+"""A source read through a block or a data block: ``d['DB'].__dict__`` + ``['member']``, ``d['T1']`` + ``.ET``."""
 
 
 def _shared_bases(sources: list[str]) -> tuple[dict[str, str], list[str]]:
     """The blocks that several sources read through, each looked up once per row into a local (a DB with
     nine traced members: one lookup instead of nine), and the sources rewritten to read the locals.
 
-    >>> _shared_bases(["i['S1']", "d['DB'].__dict__['A']", "d['DB'].__dict__['B']", "d['T1']._q"])
-    ({"d['DB'].__dict__": '_b0'}, ["i['S1']", "_b0['A']", "_b0['B']", "d['T1']._q"])
+    >>> _shared_bases(["i['S1']", "d['DB'].__dict__['A']", "d['DB'].__dict__['B']", "d['T1'].Q"])
+    ({"d['DB'].__dict__": '_b0'}, ["i['S1']", "_b0['A']", "_b0['B']", "d['T1'].Q"])
     """
     split = [_BASE.fullmatch(source) for source in sources]
     counts = Counter(m.group(1) for m in split if m)
