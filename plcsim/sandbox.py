@@ -461,29 +461,34 @@ def _readable(exercise: Exercise, path: Path) -> list[str]:
     folders and loaded packages, so it runs once per batch, not once per submission."""
     hidden = {s.path.resolve().parent for s in exercise.solutions}
     hidden |= {h.parent for h in hidden if h.parent.name == "solutions"}
-    hidden.add(Path(tempfile.gettempdir()).resolve())
+    temp = Path(tempfile.gettempdir()).resolve()
     folder = path.resolve().parent  # its sub-folders may hold packages; its files are other submissions
     roots = {Path(p) for p in _SYSTEM_READABLE}
     roots |= {Path(p) for p in _PYTHON_PATHS}
     roots |= {_package_root(m) for m in list(sys.modules.values())} - {None}  # type: ignore[arg-type]
-    return list(_granted(folder, frozenset(hidden), frozenset(roots)))
+    return list(_granted(folder, frozenset(hidden), temp, frozenset(roots)))
 
 
 @functools.lru_cache(maxsize=32)
-def _granted(folder: Path, hidden: frozenset[Path], roots: frozenset[Path]) -> tuple[str, ...]:
-    """The trees below ``roots`` a child may read: each root whole, or, where it holds a hidden folder or
-    the submissions' ``folder``, its other entries (never the files of ``folder`` itself)."""
+def _granted(folder: Path, hidden: frozenset[Path], temp: Path, roots: frozenset[Path]) -> tuple[str, ...]:
+    """The trees below ``roots`` a child may read: each root whole, or, where it holds a hidden folder,
+    the ``temp`` folder or the submissions' ``folder``, its other entries (never the files of ``folder``
+    itself, never ``temp``).
+
+    ``temp`` (where every child has its scratch) is left out of a root that holds it, but a root inside
+    it is granted: a project cloned or installed under ``/tmp`` must still be importable by the child
+    (hiding all of ``temp`` made every lazy import of such an installation fail after the lock-down)."""
     out: list[str] = []
 
     def within(inner: Path, outer: Path) -> bool:
         return inner == outer or outer in inner.parents
 
     def grant(p: Path) -> None:
-        if any(within(p, h) for h in hidden) or not p.exists():
+        if p == temp or any(within(p, h) for h in hidden) or not p.exists():
             return
         if p.is_file() and p.parent == folder:
             return
-        if not any(within(h, p) for h in hidden) and not within(folder, p):
+        if not any(within(h, p) for h in hidden) and not within(temp, p) and not within(folder, p):
             out.append(str(p))
             return
         if p.is_dir():

@@ -97,6 +97,12 @@ def grade_request(request: dict[str, Any]) -> bytes:
         return encode_failure("memory limit", f"the submission ran out of memory (the limit is {limit} MB)")
     except RecursionError as exc:
         return encode_failure("program error", f"{request['path']}: the program nests too deeply ({exc})")
+    except ImportError as exc:  # a submission can neither import nor raise: the grader's installation is at fault
+        return encode_failure(
+            "grader error",
+            f"the grading child could not import {exc.name or 'a module'} ({exc}): the grader's installation is "
+            f"incomplete or not readable by the child; the submission was not graded",
+        )
     except Exception as exc:  # noqa: BLE001 - the grader reports it as a crash of the child
         return encode_failure("crash", f"the grading child failed: {type(exc).__name__}: {exc}")
 

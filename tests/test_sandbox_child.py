@@ -195,3 +195,51 @@ def test_the_portable_path_without_process_groups_grades_and_stops_at_the_wall_l
     assert r.warnings[0].startswith("sandbox: portable path (no resource limits, process group, namespaces")
     r = hostile(ex1, tmp_path, {"do": "cpu-hog"}, Limits(cpu_seconds=30, wall_seconds=1.5))
     assert (r.error_kind, r.error) == ("time limit", "no result within 1.5 s of wall time")
+
+
+def test_a_project_inside_the_temporary_folder_is_readable_the_scratch_beside_it_is_not(tmp_path):
+    """A clone under /tmp once made every lazy import of the child fail after the lock-down (every
+    sandboxed ``.il`` grade crashed on ``plcsim.frontends.il``): the temporary folder is hidden from a
+    root that holds it, never from a root inside it."""
+    from plcsim import sandbox
+
+    temp = tmp_path / "tmp"
+    package = temp / "clone" / "plcsim"
+    scratch = temp / "plcsim-grade-other"
+    for folder in (package, scratch, tmp_path / "lib"):
+        folder.mkdir(parents=True)
+    submissions = tmp_path / "class"
+    submissions.mkdir()
+    granted = sandbox._granted(submissions, frozenset(), temp, frozenset({package, tmp_path}))
+    assert str(package) in granted  # the root inside the temporary folder, whole
+    assert str(tmp_path / "lib") in granted  # a root holding the temporary folder: its other entries
+    assert not any(g == str(temp) or g.startswith(str(scratch)) for g in granted)
+
+
+@linux_only
+def test_a_project_installed_under_the_temporary_folder_grades_an_il_program_in_the_sandbox(tmp_path):
+    """End to end, as on a fresh clone in /tmp: a copy of the project imported from inside the temporary
+    folder grades a Tecomat program (whose front end is imported only after the lock-down)."""
+    import shutil
+    import subprocess
+
+    root = Path(__file__).resolve().parents[1]
+    temp = tmp_path / "tmp"
+    clone = temp / "clone"
+    for package in ("plcsim", "plants", "exercises"):
+        shutil.copytree(root / package, clone / package, ignore=shutil.ignore_patterns("__pycache__"))
+    submission = tmp_path / "mine.il"
+    shutil.copy(root / "exercises" / "solutions" / "T_01" / "reference.il", submission)
+    script = (
+        "import exercises, sys\n"
+        "from pathlib import Path\n"
+        "from plcsim.grading import grade_sandboxed\n"
+        "r = grade_sandboxed(exercises.get('T-01'), Path(sys.argv[1]))\n"
+        "print(r.error_kind, r.error, r.score, r.max_score)\n"
+    )
+    env = {**os.environ, "PYTHONPATH": str(clone), "TMPDIR": str(temp)}
+    out = subprocess.run(
+        [sys.executable, "-c", script, str(submission)], cwd=tmp_path, env=env, capture_output=True, text=True
+    )
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["None", "None", "8.0", "8.0"], out.stdout

@@ -232,3 +232,22 @@ def test_an_exercise_error_raised_while_a_scenario_runs_is_a_grader_error_not_a_
     r = grade(ex1, ex1.reference.path)
     assert (r.error_kind, r.passed, r.grader_failed, r.checks) == ("grader error", False, True, [])
     assert "does not support it" in r.error
+
+
+def test_a_module_the_grading_child_cannot_import_is_a_grader_error_not_the_students_crash(ex1, monkeypatch):
+    """A submission can neither import nor raise, so an ImportError in the child means the grader's own
+    installation is broken or unreadable (a clone under /tmp once hid plcsim from the child): the grade is
+    void, never a 0 for the student."""
+    import plcsim.frontends
+    from plcsim import sandbox, sandbox_child
+    from plcsim.run_result import decode
+
+    def unreadable(path):
+        raise ModuleNotFoundError("No module named 'plcsim.frontends.il'", name="plcsim.frontends.il")
+
+    monkeypatch.setattr(plcsim.frontends, "read_program", unreadable)
+    module, attribute = sandbox._locate(ex1)
+    request = {"module": module, "attribute": attribute, "path": str(ex1.reference.path), "confine": False}
+    kind, message = decode(sandbox_child.grade_request(request), [], seed=1)
+    assert kind == "grader error"
+    assert message.startswith("the grading child could not import plcsim.frontends.il (No module named")

@@ -131,3 +131,15 @@ def test_mutation_testing_of_an_il_reference_is_refused_with_the_reason():
 
     with pytest.raises(PlcError, match=r"T-01: its reference reference\.il is not a Python \(S7\) program"):
         exercise_mutants(exercises.get("T-01"))
+
+
+@pytest.mark.xdist_group("sandbox")
+def test_the_grader_s_sandbox_grades_t05_whose_scenario_sets_the_tecomat_s_clock():
+    """The sandbox's trusted probe runs on the S7, which cannot set a Tecomat clock: it must leave the
+    controller's verbs out (it once made every T-05 grade a grader error)."""
+    from plcsim.grading import grade_sandboxed
+
+    exercise = exercises.get("T-05")
+    graded = {s.name: grade_sandboxed(exercise, s.path, seed=1, scenarios=s.scenarios) for s in exercise.solutions}
+    assert graded["reference"].passed and not graded["reference"].error
+    assert not graded["wrong-printed-constants"].passed and not graded["wrong-printed-constants"].error
