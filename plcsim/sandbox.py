@@ -1,7 +1,8 @@
 """Run a submission in a fresh, confined child process and collect its raw results.
 
-The child is ``python -m plcsim.sandbox_child`` (a new interpreter: nothing of the grader's state is
-inherited), in its own session and process group, in a fresh scratch folder that is removed
+The child is ``python -m plcsim.sandbox_child`` (never a fork of the grader: nothing of its state is
+inherited; on Linux forked from a clean fork server, :mod:`plcsim.forkserver`, which spares each child
+the imports), in its own session and process group, in a fresh scratch folder that is removed
 afterwards, with limits it applies to itself before it loads the submission (:mod:`plcsim.confine`).
 Its stdout and stderr are thrown away: only the result pipe counts, and what arrives there is
 validated (:mod:`plcsim.run_result`) against what this process computed the exercise must produce.
@@ -31,11 +32,12 @@ import tempfile
 import threading
 import time
 import uuid
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from plcsim import forkserver
 from plcsim.errors import ConfigurationError
 from plcsim.exercise import Exercise
 from plcsim.program import Program
@@ -171,12 +173,53 @@ def _run_posix(entry: str, request: dict[str, Any], limits: Any, cap: int) -> tu
 
     The limit passed is ``wall`` or, where the grader watches the memory from outside (macOS), ``memory``."""
     read_end, write_end = os.pipe()
-    request = {**request, "fd": write_end}
+    try:
+        child = _start_posix(entry, request, write_end)
+    except BaseException:
+        os.close(read_end)
+        raise
+    finally:
+        os.close(write_end)
+    watch = _outside_watch(child.pid, limits)
+    try:
+        buffer, problem, stopped = _collect(child.exited, read_end, limits.wall_seconds, cap, watch)
+        if buffer is None and not stopped:  # it ended by itself: let it report how, briefly
+            _wait_exit(child.exited, EXIT_GRACE_S)
+    finally:
+        os.close(read_end)
+        _kill_group(child.pid)
+        if watch is not None:
+            watch.kill_all()
+        status, cpu_s = child.reap()
+    return buffer, problem, stopped, status, cpu_s
+
+
+@dataclass
+class _PosixChild:
+    """A started child: its pid (which is its process group), whether it ended, and its reaping."""
+
+    pid: int
+    exited: Callable[[], bool]
+    reap: Callable[[], tuple[int, float]]
+    """Wait for it (killed): its exit code (negative: the signal that killed it) and the CPU seconds it used."""
+
+
+def _start_posix(entry: str, request: dict[str, Any], write_end: int) -> _PosixChild:
+    """Fork the child from this process's fork server (:mod:`plcsim.forkserver`, Linux), or else start
+    a fresh interpreter; a server that fails is replaced by a fresh start, never by a failed grade."""
+    env = _child_env(request["scratch"])
+    if forkserver.enabled():
+        try:
+            server = forkserver.shared({k: v for k, v in env.items() if k not in _PER_CHILD_ENV})
+            pid = server.spawn(entry, request, env, request["scratch"], write_end)
+            return _PosixChild(pid, functools.partial(server.exited, pid), functools.partial(server.reap, pid))
+        except (forkserver.ForkServerError, OSError):
+            pass
     try:
         proc = subprocess.Popen(
-            _command(entry, request),
+            _command(entry, {**request, "fd": write_end}),
             cwd=request["scratch"],
-            env=_child_env(request["scratch"]),
+            env=env,
             stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL,
@@ -184,22 +227,12 @@ def _run_posix(entry: str, request: dict[str, Any], limits: Any, cap: int) -> tu
             start_new_session=True,
         )
     except OSError as exc:
-        os.close(read_end)
         raise ConfigurationError(f"cannot start the grading child: {exc}") from None
-    finally:
-        os.close(write_end)
-    watch = _outside_watch(proc.pid, limits)
-    try:
-        buffer, problem, stopped = _collect(proc, read_end, limits.wall_seconds, cap, watch)
-        if buffer is None and not stopped:  # it ended by itself: let it report how, briefly
-            _wait_exit(proc.pid, EXIT_GRACE_S)
-    finally:
-        os.close(read_end)
-        _kill_group(proc.pid)
-        if watch is not None:
-            watch.kill_all()
-        status, cpu_s = _reap(proc)
-    return buffer, problem, stopped, status, cpu_s
+    return _PosixChild(proc.pid, functools.partial(_exited, proc.pid), functools.partial(_reap, proc))
+
+
+_PER_CHILD_ENV = ("HOME", "TMPDIR")
+"""The variables of a child's environment that name its own scratch folder (not the fork server's)."""
 
 
 def _run_portable(entry: str, request: dict[str, Any], limits: Any, cap: int) -> tuple[Any, ...]:
@@ -275,7 +308,7 @@ def _outside_watch(pid: int, limits: Any) -> Any:
 
 
 def _collect(
-    proc: subprocess.Popen, fd: int, wall_s: float, cap: int, watch: Any = None
+    exited: Callable[[], bool], fd: int, wall_s: float, cap: int, watch: Any = None
 ) -> tuple[bytes | None, str | None, str | None]:
     """Read one message from ``fd``: (the message or None, a protocol problem or None, the limit passed).
 
@@ -293,7 +326,7 @@ def _collect(
         passed = watch.check() if watch is not None else None
         if passed is not None:
             return None, None, passed
-        gone = _exited(proc.pid)  # before select: what it wrote before exiting is readable now
+        gone = exited()  # before select: what it wrote before exiting is readable now
         ready, _, _ = select.select([fd], [], [], min(remaining, 0.05))
         data = b""
         if ready:
@@ -330,9 +363,9 @@ def _exited(pid: int) -> bool:
     return os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is not None
 
 
-def _wait_exit(pid: int, seconds: float) -> None:
+def _wait_exit(exited: Callable[[], bool], seconds: float) -> None:
     deadline = time.monotonic() + seconds
-    while not _exited(pid) and time.monotonic() < deadline:
+    while not exited() and time.monotonic() < deadline:
         time.sleep(0.01)
 
 

@@ -65,6 +65,7 @@ def work(request: dict[str, Any]) -> bytes:
         pid = os.fork()
         if pid == 0:
             os.setsid()
+            _name_myself(SLEEPER)
             time.sleep(60)
             os._exit(0)
         Path(order["pid_file"]).write_text(str(pid))
@@ -107,11 +108,41 @@ def work(request: dict[str, Any]) -> bytes:
         chunks = []
         while True:
             chunks.append(bytearray(64 << 20))
+    if do == "descriptors":  # what a forked child could still reach of the fork server: nothing
+        runs = _runs(request)
+        listing = os.listdir("/proc/self/fd")  # opens one descriptor of its own while it lists
+        runs[0].warnings = [f"open {fd} -> {_target(int(fd))}" for fd in sorted(listing, key=int)]
+        return encode_runs(runs)
+    if do == "poison":  # change in this process what the next child would use, if it were inherited
+        import plcsim.grading
+        import plcsim.run_result
+
+        plcsim.grading.run_scenarios = None
+        plcsim.run_result.encode_runs = lambda *a, **k: b"forged"
+        sys.modules[request["module"]].__dict__.clear()
+        os._exit(3)
     if do == "raise-memory-error":
         raise MemoryError("pretend to be out of memory")
     if do == "exit":
         os._exit(order["code"])
     raise ValueError(f"unknown behaviour {do!r}")
+
+
+SLEEPER = b"hostile-sleeper"
+"""The name (``/proc/PID/comm``) a process the hostile child leaves behind gives itself, for the tests to find."""
+
+
+def _name_myself(name: bytes) -> None:
+    import ctypes
+
+    ctypes.CDLL(None).prctl(15, ctypes.c_char_p(name), 0, 0, 0)  # PR_SET_NAME
+
+
+def _target(fd: int) -> str:
+    try:
+        return os.readlink(f"/proc/self/fd/{fd}")
+    except OSError:
+        return "closed"
 
 
 def _set_first(key: str, value: Any) -> Any:

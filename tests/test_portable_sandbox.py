@@ -59,6 +59,12 @@ def portable(monkeypatch):
     monkeypatch.setenv(MODE_VARIABLE, "portable")
 
 
+@pytest.fixture
+def start():
+    """How the imported tests' child starts: afresh (the portable path has no fork server)."""
+    return "fresh"
+
+
 def hostile(ex1, tmp_path, order, limits=None):
     path = tmp_path / "order.py"
     path.write_text(json.dumps(order), encoding="utf-8")

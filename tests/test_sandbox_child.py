@@ -19,6 +19,7 @@ from pathlib import Path
 import pytest
 
 from exercises import get
+from plcsim import forkserver
 from plcsim.errors import ConfigurationError
 from plcsim.grading import Limits, grade_sandboxed
 
@@ -27,6 +28,7 @@ from plcsim.grading import Limits, grade_sandboxed
 pytestmark = pytest.mark.xdist_group("sandbox")
 
 HOSTILE = "sandbox_hostile_child"
+SLEEPER = b"hostile-sleeper"  # the name sandbox_hostile_child's left-behind process gives itself
 linux_only = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="namespaces and Landlock are Linux's")
 
 
@@ -39,6 +41,14 @@ def hostile(ex1, tmp_path, order, limits=None):
     path = tmp_path / "order.py"
     path.write_text(json.dumps(order), encoding="utf-8")
     return grade_sandboxed(ex1, path, child_entry=HOSTILE, limits=limits)
+
+
+@pytest.fixture(params=["forked", "fresh"])
+def start(request, monkeypatch):
+    """Both ways a child starts: forked from the fork server (Linux) and as a fresh interpreter."""
+    if request.param == "fresh":
+        monkeypatch.setenv(forkserver.VARIABLE, "off")
+    return request.param
 
 
 @pytest.fixture
@@ -89,7 +99,9 @@ def process_alive(pid: int) -> bool:
 
 
 @linux_only
-def test_a_grandchild_that_leaves_the_group_and_holds_the_pipe_neither_delays_the_grade_nor_survives(ex1, tmp_path):
+def test_a_grandchild_that_leaves_the_group_and_holds_the_pipe_neither_delays_the_grade_nor_survives(
+    ex1, tmp_path, start
+):
     pid_file = tmp_path / "grandchild.pid"
     started = time.perf_counter()
     r = hostile(ex1, tmp_path, {"do": "grandchild", "pid_file": str(pid_file)})
@@ -103,21 +115,23 @@ def test_a_grandchild_that_leaves_the_group_and_holds_the_pipe_neither_delays_th
 
 
 def any_sleeper_left() -> bool:
-    """True while a process started by the hostile child (python -m sandbox_hostile_child) still lives."""
+    """True while a process started by the hostile child still lives: started afresh, its command line
+    names the hostile child; forked from the fork server, it has named itself (``SLEEPER``)."""
     for entry in os.listdir("/proc"):
         if entry.isdigit() and int(entry) != os.getpid():
             try:
                 cmd = Path(f"/proc/{entry}/cmdline").read_bytes()
+                name = Path(f"/proc/{entry}/comm").read_bytes().strip()
             except OSError:
                 continue
-            if HOSTILE.encode() in cmd and process_alive(int(entry)):
+            if (HOSTILE.encode() in cmd or name == SLEEPER) and process_alive(int(entry)):
                 return True
     return False
 
 
 @linux_only
 def test_after_the_lock_down_nothing_secret_is_read_nothing_written_outside_scratch_nothing_forks_or_connects(
-    ex1, tmp_path, private_tmp
+    ex1, tmp_path, private_tmp, start
 ):
     outside = tmp_path / "outside"
     outside.mkdir()
@@ -143,13 +157,13 @@ def test_after_the_lock_down_nothing_secret_is_read_nothing_written_outside_scra
     assert list(private_tmp.iterdir()) == []  # nothing in the temporary folder, the scratch folder is gone too
 
 
-def test_an_exit_without_result_is_a_crash_with_its_exit_code_and_leaves_no_scratch(ex1, tmp_path, private_tmp):
+def test_an_exit_without_result_is_a_crash_with_its_exit_code_and_leaves_no_scratch(ex1, tmp_path, private_tmp, start):
     r = hostile(ex1, tmp_path, {"do": "exit", "code": 5})
     assert (r.error_kind, r.error) == ("crash", "the grading process exited with code 5 without sending a result")
     assert list(private_tmp.iterdir()) == []
 
 
-def test_a_cpu_hog_is_stopped_by_the_cpu_limit_and_named_so(ex1, tmp_path):
+def test_a_cpu_hog_is_stopped_by_the_cpu_limit_and_named_so(ex1, tmp_path, start):
     r = hostile(ex1, tmp_path, {"do": "cpu-hog"}, Limits(cpu_seconds=1, wall_seconds=30))
     assert (r.error_kind, r.error) == ("time limit", "the submission used more than 1 s of CPU time")
 
@@ -160,7 +174,7 @@ def test_a_wall_clock_hog_is_stopped_by_the_wall_limit_and_named_so(ex1, tmp_pat
     assert r.elapsed_s < 5
 
 
-def test_a_memory_hog_is_a_memory_limit_a_raised_memory_error_is_not(ex1, tmp_path):
+def test_a_memory_hog_is_a_memory_limit_a_raised_memory_error_is_not(ex1, tmp_path, start):
     r = hostile(ex1, tmp_path, {"do": "memory-hog"}, Limits(memory_mb=600, wall_seconds=30))
     assert (r.error_kind, r.error) == ("memory limit", "the submission ran out of memory (the limit is 600 MB)")
     r = hostile(ex1, tmp_path, {"do": "raise-memory-error"})
