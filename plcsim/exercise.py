@@ -144,7 +144,16 @@ class Exercise:
     # -- building a run -----------------------------------------------------------------------
 
     def tag_table(self) -> TagTable:
-        """The exercise's tags: its I/O table and data blocks."""
+        """The exercise's tags: its I/O table and data blocks (a fresh copy of the table built once for
+        them, so that the data blocks' types are the same objects in every simulation and a program
+        compiled for one scenario is reused in the next: see :meth:`Program.compile`)."""
+        key = (tuple(self.io), tuple(self.dbs.items()))
+        cached = self.__dict__.get("_tag_table")
+        if cached is None or cached[0] != key:
+            cached = self.__dict__["_tag_table"] = (key, self._build_tag_table())
+        return cached[1].copy()
+
+    def _build_tag_table(self) -> TagTable:
         table = TagTable()
         for row in self.io:
             dtype = type_by_name(row.type)

@@ -35,7 +35,7 @@ import builtins
 import inspect
 import textwrap
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -75,6 +75,8 @@ MAX_VALUES = 1_000_000
 MAX_MERGED_STATEMENTS = 5000
 """Above this many statements an OB's networks are not merged into one function (see merge_networks):
 the merge speeds up scans of ordinary programs and would only slow down loading a huge one."""
+COMPILED_KEPT = 4
+"""How many compilations (tag tables and options) a program keeps for its next downloads."""
 
 
 def label(name: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
@@ -185,6 +187,7 @@ class Program:
         self.types: dict[str, StructType] = {}
         self.tasks: dict[str, TaskSpec] = {}
         self.constants: dict[str, Any] = {}
+        self._compiled: list[tuple[tuple[Any, ...], CompiledProgram]] = []
         self._collect()
 
     @property
@@ -399,7 +402,22 @@ class Program:
     ) -> CompiledProgram:
         """Compile against a tag table that already holds this program's declarations.
 
-        A store into an input tag (%I) is a warning, or with ``input_writes="error"`` a ProgramError."""
+        A store into an input tag (%I) is a warning, or with ``input_writes="error"`` a ProgramError.
+
+        The result is kept for an equal table and options: a grade downloads the same program once per
+        scenario, and compiling a large one costs a tenth of a second each time. Each call gets its
+        own warnings list and timer set (the code and the analysis are never changed once built)."""
+        key = (table.entries, aliased, strict_timers, family, input_writes)
+        for known, compiled in self._compiled:
+            if known == key:
+                return replace(compiled, warnings=list(compiled.warnings), inert_timers=set(compiled.inert_timers))
+        compiled = self._compile(table, aliased, strict_timers, family, input_writes)
+        self._compiled = [*self._compiled[-(COMPILED_KEPT - 1) :], ((dict(table.entries), *key[1:]), compiled)]
+        return replace(compiled, warnings=list(compiled.warnings), inert_timers=set(compiled.inert_timers))
+
+    def _compile(
+        self, table: TagTable, aliased: frozenset[str], strict_timers: bool, family: str, input_writes: str
+    ) -> CompiledProgram:
         root_params = {}
         for task in self.tasks.values():
             for net in task.networks:

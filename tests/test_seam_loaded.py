@@ -56,3 +56,22 @@ def test_a_program_file_is_read_by_the_front_end_its_suffix_names(tmp_path: Path
     assert isinstance(program, Program) and program.filename == str(tmp_path / "led.py")
     with pytest.raises(ProgramError, match=r"led\.txt: no front end reads \.txt; use \.il, \.py"):
         read_program(tmp_path / "led.txt")
+
+
+def test_a_program_downloaded_again_to_an_equal_table_reuses_its_compilation_and_no_more():
+    """A grade downloads one program once per scenario: the second download of an equal table reuses the
+    code (each gets its own warnings and timer set); another table or option compiles anew."""
+    from exercises import get
+
+    exercise = get("4.3.17")  # a data block, whose type is built with the exercise's table
+    program = exercise.reference.program()
+    first, again = (program.declare_into(exercise.tag_table()) for _ in range(2))
+    a, b = program.compile(first), program.compile(again)
+    assert b.code is a.code and b.analysis is a.analysis
+    assert b.warnings == a.warnings and b.warnings is not a.warnings and b.inert_timers is not a.inert_timers
+    assert program.compile(first, input_writes="error").code is not a.code
+    other = program.declare_into(exercise.tag_table())
+    other.add("EXTRA", Tag("%M90.0"), source="test")
+    assert program.compile(other).code is not a.code
+    assert exercise.tag_table() is not exercise.tag_table()  # each caller may add to its own copy
+    assert exercise.tag_table().entries["DATA"] is exercise.tag_table().entries["DATA"]
