@@ -172,6 +172,24 @@ def shared(env: Mapping[str, str]) -> ForkServer:
         return server
 
 
+def _forget_servers_in_a_forked_grader() -> None:
+    """In a child forked from the grader: drop the grader's servers (their reader threads did not come
+    along, and a second process on one socket would take the other's replies); each is closed here only,
+    so the server lives on for the grader, and this process starts its own when it grades."""
+    global _SERVERS_LOCK
+    _SERVERS_LOCK = threading.Lock()  # another thread may have held it at the fork
+    servers = list(_SERVERS.values())
+    _SERVERS.clear()
+    for server in servers:
+        server.alive = False
+        with contextlib.suppress(OSError):
+            server._socket.close()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_servers_in_a_forked_grader)
+
+
 def close_all() -> None:
     """End every server this process started (tests; a grader's servers also end with it)."""
     with _SERVERS_LOCK:

@@ -148,3 +148,26 @@ def _named(name: bytes) -> list[int]:
             except OSError:
                 continue
     return found
+
+
+def test_a_grader_forked_after_it_graded_starts_a_server_of_its_own_and_leaves_the_first_alone(ex1):
+    assert grade_sandboxed(ex1, ex1.reference.path).passed
+    (server,) = servers()
+    pid = os.fork()
+    if pid == 0:  # the forked grader: its inherited server is not its own
+        code = 3
+        try:
+            mine = grade_sandboxed(ex1, ex1.reference.path)
+            code = 0 if mine.passed and servers() and servers()[0] is not server else 1
+        finally:
+            os._exit(code)
+    status, deadline = None, time.monotonic() + 60
+    while status is None and time.monotonic() < deadline:
+        done, raw = os.waitpid(pid, os.WNOHANG)
+        status = os.waitstatus_to_exitcode(raw) if done else time.sleep(0.05)
+    if status is None:
+        os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+    assert status == 0
+    assert grade_sandboxed(ex1, ex1.reference.path).passed
+    assert servers() == [server]
