@@ -93,11 +93,12 @@ class ForkServer:
         with self._send:
             self._next_id += 1
             ident = self._next_id
-            message = json.dumps({"id": ident, "entry": entry, "request": request, "env": dict(env), "cwd": cwd})
+            fields = {"id": ident, "entry": entry, "request": request, "env": dict(env), "cwd": cwd}
+            message = json.dumps(fields).encode("utf-8")
             if len(message) > MAX_MESSAGE:
                 raise ForkServerError(f"the request has {len(message)} bytes, more than the server reads")
             try:
-                socket.send_fds(self._socket, [message.encode("utf-8")], [fd])
+                socket.send_fds(self._socket, [message], [fd])
             except OSError as exc:
                 self._gone()
                 raise ForkServerError(f"the fork server is gone: {exc}") from None
@@ -133,7 +134,11 @@ class ForkServer:
         self._gone()
         with contextlib.suppress(OSError):
             self._socket.shutdown(socket.SHUT_RDWR)
-        self.process.wait()
+        try:
+            self.process.wait(timeout=5)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            self.process.wait()
 
     def _receive(self) -> None:
         while True:
@@ -148,6 +153,7 @@ class ForkServer:
             with self._changed:
                 if "id" in reply:
                     self._started[reply["id"]] = reply.get("pid") or reply.get("error", "no reason given")
+                    self._ended.pop(reply.get("pid"), None)  # an unreaped child's end, with the pid reused
                 else:
                     self._ended[reply["pid"]] = (reply["status"], reply["cpu_s"])
                 self._changed.notify_all()
