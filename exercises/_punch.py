@@ -9,9 +9,22 @@ from dataclasses import dataclass
 import numpy as np
 
 from exercises._truth import GONE, Parts, parts_equal
-from plcsim.check import Check, Condition, Context, Verdict, all_of, always, any_of, event, event_data, never, off
+from plcsim.check import (
+    Check,
+    Condition,
+    Context,
+    Verdict,
+    all_of,
+    always,
+    any_of,
+    event,
+    event_data,
+    final,
+    never,
+    off,
+)
 from plcsim.check.base import Names
-from plcsim.exercise import IO
+from plcsim.exercise import IO, GradedCheck, only
 from plcsim.scenario import after_event, held, place, remove, write
 from plcsim.trace import Trace
 
@@ -104,6 +117,24 @@ def cycles(
             actions += [write(tag, v, when=gone, delay="0.3s..0.6s") for tag, v in writes.get(k + 1, {}).items()]
             actions.append(place(f"p{k + 1}", at=at, when=gone, delay="1s..2s"))
     return actions
+
+
+TAKEN_FROM_THE_PRESS = "object taken from under the press"
+STROKE_TO_UP = "0.3s..1.2s"
+"""When, after a press stroke came down on it, the operator takes the object from under the press: while the ram
+goes back up (the tip reaches KS2 0.12 s after the stroke, KS1 1.48 s after it). A removal while the ram is on its
+way down is not a scenario: the stroke then comes down on an empty place, which the textbook's programs (they set
+M2_DOLE and reset it only at KS2) cannot avoid and the text does not ask for."""
+
+
+def taken_from_the_press(writes: dict[str, int]) -> list:
+    """One object p1 loaded at OS1 after the HMI ``writes``; the operator takes it from under the press
+    :data:`STROKE_TO_UP` after the first stroke came down on it, and loads nothing more."""
+    return [
+        *(write(tag, v, t="0.1s") for tag, v in writes.items()),
+        place("p1", at="OS1", t="0.3s..0.8s"),
+        remove("p1", when=after_event("press stroke"), delay=STROKE_TO_UP),
+    ]
 
 
 # --------------------------------------------------------------------------------------------
@@ -390,7 +421,7 @@ def shuttle(ignore: tuple[str, ...] = (), *, reverse_at_os2: bool = True) -> lis
     return checks
 
 
-def waits_at_os1() -> Check:
+def waits_at_os1(ignore: tuple[str, ...] = ()) -> Check:
     """Criterion of the shuttling tasks: each object, back at OS1, stays until the operator takes it away."""
     return PerObject(
         "every object waits at OS1 until it is taken away",
@@ -398,12 +429,14 @@ def waits_at_os1() -> Check:
         removed,
         constant(1),
         events=(("part removed", None),),
+        ignore=ignore,
     )
 
 
-def counts_arrivals() -> Check:
-    """6.3.2 criterion 2 (kept by 6.3.4 and 6.3.5): M1_AKTUALNY_POCET follows the object's arrivals at OS2."""
-    return always(parts_equal("M1_AKTUALNY_POCET", Arrivals())).named(
+def counts_arrivals(ignore: tuple[str, ...] = ()) -> Check:
+    """6.3.2 criterion 2 (kept by 6.3.4 and 6.3.5): M1_AKTUALNY_POCET follows the object's arrivals at OS2
+    (``ignore``: objects taken off the belt before they arrived, whose removal no sensor sees)."""
+    return always(parts_equal("M1_AKTUALNY_POCET", Arrivals(ignore))).named(
         "M1_AKTUALNY_POCET counts the object's arrivals at OS2 and is 0 after its removal"
     )
 
@@ -424,37 +457,69 @@ def belt_waits_for_the_press() -> list[Check]:
     ]
 
 
+def taken_checks() -> list[Check | GradedCheck]:
+    """What a program must do when the object is taken from under the press between two strokes (or after its
+    stroke): no stroke without an object (6.3.3 criterion 2, kept by 6.3.4), the ram back at KS1, and the belt
+    standing, for there is nothing to carry back (the removal is the rising edge of OS2 with the belt standing,
+    which every program sees)."""
+    empty = Parts("OS1", label="objects in the machine") == 0
+    return [
+        never(all_of("OS2", "M2_DOLE")).named("the press goes down only for an object at OS2"),
+        only(
+            never(all_of(empty, any_of("M1_VPRED", "M1_VZAD"))).named(
+                "the belt stands once the object is taken from under the press"
+            ),
+            TAKEN_FROM_THE_PRESS,
+        ),
+        only(final("KS1").equals(1).named("the press finishes its stroke and waits at KS1"), TAKEN_FROM_THE_PRESS),
+    ]
+
+
 def punching_checks(
     strokes_per_visit: Callable[[Trace, int], int],
     per_object: Callable[[Trace, int], int],
     label: str,
     reads: tuple[str, ...],
-) -> list[Check]:
+    whole: tuple[str, ...],
+) -> list[Check | GradedCheck]:
     """The checks 6.3.4 and 6.3.5 share: strokes per stay and per object, the reverse after the last stroke,
-    the moves, the belt waiting for the press, the shuttle of 6.3.1 and the interlocks."""
+    the moves, the belt waiting for the press, the shuttle of 6.3.1, the interlocks and :func:`taken_checks`.
+    ``whole``: the scenarios in which every object makes its whole cycle (the strokes, moves and count checks are
+    graded there, not on an object taken from under the press)."""
     return [
         # criterion 1
-        PerVisit(
-            f"every stay under the press gets {label}", strokes_per_visit, reads=tuple(r for r in reads if "M2" in r)
+        only(
+            PerVisit(
+                f"every stay under the press gets {label}",
+                strokes_per_visit,
+                reads=tuple(r for r in reads if "M2" in r),
+            ),
+            *whole,
         ),
         strokes_land_on_objects(),
-        PerObject(
-            f"every object is punched {' × '.join(reads)} times",
-            "was punched",
-            strokes_on,
-            per_object,
-            reads=reads,
-            events=(("press stroke", None),),
+        only(
+            PerObject(
+                f"every object is punched {' × '.join(reads)} times",
+                "was punched",
+                strokes_on,
+                per_object,
+                reads=reads,
+                events=(("press stroke", None),),
+            ),
+            *whole,
         ),
-        PerObject(
-            "every object is carried to OS2 M1_ZIADANY_POCET times",
-            "arrived at OS2",
-            arrivals,
-            parameter("M1_ZIADANY_POCET"),
-            reads=("M1_ZIADANY_POCET",),
-            events=(("part entered", "OS2"),),
+        only(
+            PerObject(
+                "every object is carried to OS2 M1_ZIADANY_POCET times",
+                "arrived at OS2",
+                arrivals,
+                parameter("M1_ZIADANY_POCET"),
+                reads=("M1_ZIADANY_POCET",),
+                events=(("part entered", "OS2"),),
+            ),
+            *whole,
         ),
-        counts_arrivals(),
+        only(counts_arrivals(), *whole),
         # criterion 2
         *belt_waits_for_the_press(),
         # criterion 3
@@ -466,4 +531,5 @@ def punching_checks(
         *shuttle(reverse_at_os2=False),
         *interlocks(),
         *machine_safe(),
+        *taken_checks(),
     ]

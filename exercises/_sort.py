@@ -36,9 +36,13 @@ def colours(trace: Trace) -> dict[str, int]:
     }
 
 
+NO_OBJECT = -1
+"""What :func:`at_position` gives for a position with no object (0 is an object of none of the three colours)."""
+
+
 def at_position(trace: Trace, k: int) -> np.ndarray:
-    """Per scan, the colour of the object at position ``k`` (0: none): from its entering barrier ``k`` until it
-    enters the next barrier, lands in a bin or leaves the plant."""
+    """Per scan, the colour of the object at position ``k`` (0: a colour out of every interval, :data:`NO_OBJECT`:
+    none): from its entering barrier ``k`` until it enters the next barrier, lands in a bin or leaves the plant."""
     colour = colours(trace)
     since: dict[str, int] = {}
     spans: list[tuple[str, int, int]] = []
@@ -56,7 +60,7 @@ def at_position(trace: Trace, k: int) -> np.ndarray:
     end = int(trace.end_times[-1]) + 1 if len(trace) else 0
     spans += [(p, t, end) for p, t in since.items()]
     times = trace.times
-    out = np.zeros(len(times), dtype=np.int64)
+    out = np.full(len(times), NO_OBJECT, dtype=np.int64)
     for part, t0, t1 in spans:
         out[(times >= t0) & (times < t1)] = colour.get(part, 0)
     return out
@@ -69,7 +73,9 @@ class Unmarked(Condition):
     k: int
 
     def rows(self, ctx: Context) -> np.ndarray:
-        return (at_position(ctx.trace, self.k) > 0) & ~ctx.trace.column(f"DATA.{OCCUPIED[self.k]}").astype(bool)
+        return (at_position(ctx.trace, self.k) != NO_OBJECT) & ~ctx.trace.column(f"DATA.{OCCUPIED[self.k]}").astype(
+            bool
+        )
 
     def describe(self) -> str:
         return f"an object at position {self.k + 1} ({BARRIERS[self.k]} on) with DATA.{OCCUPIED[self.k]} FALSE"
@@ -89,7 +95,7 @@ class Phantom(Condition):
     k: int
 
     def rows(self, ctx: Context) -> np.ndarray:
-        bad = ctx.trace.column(f"DATA.{OCCUPIED[self.k]}").astype(bool) & (at_position(ctx.trace, self.k) == 0)
+        bad = ctx.trace.column(f"DATA.{OCCUPIED[self.k]}").astype(bool) & (at_position(ctx.trace, self.k) == NO_OBJECT)
         piston = PISTON_AT[self.k]
         return bad & ~ctx.trace.column(piston).astype(bool) if piston else bad
 
@@ -106,8 +112,9 @@ class Phantom(Condition):
 
 @dataclass(frozen=True)
 class WrongType(Condition):
-    """Position ``k``'s type is not the colour of the object there, or not 0 with no object there (a stale type
-    would be pushed off with the next object that reads out of range); its piston's pulse may end first."""
+    """Position ``k``'s type is not the colour of the object there (0 for a colour out of every interval), or not
+    0 with no object there (a stale type would be pushed off with the next object that reads out of range); its
+    piston's pulse may end first."""
 
     k: int
 
@@ -116,10 +123,14 @@ class WrongType(Condition):
         kind = ctx.trace.column(f"DATA.{TYPES[self.k]}").astype(np.int64)
         piston = PISTON_AT[self.k]
         pushing = ctx.trace.column(piston).astype(bool) if piston else np.zeros(len(colour), dtype=bool)
-        return (kind != colour) & ((colour > 0) | ~pushing)
+        present = colour != NO_OBJECT
+        return (kind != np.where(present, colour, 0)) & (present | ~pushing)
 
     def describe(self) -> str:
-        return f"DATA.{TYPES[self.k]} differs from the colour of the object at position {self.k + 1} (0: none)"
+        return (
+            f"DATA.{TYPES[self.k]} differs from the colour of the object at position {self.k + 1} "
+            "(0: none, or of no colour)"
+        )
 
     def signals(self) -> list[str]:
         return [f"DATA.{TYPES[self.k]}", "FARBA", *([PISTON_AT[self.k]] if PISTON_AT[self.k] else [])]

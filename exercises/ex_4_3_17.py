@@ -33,13 +33,22 @@ NO_AIR = "compressor fails"
 SPACED = "mixed spacing"
 EDGES = "colours near the interval edges"
 CLOSE = "objects too close"
+DARK = "a colour above every interval"
+BRIGHT = "a colour below every interval"
 SORTED = (THREE, SIX, AMBIENT, SPACED, EDGES)
+OUT_OF_RANGE = (DARK, BRIGHT)
+"""An object of none of the three colours among sorted ones (text issue e): it must get no piston and no type, and
+run off the end of the belt; the textbook's POZ5 then stays occupied and its belt never stops (not graded there)."""
 ONE_AT_A_TIME = (THREE, EDGES)
 """Where criterion 6 can hold: at 3..5 s a colour-3 object followed by a colour-1 one puts P3 (7.9 s after its
 loading) and P1 (3.9 s after the next's) out together whatever the program does; these load colours in
 ascending order."""
 EDGE_RAW = ((1, 4000), (1, 7000), (2, 11000), (2, 15000), (3, 19000), (3, 23000))
 """Worn and tinted objects: 2000 raw (4 σ) inside an edge of the §5.8 intervals (2000 / 9000 / 17000 / 25000)."""
+BLACK = {"colour": 0, "colour_raw": 27000.0, "color": (30, 30, 30)}
+"""A black object: darker than the bare belt (26500), 2000 raw (4 σ) above colour 3's interval."""
+STEEL = {"colour": 0, "colour_raw": 0.0, "color": (195, 200, 205)}
+"""A polished steel object: brighter than white, it reads 0 (plus the noise, clipped), 4 σ below colour 1's interval."""
 
 
 def loads(colours: tuple[int, ...], *, spacing_s: float = 3.2) -> list:
@@ -51,13 +60,13 @@ def loads(colours: tuple[int, ...], *, spacing_s: float = 3.2) -> list:
 
 
 def spaced(*objects: tuple) -> list:
-    """Objects p1, p2 … as ``(colour, gap)`` or ``(colour, gap, raw mean)``: each loaded a seeded ``gap``
+    """Objects p1, p2 … as ``(colour, gap)`` or ``(gap, properties)``: each loaded a seeded ``gap``
     (``"3s..3.4s"``) after the one before (the first at 0.5..0.7 s)."""
     actions = []
-    for k, (colour, gap, *raw) in enumerate(objects, start=1):
+    for k, (what, gap) in enumerate(objects, start=1):
         when = {"t": "0.5s..0.7s"} if k == 1 else {"when": after_event("part placed", f"p{k - 1}"), "delay": gap}
-        extra = {"colour_raw": raw[0]} if raw else {}
-        actions.append(place(f"p{k}", at="OS1", colour=colour, **when, **extra))
+        props = what if isinstance(what, dict) else {"colour": what}
+        actions.append(place(f"p{k}", at="OS1", **when, **props))
     return actions
 
 
@@ -133,7 +142,7 @@ EXERCISE = Exercise(
         ),
         Scenario(
             EDGES,
-            *spaced(*((c, "3s..3.4s", raw) for c, raw in EDGE_RAW)),
+            *spaced(*(({"colour": c, "colour_raw": raw}, "3s..3.4s") for c, raw in EDGE_RAW)),
             duration="28s",
             description="worn and tinted objects whose colour reads 2000 raw inside an edge of its interval",
         ),
@@ -144,14 +153,46 @@ EXERCISE = Exercise(
             description="four objects 1.5 s apart, closer than the sorter can take them (§5.8: 3 s): its positions "
             "lose objects, which end unsorted or stuck; a piston may still only push an object of its colour",
         ),
+        Scenario(
+            DARK,
+            *spaced((3, ""), (BLACK, "3s..3.4s"), (1, "3s..3.4s"), (2, "3s..3.4s")),
+            duration="22s",
+            description="a black object (raw 27000, above colour 3's interval) after a colour 3 and before a colour 1 "
+            "and a colour 2: it gets no type and no piston and runs off the end of the belt",
+        ),
+        Scenario(
+            BRIGHT,
+            *spaced((1, ""), (3, "3s..3.4s"), (STEEL, "3s..3.4s"), (2, "3s..3.4s")),
+            duration="22s",
+            description="a polished steel object (raw 0, below colour 1's interval) after a colour 1 and a colour 3 "
+            "and before a colour 2: it gets no type and no piston and runs off the end of the belt",
+        ),
     ],
     checks=[
         # criterion 1
-        only(event_data("part in bin", "colour", "bin1").equals(1).named("bin 1 receives colour 1 only"), *SORTED),
-        only(event_data("part in bin", "colour", "bin2").equals(2).named("bin 2 receives colour 2 only"), *SORTED),
-        only(event_data("part in bin", "colour", "bin3").equals(3).named("bin 3 receives colour 3 only"), *SORTED),
+        only(
+            event_data("part in bin", "colour", "bin1").equals(1).named("bin 1 receives colour 1 only"),
+            *SORTED,
+            *OUT_OF_RANGE,
+        ),
+        only(
+            event_data("part in bin", "colour", "bin2").equals(2).named("bin 2 receives colour 2 only"),
+            *SORTED,
+            *OUT_OF_RANGE,
+        ),
+        only(
+            event_data("part in bin", "colour", "bin3").equals(3).named("bin 3 receives colour 3 only"),
+            *SORTED,
+            *OUT_OF_RANGE,
+        ),
         NoMissort().named("no object lands in another colour's bin"),
         only(count(event("part in bin", "unsorted")).equals(0).named("no object ends unsorted"), *SORTED),
+        only(
+            event_data("part in bin", "colour", "unsorted")
+            .equals(0)
+            .named("the object of no colour, and only it, runs off the end into the unsorted bin"),
+            *OUT_OF_RANGE,
+        ),
         only(
             durations("Piest1_Farba1")
             .between("1s - 2 scans", "1s + 2 scans")
@@ -170,6 +211,7 @@ EXERCISE = Exercise(
             only(
                 durations(p).between("1s - 2 scans", "1s + 2 scans").named(f"{p} is out for 1 s each time"),
                 *SORTED,
+                *OUT_OF_RANGE,
             )
             for p in PISTONS
         ],
@@ -191,6 +233,7 @@ EXERCISE = Exercise(
             .for_more_than("1 scan")
             .named("every object's position is marked occupied (within 1 scan)"),
             *SORTED,
+            *OUT_OF_RANGE,
         ),
         only(
             never(any_of(*(Phantom(k) for k in range(5))))
@@ -199,10 +242,17 @@ EXERCISE = Exercise(
             *SORTED,
         ),
         only(
+            never(any_of(*(Phantom(k) for k in range(4))))
+            .for_more_than("1 scan")
+            .named("no position before the last is marked occupied without its object (within 1 scan)"),
+            *OUT_OF_RANGE,
+        ),
+        only(
             never(any_of(*(WrongType(k) for k in range(1, 5))))
             .for_more_than("1 scan")
             .named("each position's type is the colour of its object (within 1 scan)"),
             *SORTED,
+            *OUT_OF_RANGE,
         ),
         # criterion 6 (optional in the spec), where the loading order allows it
         only(
@@ -236,6 +286,17 @@ EXERCISE = Exercise(
             "(a slip) the colour intervals drawn ±1000 raw around the lab's means: daylight or a worn object reads "
             "between them, the object gets no type and ends unsorted",
             fails=("no object ends unsorted", "each position's type is the colour of its object (within 1 scan)"),
+        ),
+        solution(
+            NUMBER,
+            "wrong-no-outer-bounds",
+            "wrong",
+            "(a slip) the intervals as thresholds (colour 1 up to 9000, colour 3 above 17000): every object of the "
+            "three colours is sorted, but a black object is pushed off as colour 3 and a polished one as colour 1",
+            fails=(
+                "no object lands in another colour's bin",
+                "each position's type is the colour of its object (within 1 scan)",
+            ),
         ),
         solution(
             NUMBER,
@@ -301,7 +362,12 @@ EXERCISE = Exercise(
         "colour 3 followed by a colour 1 puts P3 and P1 out together whatever the program does. 'Objects too close' "
         "(1.5 s, under §5.8's 3 s) grades only what a sorter that cannot keep up must still do: no mis-sort, the "
         "compressor, the pulses and the belt following the occupancy; which objects it loses depends on the seed. "
-        "The out-of-range colour (text issue e) is not a scenario: the textbook's program never stops the belt then. "
+        "An object of none of the three colours (text issue e: a black one above every interval, a polished steel "
+        "one below) must get type 0 at every position, no piston, and run off the end of the belt into the unsorted "
+        "bin, while the objects around it are sorted. The task's 'with the last piece the conveyor stops' is not "
+        "graded there, nor position 5's occupancy after it: the textbook's program never clears a position whose "
+        "type matches no piston, so its POZ5 stays occupied and its belt runs on for ever (a colour 3 loaded after "
+        "it would not be taken over at OS5 either, so the scenarios load none). "
         "With the compressor failed the program cannot tell (the task gives no pressure switch): it is graded on "
         "its outputs only."
     ),

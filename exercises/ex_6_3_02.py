@@ -20,10 +20,11 @@ from exercises._punch import (
 )
 from plants import Punch
 from plcsim.exercise import IO, Exercise
-from plcsim.scenario import Scenario
+from plcsim.scenario import Scenario, after_event, held, place, remove, write
 
 NUMBER = "6.3.2"
 REQUIRED = "M1_ZIADANY_POCET"
+TAKEN = ("taken",)  # the object the operator takes off the belt on its way to the press
 
 EXERCISE = Exercise(
     number=NUMBER,
@@ -66,6 +67,18 @@ EXERCISE = Exercise(
             duration="22s",
             description="M1_ZIADANY_POCET = 2, one object: OS1 -> OS2 -> OS1 -> OS2 -> OS1, wait",
         ),
+        Scenario(
+            "object taken on its way",
+            write(REQUIRED, 2, t="0.1s"),
+            place("taken", at="OS1", t="0.3s..0.8s"),
+            remove("taken", when=after_event("part left", "OS1"), delay="0.5s..3.3s"),
+            place("p1", at="OS1", when=after_event("part removed", "taken"), delay="1s..2s"),
+            remove("p1", when=held("OS1", "1.5s")),
+            duration="28s",
+            description="a fault: M1_ZIADANY_POCET = 2; the operator takes the first object off the belt on its "
+            "first way to OS2 (0.5..3.3 s after it left OS1: no sensor sees it go) and loads the next one at OS1 "
+            "1..2 s later, which makes its two moves and waits",
+        ),
     ],
     checks=[
         # criterion 1
@@ -76,12 +89,13 @@ EXERCISE = Exercise(
             parameter(REQUIRED),
             reads=(REQUIRED,),
             events=(("part entered", "OS2"),),
+            ignore=TAKEN,
         ),
-        waits_at_os1(),
+        waits_at_os1(TAKEN),
         # criterion 2
-        counts_arrivals(),
+        counts_arrivals(TAKEN),
         # criterion 3
-        *shuttle(),
+        *shuttle(TAKEN),
         *interlocks(press=False),
         *machine_safe(),
     ],
@@ -140,6 +154,11 @@ EXERCISE = Exercise(
         "HMI (1, 2 and 3 in the scenarios; larger counts only lengthen the run). Both textbook solutions keep "
         "M1_AKTUALNY_POCET (solution 1 stores the CTU's CV, 'for demonstration'), so criterion 2 grades both. The "
         "textbook's wrong removal edge is shipped for both solutions: it shows only with two or more required "
-        "moves, when the object sets off from OS1 again after a return."
+        "moves, when the object sets off from OS1 again after a return. 'Object taken on its way' (6.3.1's fault) "
+        "takes the object on its first move, before it has been counted: the belt runs on forward with nothing on "
+        "it (no sensor sees the removal), and the next object loaded starts a new series of M1_ZIADANY_POCET "
+        "moves. A removal after the first arrival is not a scenario: no program can tell the next object loaded "
+        "at OS1 from the object coming back (a removal is seen only at OS1 with the belt standing), so it makes "
+        "only the moves left; the task does not say otherwise."
     ),
 )

@@ -7,12 +7,14 @@ from exercises._punch import (
     COUNT_RUNG_MOVED,
     MODEL,
     PUNCH_IO,
+    TAKEN_FROM_THE_PRESS,
     constant,
     counts,
     cycles,
     edge_bits,
     parameter,
     punching_checks,
+    taken_from_the_press,
 )
 from plants import Punch
 from plcsim.exercise import IO, Exercise
@@ -20,6 +22,7 @@ from plcsim.scenario import Scenario, after_event, free_motor, jam_motor
 
 NUMBER = "6.3.4"
 REQUIRED = "M1_ZIADANY_POCET"
+WHOLE = ("one move, then two", "jammed press")
 
 IO_TABLE = [
     *PUNCH_IO,
@@ -61,8 +64,15 @@ EXERCISE = Exercise(
             duration="18s",
             description="a fault: the press jams on its way down and is freed 1.5..3 s later; the belt must wait",
         ),
+        Scenario(
+            TAKEN_FROM_THE_PRESS,
+            *taken_from_the_press({REQUIRED: 2}),
+            duration="14s",
+            description="M1_ZIADANY_POCET = 2; the operator takes the object from under the press while the ram goes "
+            "back up after its first stroke (0.3..1.2 s after it): the ram returns to KS1 and the machine stands",
+        ),
     ],
-    checks=punching_checks(constant(1), parameter(REQUIRED), "exactly one stroke", (REQUIRED,)),
+    checks=punching_checks(constant(1), parameter(REQUIRED), "exactly one stroke", (REQUIRED,), WHOLE),
     solutions=[
         solution(
             NUMBER,
@@ -94,6 +104,13 @@ EXERCISE = Exercise(
         "The textbook builds task 4 from task 2's solution 2 (ADD), so OBJEKT_PRI_OS2 and M1_AKTUALNY_POCET are "
         "kept. Criterion 2 is graded twice: on the PLC's outputs (the belt never runs while the press is away from "
         "KS1 or driven) and on the machine's word (no interlock violation, no damaged object). 'Jammed press' is a "
-        "fault of the machine: the program must keep the belt still until the stroke is finished."
+        "fault of the machine: the program must keep the belt still until the stroke is finished. 'Object taken "
+        "from under the press' grades what the program must do then: no new stroke (the press goes down only for an "
+        "object at OS2), the ram back at KS1, the belt standing (nothing to carry back). It does not grade the "
+        "moves and their count: the textbook's removal is the rising edge of OS1 with the belt standing, so its "
+        "M1_AKTUALNY_POCET keeps the move of the object taken, and an object loaded next would make only the "
+        "moves left (with one required it would not start at all: the program takes it for the returned object); "
+        "the task does not say what a removal at the press should do to the series, so the scenario loads no next "
+        "object. A removal while the belt carries the object is 6.3.2's scenario: no sensor sees it."
     ),
 )

@@ -7,12 +7,14 @@ from exercises._punch import (
     COUNT_RUNG_MOVED,
     MODEL,
     PUNCH_IO,
+    TAKEN_FROM_THE_PRESS,
     counts,
     cycles,
     edge_bits,
     parameter,
     product,
     punching_checks,
+    taken_from_the_press,
 )
 from plants import Punch
 from plcsim.check import all_of, never, value
@@ -21,6 +23,7 @@ from plcsim.scenario import Scenario, after_event, free_motor, jam_motor
 
 NUMBER = "6.3.5"
 MOVES, STROKES = "M1_ZIADANY_POCET", "M2_ZIADANY_POCET"
+WHOLE = ("two moves, three strokes", "two strokes, then one", "jammed press")
 
 EXERCISE = Exercise(
     number=NUMBER,
@@ -73,9 +76,18 @@ EXERCISE = Exercise(
             duration="22s",
             description="a fault: the press jams on its way down to the second stroke and is freed 1.5..3 s later",
         ),
+        Scenario(
+            TAKEN_FROM_THE_PRESS,
+            *taken_from_the_press({MOVES: 1, STROKES: 3}),
+            duration="14s",
+            description="M2_ZIADANY_POCET = 3; the operator takes the object from under the press between its first "
+            "and second stroke (0.3..1.2 s after the first, while the ram goes back up): no second stroke comes",
+        ),
     ],
     checks=[
-        *punching_checks(parameter(STROKES), product(MOVES, STROKES), "M2_ZIADANY_POCET strokes", (MOVES, STROKES)),
+        *punching_checks(
+            parameter(STROKES), product(MOVES, STROKES), "M2_ZIADANY_POCET strokes", (MOVES, STROKES), WHOLE
+        ),
         never(all_of("OS2", value("M2_AKTUALNY_POCET") != 0)).named(
             "M2_AKTUALNY_POCET is 0 whenever no object is under the press"
         ),
@@ -111,6 +123,15 @@ EXERCISE = Exercise(
                 "M2_AKTUALNY_POCET is 0 whenever no object is under the press",
             ),
         ),
+        solution(
+            NUMBER,
+            "wrong-repeat-without-object",
+            "wrong",
+            "(a slip) the next stroke started by the ram coming back up to KS1 (M2_HORE), not by the object at OS2: "
+            "the same strokes while the object stays; taken away between two strokes, the press strokes on the "
+            "empty place for ever",
+            fails=("the press goes down only for an object at OS2", "every stroke comes down on an object"),
+        ),
     ],
     spec_equivalent={
         "line 50: t.KS2 → not t.KS2": (
@@ -139,7 +160,10 @@ EXERCISE = Exercise(
         "The textbook names neither stroke count; M2_ZIADANY_POCET and M2_AKTUALNY_POCET are proposed (spec 6.3.5). "
         "Its text cites Figs. 6.44-6.50 but lists eight rungs; the reference has the eight (6.44-6.51). The jam "
         "comes on the way down to the second stroke: the program must neither count a stroke nor move the belt "
-        "before the press is back at KS1 after the last one. Not a scenario: bouncing KS2. The textbook counts "
+        "before the press is back at KS1 after the last one. 'Object taken from under the press' (between the first "
+        "and the second stroke) grades what the program must do then, as in 6.3.4: no further stroke, the ram back at "
+        "KS1, the belt standing, and M2_AKTUALNY_POCET 0 (the object has left OS2); not the moves and their count "
+        "(6.3.4's note). Not a scenario: bouncing KS2. The textbook counts "
         "strokes on P(KS2), and each bounce of the contact is a rising edge, so a bouncing KS2 counts one stroke "
         "several times (the textbook's program is not debounced; 6.3.3 grades the bounce, where only levels are "
         "used)."

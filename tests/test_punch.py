@@ -10,7 +10,7 @@ from itertools import pairwise
 import pytest
 
 from exercises import get
-from exercises._punch import strokes_of, visits
+from exercises._punch import TAKEN_FROM_THE_PRESS, strokes_of, visits
 from plants import Punch
 from plcsim.grading import grade
 
@@ -86,3 +86,22 @@ def test_every_task_wires_the_whole_model(number):
         "M2_DOLE": ("%Q0.2", None),
         "M2_HORE": ("%Q0.3", None),
     }
+
+
+@pytest.mark.parametrize("number", ["6.3.4", "6.3.5"])
+def test_the_object_is_taken_from_under_the_press_while_the_ram_goes_back_up(number):
+    """The scenario's premise, on the seeds the tests grade: the operator's hand comes after the first stroke's KS2
+    and before the ram is back at KS1 (a removal on the way down would leave the textbook's stroke nothing to
+    punch); the textbook's program then strokes no more and leaves the belt and the ram standing at KS1."""
+    ex = get(number)
+    for seed in (1, 2, 3):  # tests/test_seeds.py grades 1..20: there the premise failing fails the reference
+        sim = ex.simulation(ex.reference.program(), TAKEN_FROM_THE_PRESS, seed=seed)
+        sim.run()
+        trace = sim.trace
+        (removed,) = [e.t_ns for e in trace.events if e.kind == "part removed"]
+        ks1, ks2 = trace.column("KS1").astype(bool), trace.column("KS2").astype(bool)
+        now = int((trace.times <= removed).sum()) - 1
+        bottom = int(ks2[: now + 1].nonzero()[0][-1])
+        assert bottom < now and not ks1[bottom : now + 1].any() and trace.column("M2_HORE")[now], seed
+        assert [p for _, p in strokes_of(trace)] == ["p1"], seed
+        assert ks1[-1] and not trace.column("M1_VPRED")[-1] and not trace.column("M1_VZAD")[-1], seed

@@ -5,7 +5,7 @@ Every shipped solution of 4.3.17 is graded on the seeds 1..20 by tests/test_seed
 from __future__ import annotations
 
 from exercises import get
-from exercises._sort import at_position
+from exercises._sort import NO_OBJECT, at_position
 from plants.sort import Sort
 
 MS = 1_000_000
@@ -82,3 +82,18 @@ def test_objects_loaded_closer_than_the_sorter_can_take_them_are_lost():
         placed = {e.part: e.data["colour"] for e in trace.events if e.kind == "part placed"}
         sorted_ = {e.part for e in trace.events if e.kind == "part in bin" and e.subject == f"bin{placed[e.part]}"}
         assert len(placed) == 4 and len(sorted_) < 4, (seed, sorted_)
+
+
+def test_an_object_of_no_colour_is_an_object_of_type_0_and_the_textbooks_belt_never_stops_after_it():
+    """Text issue (e): the black object (raw 27000) is at each position as colour 0, not as no object; it runs off
+    the end into the unsorted bin, and the textbook's POZ5 stays occupied with the belt running to the end."""
+    trace = _run("a colour above every interval")
+    at = {(e.kind, e.subject, e.part): e.t_ns for e in trace.events if e.source == "plant" and e.part}
+    t0, t1 = at[("part entered", "OS5_Farba3", "p2")], at[("part in bin", "unsorted", "p2")]
+    position_5 = at_position(trace, 4)
+    inside = (trace.times >= t0) & (trace.times < t1)
+    assert inside.any() and (position_5[inside] == 0).all()
+    assert (position_5[trace.times >= t1] == NO_OBJECT).all()
+    after = trace.times >= t1
+    assert trace.column("DATA.POZ5_OBS_Farba3")[after].all() and trace.column("D1_VPRED")[after].all()
+    assert (trace.column("DATA.POZ5_FARBA3")[inside] == 0).all()
