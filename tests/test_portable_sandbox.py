@@ -87,11 +87,9 @@ def test_a_misspelt_mode_is_refused_with_the_variable_named(monkeypatch):
 
 
 def test_a_result_file_that_grows_without_end_is_stopped_at_the_largest_possible_result(ex1, tmp_path, private_tmp):
-    started = time.monotonic()
-    r = hostile(ex1, tmp_path, {"do": "huge-result"}, Limits(wall_seconds=60))
-    assert r.error_kind == "invalid result"
+    r = hostile(ex1, tmp_path, {"do": "huge-result"}, Limits(wall_seconds=300))
+    assert r.error_kind == "invalid result"  # stopped at the cap (some MB); the wall-time limit is a "time limit"
     assert r.error.startswith("the child sent more than ") and r.error.endswith(" bytes")
-    assert time.monotonic() - started < 30  # stopped at the cap (some MB), not at the wall-time limit
     assert list(private_tmp.iterdir()) == []
 
 
