@@ -102,7 +102,7 @@ class Recorder:
             kinds[name], types[name] = "analog", "real"
         self.trace = Trace(names + extra, kinds, types)
         self.row = _compile_getter(sources, sample=sample)
-        self._sources, self._sample = sources, sample
+        self._sources, self._sample, self._sampled = sources, sample, len(extra)
         physical = [f"o[{n!r}]" if kinds[n] == "output" else src for n, src in zip(names, sources)]
         self._stopped_row = _compile_getter(physical, outputs=True, sample=sample)
         self.changes_only = changes_only
@@ -171,7 +171,7 @@ class Recorder:
         the hot path of a run."""
         rows = self.trace.row_sink()
         heads, values_at, changes, last, pack = rows.heads, rows.values, rows.changes, rows.last, rows.pack
-        packed_row = _compile_getter(self._sources, sample=self._sample, into=rows.pack_values)
+        packed_row = _compile_getter(self._sources, sample=self._sample, into=(rows.pack_values, self._sampled))
         pack_head, row, add, d = rows.pack_head, self.row, rows.add, self.cpu.t.__dict__
 
         def on_scan(cpu: CPU) -> None:
@@ -227,19 +227,35 @@ def _compile_getter(
     sources: list[str],
     outputs: bool = False,
     sample: Callable[[], tuple[float, ...]] | None = None,
-    into: Callable[..., Any] | None = None,
+    into: tuple[Callable[..., Any], int] | None = None,
 ) -> Callable[..., Any]:
     """A function returning the row as a tuple, generated once from the access paths (our code, not a
     program's): ``d`` is the CPU's tags, ``i`` the inputs as delivered (:attr:`CPU.image_in`). With ``outputs``
     it takes the output modules' values ``o`` (the sources name them); ``sample()``'s values end the row.
-    With ``into`` it returns ``into(*row)`` instead (the row packed: :mod:`plcsim.trace_rows`)."""
+    With ``into`` (a function and how many values ``sample()`` returns) it returns ``function(*row)`` instead
+    (the row packed: :mod:`plcsim.trace_rows`), ``sample()`` unpacked into names (a call with ``*`` costs more).
+
+    >>> row = _compile_getter(["i['S1']", "d['M']"], sample=lambda: (1.5, 2.5), into=(lambda *v: v, 2))
+    >>> row({"M": 7}, {"S1": True})
+    (True, 7, 1.5, 2.5)
+    >>> _compile_getter([], sample=lambda: (1.5,), into=(lambda *v: v, 2))({}, {})
+    Traceback (most recent call last):
+    ValueError: not enough values to unpack (expected 2, got 1)
+    """
     bases, sources = _shared_bases(sources)
-    body = "".join(f"{source}, " for source in sources) + ("*s()" if sample is not None else "")
-    scope: dict[str, Any] = {"__builtins__": {}, "s": sample, "p": into}
+    scope: dict[str, Any] = {"__builtins__": {}, "s": sample}
     args = "d, i, o" if outputs else "d, i"
-    locals_ = "".join(f"    {name} = {base}\n" for base, name in bases.items())
-    row = f"p({body})" if into is not None else f"({body})"
-    exec(f"def row({args}):\n{locals_}    return {row}\n", scope)  # built from tag names, not program text
+    lines = [f"    {name} = {base}\n" for base, name in bases.items()]
+    body = "".join(f"{source}, " for source in sources)
+    if into is None:
+        row = f"({body}{'*s()' if sample is not None else ''})"
+    else:
+        scope["p"], sampled = into
+        names = [f"_s{k}" for k in range(sampled if sample is not None else 0)]
+        if names:  # a sample of another length raises ValueError: the row then takes the general path
+            lines.append(f"    {''.join(f'{name}, ' for name in names)}= s()\n")
+        row = f"p({body}{''.join(f'{name}, ' for name in names)})"
+    exec(f"def row({args}):\n{''.join(lines)}    return {row}\n", scope)  # built from tag names, not program text
     return scope["row"]
 
 
