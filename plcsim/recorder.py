@@ -23,6 +23,7 @@ from plcsim.instructions import block_of
 from plcsim.observers import Subscribers
 from plcsim.tags import PlcStruct
 from plcsim.trace import BLOCK, Trace
+from plcsim.trace_rows import UNPACKABLE
 from plcsim.types import ElementaryType
 
 _SYSTEM_NAMES = {name for _, name, _ in CLOCK_BITS} | {name for _, name in SYSTEM_BITS}
@@ -101,7 +102,7 @@ class Recorder:
             kinds[name], types[name] = "analog", "real"
         self.trace = Trace(names + extra, kinds, types)
         self.row = _compile_getter(sources, sample=sample)
-        self._full_row = _compile_getter(sources, head=True, sample=sample)
+        self._sources, self._sample, self._sampled = sources, sample, len(extra)
         physical = [f"o[{n!r}]" if kinds[n] == "output" else src for n, src in zip(names, sources)]
         self._stopped_row = _compile_getter(physical, outputs=True, sample=sample)
         self.changes_only = changes_only
@@ -166,13 +167,25 @@ class Recorder:
         self.trace.add_row(cpu.scan_start_ns, cpu.scan_end_ns, cpu.scan_task_number, values)
 
     def _fast_on_scan(self) -> Callable[[CPU], None]:
-        """:meth:`on_scan` for every-row recording, fused into one call: the hot path of a run."""
-        pending, pack = self.trace.row_sink()
-        full_row, d = self._full_row, self.cpu.t.__dict__
+        """:meth:`on_scan` for every-row recording, with :meth:`~plcsim.trace_rows.RunLengthRows.add` written out:
+        the hot path of a run."""
+        rows = self.trace.row_sink()
+        heads, values_at, changes, last, pack = rows.heads, rows.values, rows.changes, rows.last, rows.pack
+        packed_row = _compile_getter(self._sources, sample=self._sample, into=(rows.pack_values, self._sampled))
+        pack_head, row, add, d = rows.pack_head, self.row, rows.add, self.cpu.t.__dict__
 
         def on_scan(cpu: CPU) -> None:
-            pending.append(full_row(d, cpu.image_in, cpu.scan_start_ns, cpu.scan_end_ns, cpu.scan_task_number))
-            if len(pending) >= BLOCK:
+            try:
+                values = packed_row(d, cpu.image_in)
+                heads.append(pack_head(cpu.scan_start_ns, cpu.scan_end_ns, cpu.scan_task_number))
+            except UNPACKABLE:  # a value its column cannot hold: the general path keeps the row as it is
+                add(cpu.scan_start_ns, cpu.scan_end_ns, cpu.scan_task_number, row(d, cpu.image_in))
+                return
+            if values != last[0]:
+                last[0] = values
+                changes.append(len(heads) - 1)
+                values_at.append(values)
+            if len(heads) >= BLOCK:
                 pack()
 
         return on_scan
@@ -212,21 +225,37 @@ class Recorder:
 
 def _compile_getter(
     sources: list[str],
-    head: bool = False,
     outputs: bool = False,
     sample: Callable[[], tuple[float, ...]] | None = None,
-) -> Callable[..., tuple[Any, ...]]:
+    into: tuple[Callable[..., Any], int] | None = None,
+) -> Callable[..., Any]:
     """A function returning the row as a tuple, generated once from the access paths (our code, not a
-    program's): ``d`` is the CPU's tags, ``i`` the inputs as delivered (:attr:`CPU.image_in`). With
-    ``head`` it takes the scan's start, end and task number and returns the whole trace row; with ``outputs`` it
-    takes the output modules' values ``o`` (the sources name them); ``sample()``'s values end the row."""
+    program's): ``d`` is the CPU's tags, ``i`` the inputs as delivered (:attr:`CPU.image_in`). With ``outputs``
+    it takes the output modules' values ``o`` (the sources name them); ``sample()``'s values end the row.
+    With ``into`` (a function and how many values ``sample()`` returns) it returns ``function(*row)`` instead
+    (the row packed: :mod:`plcsim.trace_rows`), ``sample()`` unpacked into names (a call with ``*`` costs more).
+
+    >>> row = _compile_getter(["i['S1']", "d['M']"], sample=lambda: (1.5, 2.5), into=(lambda *v: v, 2))
+    >>> row({"M": 7}, {"S1": True})
+    (True, 7, 1.5, 2.5)
+    >>> _compile_getter([], sample=lambda: (1.5,), into=(lambda *v: v, 2))({}, {})
+    Traceback (most recent call last):
+    ValueError: not enough values to unpack (expected 2, got 1)
+    """
     bases, sources = _shared_bases(sources)
-    body = "".join(f"{source}, " for source in sources) + ("*s()" if sample is not None else "")
     scope: dict[str, Any] = {"__builtins__": {}, "s": sample}
-    args = "d, i, a, b, n" if head else "d, i, o" if outputs else "d, i"
-    locals_ = "".join(f"    {name} = {base}\n" for base, name in bases.items())
-    row = f"(a, b, n, {body})" if head else f"({body})"
-    exec(f"def row({args}):\n{locals_}    return {row}\n", scope)  # built from tag names, not program text
+    args = "d, i, o" if outputs else "d, i"
+    lines = [f"    {name} = {base}\n" for base, name in bases.items()]
+    body = "".join(f"{source}, " for source in sources)
+    if into is None:
+        row = f"({body}{'*s()' if sample is not None else ''})"
+    else:
+        scope["p"], sampled = into
+        names = [f"_s{k}" for k in range(sampled if sample is not None else 0)]
+        if names:  # a sample of another length raises ValueError: the row then takes the general path
+            lines.append(f"    {''.join(f'{name}, ' for name in names)}= s()\n")
+        row = f"p({body}{''.join(f'{name}, ' for name in names)})"
+    exec(f"def row({args}):\n{''.join(lines)}    return {row}\n", scope)  # built from tag names, not program text
     return scope["row"]
 
 

@@ -3,8 +3,9 @@
 This is the table alone; its exporters (:mod:`plcsim.trace_plot`, :mod:`plcsim.trace_rerun`) import it,
 never the other way round, and :class:`plcsim.trace.Trace` puts them on the table as methods.
 
-Rows are appended as tuples (cheap on the hot path) and packed into numpy blocks of
-:data:`BLOCK` rows; queries see one float64 column per signal. Booleans are stored as 0.0/1.0.
+Rows are appended as tuples (cheap on the hot path), their values only when they changed
+(:mod:`plcsim.trace_rows`), and packed into numpy blocks of :data:`BLOCK` rows; queries see one float64
+column per signal, a value in every row. Booleans are stored as 0.0/1.0.
 
 An output is valid from the end of the scan that wrote it, an input from the start of the scan
 that read it:
@@ -41,9 +42,8 @@ start, or an interrupt's that read it since), never what the program wrote into 
 from __future__ import annotations
 
 import json
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import asdict, dataclass, field
-from itertools import chain
 from pathlib import Path
 from typing import Any
 
@@ -52,11 +52,13 @@ import numpy as np
 from plcsim.errors import UnknownTagError, did_you_mean
 from plcsim.plant import Drawable, PlantEvent
 from plcsim.profiles.s7 import trace_task_number
+from plcsim.trace_rows import BLOCK, HEAD, RunLengthRows
 
-BLOCK = 4096
-"""Rows per packed numpy block."""
-HEAD = 3
-"""Leading columns of every row: scan start, scan end, task number."""
+__all__ = ["BLOCK", "HEAD", "GeometryFrame", "TraceEvent", "TraceTable"]
+
+
+_CODES = {"bool": "b", "int": "q"}
+"""How a row packs a value of each type (:mod:`plcsim.trace_rows`; a Real, or a column of no type: a double)."""
 
 
 @dataclass(frozen=True)
@@ -110,7 +112,7 @@ class TraceTable:
 
     def __post_init__(self) -> None:
         self._index = {name: i for i, name in enumerate(self.names)}
-        self._pending: list[tuple[Any, ...]] = []
+        self._rows = RunLengthRows("".join(_CODES.get(self.types.get(name), "d") for name in self.names))
         self._blocks: list[np.ndarray] = []
         self._packed: np.ndarray | None = None
         self._empty = np.zeros((0, HEAD + len(self.names)))
@@ -119,30 +121,11 @@ class TraceTable:
 
     def add_row(self, t_ns: int, t_end_ns: int, task: int, values: Sequence[Any]) -> None:
         """Append one row: scan start, scan end, task number (1 = OB1), then the values in column order."""
-        pending = self._pending
-        pending.append((t_ns, t_end_ns, task, *values))
-        if len(pending) >= BLOCK:
-            self._pack()
+        self._rows.add(t_ns, t_end_ns, task, tuple(values))
 
-    def _pack(self) -> None:
-        rows = self._pending
-        if rows:
-            count = len(rows) * (HEAD + len(self.names))
-            if sum(map(len, rows)) == count:  # every row as wide as the table: read them as one stream
-                try:  # the same float64 conversion of each value as np.array's, a third cheaper (the hot path)
-                    block = np.fromiter(chain.from_iterable(rows), np.float64, count).reshape(len(rows), -1)
-                except (TypeError, ValueError):  # a value fromiter cannot convert (None): numpy's general path
-                    block = np.array(rows, dtype=np.float64)
-            else:
-                block = np.array(rows, dtype=np.float64)
-            self._blocks.append(block)
-            rows.clear()
-            self._packed = None
-
-    def row_sink(self) -> tuple[list[tuple[Any, ...]], Callable[[], None]]:
-        """The list rows are appended to and the function to call when it holds :data:`BLOCK` rows
-        (for a recorder that builds whole rows itself; see :mod:`plcsim.recorder`)."""
-        return self._pending, self._pack
+    def row_sink(self) -> RunLengthRows:
+        """The rows being written (for a recorder that appends to them itself; see :mod:`plcsim.recorder`)."""
+        return self._rows
 
     def add_event(self, event: TraceEvent) -> None:
         """Record an event."""
@@ -164,14 +147,16 @@ class TraceTable:
     @property
     def table(self) -> np.ndarray:
         """All rows as one (rows, 3 + signals) float64 array: t_ns, t_end_ns, task, then the values."""
-        self._pack()
+        if len(self._rows):
+            self._blocks.append(self._rows.take())
+            self._packed = None
         if self._packed is None:
             self._packed = np.concatenate(self._blocks) if self._blocks else self._empty
             self._blocks = [self._packed] if len(self._packed) else []
         return self._packed
 
     def __len__(self) -> int:
-        return sum(len(b) for b in self._blocks) + len(self._pending)
+        return sum(len(b) for b in self._blocks) + len(self._rows)
 
     @property
     def times(self) -> np.ndarray:

@@ -81,3 +81,43 @@ def test_aliased_inputs_forces_clock_and_system_memory_and_a_fault_run_alike_in_
     fast = run(make_cpu, schedule, general=False, step_ns=step_ns)
     assert fast == run(make_cpu, schedule, general=True, step_ns=step_ns)
     assert fast[2] == "STOP"  # the seventh rising edge of TL divides by zero: both loops stop alike
+
+
+JUMPING = """
+def n1(t):
+    t.LED = t.TL
+    if t.STOP:
+        JMP("last")
+
+def n2(t):
+    t.COUNT += 1
+    if t.COUNT == 40:
+        t.WORD = 100 // t.ZERO
+
+@label("last")
+def n3(t):
+    t.WORD = t.IN_WORD + t.COUNT
+
+OB1 = [n1, n2, n3]
+"""
+
+
+@pytest.mark.parametrize("step_ns", [None, 700_000, 1_000_000, 2_500_000], ids=["scan", "0.7ms", "1ms", "2.5ms"])
+@pytest.mark.parametrize(
+    "options",
+    [{}, {"jitter": "300us", "seed": 4}, {"cycle": "3ms"}, {"network_cost": "400us", "min_cycle": "1ms"}],
+    ids=["fixed cycle", "jitter", "3ms cycle", "network cost"],
+)
+def test_a_scan_off_the_stack_runs_alike_in_both_loops(options, step_ns):
+    """No forces, no aliased inputs: the whole program runs in one call and a scan that ends within the step
+    never goes on the stack; one that jumps (continued network by network), one that ends after the step
+    (its end in a later call) and one that faults do."""
+    tags = {name: tag for name, tag in TAGS.items() if name != "IN_LOW"}
+    schedule = [{"TL": k % 6 < 3, "STOP": k % 10 == 9, "IN_WORD": k} for k in range(400)]
+
+    def make_cpu() -> CPU:
+        return CPU(tags=tags, program=JUMPING, clock_memory_byte=20, system_memory_byte=21, **options)
+
+    fast = run(make_cpu, schedule, general=False, step_ns=step_ns)
+    assert fast == run(make_cpu, schedule, general=True, step_ns=step_ns)
+    assert fast[2] == "STOP"  # the 40th scan that ran n2 divided by zero, in both loops
