@@ -122,7 +122,7 @@ class Simulation:
         self._out_version = -1
         self.paused = False
         self.fast_forward = fast_forward
-        self._diag_seen = len(cpu.diagnostics)
+        self._diag_last = cpu.diagnostics[-1] if cpu.diagnostics else None
         if scenario is not None:
             self._check_scenario(scenario)
         self.actions = ActionRunner(scenario, self.rng, plant, cpu, self.wiring, self.trace)
@@ -227,7 +227,8 @@ class Simulation:
             self._out_version = cpu.output_version
             wiring.write_outputs(cpu.outputs)
         # what the loop compares in every step, as locals (written back to self where they change)
-        out_version, diag_seen, next_frame = self._out_version, self._diag_seen, self._next_frame
+        out_version, diag_last, next_frame = self._out_version, self._diag_last, self._next_frame
+        diagnostics = cpu.diagnostics
         try:
             while t < end_ns and not self.paused:
                 if t >= actions.next_due:
@@ -238,9 +239,8 @@ class Simulation:
                 run_cpu(t + dt)
                 if cpu.mode != RUN:
                     self.recorder.on_stopped(t, t + dt)
-                if len(cpu.diagnostics) != diag_seen:
-                    self._cpu_events()
-                    diag_seen = self._diag_seen
+                if diagnostics and diagnostics[-1] is not diag_last:  # (a length stops growing at the buffer's cap)
+                    diag_last = self._cpu_events()
                 if plant_step is not None:
                     try:
                         plant_step(dt)
@@ -305,17 +305,30 @@ class Simulation:
         return t
 
     def _finish(self) -> None:
+        diagnostics = self.cpu.diagnostics
+        if diagnostics and diagnostics[-1] is not self._diag_last:  # entered after the last step's look
+            self._cpu_events()
         self.trace.meta["end_ns"] = self.now
         self.trace.meta["scans"] = self.cpu.scan_count
 
-    def _cpu_events(self) -> None:
-        cpu = self.cpu
-        for entry in list(cpu.diagnostics)[self._diag_seen :]:
+    def _cpu_events(self) -> Any:
+        """Trace the CPU's diagnostics entered since the last one traced; returns the newest entry.
+
+        The CPU keeps its last 1000 entries (a bounded buffer), so the new ones are those after the last
+        traced entry, not after a count."""
+        entries = list(self.cpu.diagnostics)
+        start = 0
+        for i in range(len(entries) - 1, -1, -1):
+            if entries[i] is self._diag_last:
+                start = i + 1
+                break
+        for entry in entries[start:]:
             where = entry.task or ""
             if entry.network:
                 where += f" network {entry.network}"
             self.trace.add_event(TraceEvent(entry.time_ns, "cpu", entry.event, where, None, entry.message))
-        self._diag_seen = len(cpu.diagnostics)
+        self._diag_last = entries[-1] if entries else None
+        return self._diag_last
 
 
 class Pacing(Protocol):

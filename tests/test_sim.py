@@ -394,3 +394,23 @@ def test_a_stopped_cpu_can_be_started_again_by_the_scenario():
     assert (10 * MS, "cpu", "RUN->STOP") in kinds and (20 * MS, "cpu", "STOP->RUN") in kinds
     stopped = [int(t) for t, task in zip(sim.trace.times, sim.trace.tasks) if task == 0]
     assert stopped[0] == 10 * MS and stopped[-1] < 20 * MS
+
+
+def test_cpu_diagnostics_beyond_the_cpu_s_buffer_of_1000_still_reach_the_trace():
+    """The CPU keeps its last 1000 diagnostics; the trace must get every one entered during a run (it once
+    watched the buffer's length, which stops growing at its cap: the 1001st and later were lost)."""
+    from exercises import get
+
+    ex = get("4.3.1")
+    sim = ex.simulation(ex.reference.program(), ex.scenarios[0], seed=1)
+    entered = 0
+
+    def enter_one(sim):
+        nonlocal entered
+        sim.cpu._diag("test diagnostic", f"number {entered}")
+        entered += 1
+        return entered == 1500
+
+    sim.run(condition=enter_one)
+    traced = [e.detail for e in sim.trace.events if e.kind == "test diagnostic"]
+    assert traced == [f"number {n}" for n in range(1500)]
