@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 import pymunk
 
-from plants.components import draw
+from plants.components import chipmunk, draw
 from plants.components.collide import BEAM_CAT, CT_BEAM, CT_PART, PART_CAT, STOP_CAT
 from plants.components.component import Assembly, Component
 from plants.components.sketch import Sketch
@@ -266,6 +266,10 @@ class TopViewPlant:
         self._joints: dict[str, tuple] = {}
         self._next_id = 1
         self._still = True
+        self._stepping = False
+        self._resupport: list[tuple[str, pymunk.Body]] = []  # parts that changed support during a step
+        self._cp_step, self._cp_space = chipmunk.stepper(self.space)
+        self._fresh = True  # a body was added: pymunk's own step checks it once
         self.assembly.reset(self)
 
     def quiescent(self) -> bool:
@@ -289,7 +293,17 @@ class TopViewPlant:
         dt = dt_ns / 1e9
         if assembly.busy:
             assembly.advance(self, dt)
-        self.space.step(dt)
+        self._stepping = True
+        if self._fresh:
+            self._fresh = False
+            self.space.step(dt)
+        else:  # the C step: nothing changes the space inside it (see support), so pymunk's bookkeeping is not needed
+            self._cp_step(self._cp_space, dt)
+        self._stepping = False
+        if self._resupport:
+            resupport, self._resupport = self._resupport, []
+            for pid, body in resupport:
+                self.support(pid, body)
         self._still = not assembly.busy and self._parts_still()
 
     def _parts_still(self) -> bool:
@@ -330,6 +344,7 @@ class TopViewPlant:
             if bb.intersects(other.shape.bb):  # the bounding boxes: an operator keeps a hand's width apart
                 raise ValueError(f"{self.name}: cannot place {part} at {station}: part {other.id} is there")
         self.space.add(p.body, p.shape)
+        self._fresh = True
         self.parts[part] = p
         self._tie(p, self.support_at(x, y))
         self._still = False
@@ -343,7 +358,11 @@ class TopViewPlant:
         return self.space.static_body
 
     def support(self, pid: str, body: pymunk.Body) -> None:
-        """Part ``pid`` now rests on ``body`` (it slid off a belt onto the table)."""
+        """Part ``pid`` now rests on ``body`` (it slid off a belt onto the table); called inside a step (a collision
+        callback), the joints change after it."""
+        if self._stepping:
+            self._resupport.append((pid, body))
+            return
         p = self.parts.get(pid)
         if p is not None:
             self.space.remove(*self._joints.pop(pid))
