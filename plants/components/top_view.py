@@ -50,25 +50,21 @@ class TopPart:
         self.shape.collision_type = CT_PART
         self.shape.filter = pymunk.ShapeFilter(categories=PART_CAT)
         self.shape.part = self
+        self._h = chipmunk.handle(self.body)
         self.color = tuple(self.props.get("color", draw.PART))
         self._sketch = Sketch(lambda: [Drawable(f"parts/{pid}", "polygon", self.corners(), self.color, text=pid)])
 
     def drawable(self) -> Drawable:
         """The part drawn where it lies now."""
-        return self._sketch((self.body.position, self.body.angle))[0]
+        h = self._h
+        p = chipmunk.get_position(h)
+        return self._sketch((p.x, p.y, chipmunk.get_angle(h)))[0]
 
     def corners(self) -> np.ndarray:
-        """The four corners in world coordinates, (4, 2).
-
-        Plain float arithmetic, not a numpy matrix product: that one goes through BLAS, whose kernels may fuse
-        multiply-adds on one machine and not on another (the last bit of a measurement would then depend on it).
-        """
-        (x, y), a = self.body.position, self.body.angle
-        hl, hd = self.spec.length / 2, self.spec.depth / 2
-        c, s = math.cos(a), math.sin(a)
-        return np.array(
-            [(u * c - v * s + x, u * s + v * c + y) for u, v in ((-hl, -hd), (hl, -hd), (hl, hd), (-hl, hd))]
-        )
+        """The four corners in world coordinates, (4, 2) (:func:`~plants.components.draw.box`: no BLAS)."""
+        h = self._h
+        p = chipmunk.get_position(h)
+        return draw.box(p.x, p.y, chipmunk.get_angle(h), self.spec.length / 2, self.spec.depth / 2)
 
 
 class SpotSensor:
