@@ -1,4 +1,5 @@
-"""Direct Chipmunk calls for the per-step paths: a body's position, velocity and force, and a space's step.
+"""Direct Chipmunk calls for the per-step paths: a body's position, velocity and force, a belt shape's surface
+velocity, and a space's step.
 
 pymunk 7's ``Body.position`` builds a ``Vec2d`` from the C struct and every property write passes a Python
 ``__setattr__`` mixin; each costs about 1 µs, three times the C call it wraps, and a piston reads two and writes one in
@@ -28,16 +29,22 @@ import pymunk
 try:
     from pymunk._chipmunk_cffi import lib
 
-    pymunk.Body(1.0, 1.0)._body  # noqa: B018 - the handle the C calls take
+    pymunk.Body(1.0, 1.0)._body  # noqa: B018 - the handles the C calls take
+    pymunk.Circle(None, 1.0)._shape  # noqa: B018
     get_position = lib.cpBodyGetPosition
     get_velocity = lib.cpBodyGetVelocity
     set_velocity = lib.cpBodySetVelocity
     set_force = lib.cpBodySetForce
     get_angle = lib.cpBodyGetAngle
+    set_surface_velocity = lib.cpShapeSetSurfaceVelocity
 
     def handle(body: pymunk.Body) -> Any:
         """What the accessors take for ``body``: its C handle."""
         return body._body
+
+    def shape_handle(shape: pymunk.Shape) -> Any:
+        """What :func:`set_surface_velocity` takes for ``shape``: its C handle."""
+        return shape._shape
 
     def stepper(space: pymunk.Space) -> tuple[Callable[[Any, float], None], Any]:
         """(step, handle): ``step(handle, dt)`` steps ``space`` in C."""
@@ -60,9 +67,16 @@ except (ImportError, AttributeError):  # pragma: no cover - another pymunk relea
     def get_angle(body: pymunk.Body) -> float:
         return body.angle
 
+    def set_surface_velocity(shape: pymunk.Shape, v: tuple[float, float]) -> None:
+        shape.surface_velocity = v
+
     def handle(body: pymunk.Body) -> Any:
         """What the accessors take for ``body``: the body itself."""
         return body
+
+    def shape_handle(shape: pymunk.Shape) -> Any:
+        """What :func:`set_surface_velocity` takes for ``shape``: the shape itself."""
+        return shape
 
     def stepper(space: pymunk.Space) -> tuple[Callable[[Any, float], None], Any]:
         """(step, handle): ``step(handle, dt)`` steps ``space`` (here with ``Space.step``)."""
