@@ -11,6 +11,9 @@
   ``part left`` events); nothing is queried per step.
 * **Components** (piston, fence, sensors) plug in through :mod:`plants.components.component`; the rig steps the
   busy ones before each physics step.
+* **C step.** The space is stepped with ``cpSpaceStep`` (:mod:`plants.components.chipmunk`), so nothing may add
+  to or remove from it inside a step: the collision callbacks only change Python state, and a part that changes
+  support (:meth:`TopViewPlant.support`, a part off the belt) gets its new joints after the step.
 * **Still table, no physics.** After a step in which no part moves (speed < 1 µm/s) and no component is busy, the
   plant is quiescent and later steps only advance the clock, until something is actuated, placed or removed.
 """
