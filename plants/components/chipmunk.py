@@ -36,6 +36,7 @@ try:
     set_velocity = lib.cpBodySetVelocity
     set_force = lib.cpBodySetForce
     get_angle = lib.cpBodyGetAngle
+    get_angular_velocity = lib.cpBodyGetAngularVelocity
     set_surface_velocity = lib.cpShapeSetSurfaceVelocity
 
     def handle(body: pymunk.Body) -> Any:
@@ -66,6 +67,9 @@ except (ImportError, AttributeError):  # pragma: no cover - another pymunk relea
 
     def get_angle(body: pymunk.Body) -> float:
         return body.angle
+
+    def get_angular_velocity(body: pymunk.Body) -> float:
+        return body.angular_velocity
 
     def set_surface_velocity(shape: pymunk.Shape, v: tuple[float, float]) -> None:
         shape.surface_velocity = v

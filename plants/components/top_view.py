@@ -308,9 +308,9 @@ class TopViewPlant:
     def _parts_still(self) -> bool:
         """Whether no part moves (slower than 1 µm/s, turning slower than 10 µrad/s)."""
         for p in self.parts.values():
-            body = p.body
-            if not (body.velocity.length < STILL_MM_S and abs(body.angular_velocity) < 1e-5):
-                return False
+            v = chipmunk.get_velocity(p._h)
+            if not (math.sqrt(v.x**2 + v.y**2) < STILL_MM_S and abs(chipmunk.get_angular_velocity(p._h)) < 1e-5):
+                return False  # (Vec2d.length, as pymunk computes it)
         return True
 
     # -- parts --------------------------------------------------------------------------------
