@@ -160,10 +160,10 @@ class Punch(SideViewPlant):
         for p in self.parts.values():
             if p.state not in ("on", "held"):
                 continue
-            pos = p.body.position
+            x, y, _ = p.pose()
             half = p.spec.length / 2
-            if pos.x + half > lo and pos.x - half < hi:
-                yield (p.id, pos.x, half, pos.y + p.spec.height / 2)
+            if x + half > lo and x - half < hi:
+                yield (p.id, x, half, y + p.spec.height / 2)
 
     def observables(self) -> dict[str, float]:
         """The belt's, and the tool tip height and speed of the press."""

@@ -227,3 +227,70 @@ def test_both_relays_on_in_one_scan_stop_the_belt_and_are_reported_once():
     (e,) = sim.trace.events_of("interlock violated")
     assert (e.subject, e.data["reason"], e.t_ns) == ("M1", "both directions commanded", 1_000_000)
     assert sim.plant.belt_speeds() == {"M1": 0.0}
+
+
+class _Stepper:
+    """A component busy for ``steps`` advances; on its ``at``-th advance it wakes ``other`` (a part reached it)."""
+
+    EVENTS: frozenset[str] = frozenset()
+
+    def __init__(self, name: str, steps: int, other: _Stepper | None = None, at: int = 0) -> None:
+        self.name, self.steps, self.other, self.at = name, steps, other, at
+        self.advanced: list[int] = []
+
+    def specs(self) -> list:
+        return []
+
+    def subjects(self) -> set[str]:
+        return set()
+
+    def reset(self, host) -> bool:
+        return self.steps > 0
+
+    def actuate(self, host, signal, value) -> bool:
+        return False
+
+    def advance(self, host, dt: float) -> bool:
+        self.advanced.append(host.now_ns // MS)
+        if self.other is not None and len(self.advanced) == self.at:
+            self.other.steps = 1
+            host.wake(self.other)
+        return len(self.advanced) < self.steps
+
+    def static_drawables(self) -> list:
+        return []
+
+    def dynamic_drawables(self) -> list:
+        return []
+
+
+def _run(components: list[_Stepper], steps: int) -> None:
+    """Advance an assembly of ``components`` ``steps`` times on a bench whose ``wake`` is the assembly's."""
+    from plants.components.component import Assembly, Bench
+
+    assembly = Assembly(components)
+    host = Bench()
+    host.wake = assembly.wake
+    assembly.reset(host)
+    for _ in range(steps):
+        host.now_ns += MS
+        assembly.advance(host, 1e-3)
+
+
+@pytest.mark.parametrize("steps_a", [1, 5], ids=["waker settles", "waker stays busy"])
+def test_a_component_woken_during_the_only_busy_ones_step_advances_in_the_next(steps_a):
+    woken = _Stepper("B", 0)
+    _run([_Stepper("A", steps_a, woken, at=1), woken], 4)
+    assert woken.advanced == [2]
+
+
+def test_a_component_woken_during_a_step_of_several_advances_in_the_next():
+    woken = _Stepper("B", 0)
+    _run([_Stepper("A", 3, woken, at=2), _Stepper("C", 5), woken], 5)
+    assert woken.advanced == [3]
+
+
+def test_a_component_woken_after_it_settled_in_the_same_step_advances_again_in_the_next():
+    first = _Stepper("B", 1)  # settles in its first advance, then C (after it in the list) wakes it in that step
+    _run([first, _Stepper("C", 3, first, at=1)], 4)
+    assert first.advanced == [1, 2]

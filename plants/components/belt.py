@@ -34,7 +34,7 @@ from typing import Any
 
 import pymunk
 
-from plants.components import draw
+from plants.components import chipmunk, draw
 from plants.components.collide import BELT_CAT, CT_BELT
 from plants.components.component import Host
 from plcsim.plant import Drawable, SignalSpec
@@ -196,6 +196,7 @@ class Belt:
         seg.surface_velocity = (self.v, 0.0)
         space.add(seg)
         self.shape = seg
+        self._h = chipmunk.shape_handle(seg)  # written in every step while the drive settles
         return seg
 
     def contains(self, x: float) -> bool:
@@ -226,7 +227,7 @@ class Belt:
             v = self.target
         self.v = v
         if self.shape is not None:
-            self.shape.surface_velocity = (v, 0.0)
+            chipmunk.set_surface_velocity(self._h, (v, 0.0))
         return not settled
 
     @property

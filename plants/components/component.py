@@ -125,17 +125,18 @@ class Assembly:
             self.busy.append(component)
 
     def advance(self, host: Host, dt: float) -> None:
-        """One step of every busy component, in the order they were woken; the settled ones leave the list (as
-        does one woken during this step)."""
+        """One step of every busy component, in the order they were woken; the settled ones leave the list. A
+        component woken during the step (by another one's advance, or after its own in this step) stays on it or
+        joins it at the end: it advances in the next step, as :meth:`Host.wake` promises."""
         busy = self.busy
+        self.busy = woken = []  # wake() appends here during the step
         if len(busy) == 1:  # the common case (a ram moving, a belt settling): the list is kept while it stays busy
-            c = busy[0]
-            if not c.advance(host, dt):
-                self.busy = []
-            elif len(busy) != 1:
-                self.busy = [c]
-            return
-        self.busy = [c for c in list(busy) if c.advance(host, dt)]
+            kept = busy if busy[0].advance(host, dt) else []
+        else:
+            kept = [c for c in busy if c.advance(host, dt)]
+        if woken:
+            kept += [c for c in woken if c not in kept]
+        self.busy = kept
 
     def has(self, name: str) -> bool:
         """Whether ``name`` is a component or one of their signals."""

@@ -38,6 +38,24 @@ def rect(x0: float, y0: float, x1: float, y1: float) -> np.ndarray:
     return pts([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
 
 
+def box(x: float, y: float, angle: float, half_length: float, half_depth: float) -> np.ndarray:
+    """The four corners (4, 2) of a block centred at (x, y), turned by ``angle`` (rad), counter-clockwise from
+    (-half_length, -half_depth) in its own frame.
+
+    Plain float arithmetic into one array, not a numpy matrix product: that one goes through BLAS, whose kernels
+    may fuse multiply-adds on one machine and not on another (the last bit of a measurement or a drawing would then
+    depend on it), and it costs three times as much.
+
+    >>> box(10.0, 5.0, 0.0, 2.0, 1.0).tolist()
+    [[8.0, 4.0], [12.0, 4.0], [12.0, 6.0], [8.0, 6.0]]
+    """
+    c, s = math.cos(angle), math.sin(angle)
+    lc, ls, dc, ds = half_length * c, half_length * s, half_depth * c, half_depth * s
+    return np.array(  # (u, v) -> (u·c - v·s + x, u·s + v·c + y) for the corners (∓l, ∓d)
+        (-lc + ds + x, -ls - dc + y, lc + ds + x, ls - dc + y, lc - ds + x, ls + dc + y, -lc - ds + x, -ls + dc + y)
+    ).reshape(4, 2)
+
+
 def stadium(x0: float, x1: float, y0: float, y1: float, n: int = 6) -> np.ndarray:
     """A belt outline: a rectangle [x0, x1] × [y0, y1] with half-round ends."""
     r = (y1 - y0) / 2.0

@@ -24,7 +24,7 @@ from typing import Any
 
 import pymunk
 
-from plants.components import draw
+from plants.components import chipmunk, draw
 from plants.components.collide import CT_PLATE, PART_CAT, PLATE_CAT
 from plants.components.component import Host
 from plants.components.limit_switch import LimitSwitch
@@ -89,6 +89,7 @@ class Piston:
         self.stroke = float(stroke)
         self.full = self.stroke if full is None else float(full)
         self.plate = (float(plate[0]), float(plate[1]))
+        self._back = 0.5 * self.plate[1]  # from the plate's centre to its front face
         self.extend_speed, self.retract_speed = float(extend_speed), float(retract_speed)
         self.force, self.spring = force_n * NEWTON, spring_n * NEWTON
         self.valve_ns = round(valve_s * 1e9)
@@ -134,6 +135,7 @@ class Piston:
         groove = pymunk.GrooveJoint(host.space.static_body, body, a, b, (0.0, 0.0))
         host.space.add(body, shape, groove)
         self.body = body
+        self._h = chipmunk.handle(body)  # the per-step reads and writes go straight to Chipmunk
         for sw in self.switches:
             sw.reset()
             sw.update(0.0)
@@ -166,13 +168,13 @@ class Piston:
             self.open, self.due_ns = self.command, None
             if self.open:
                 self.reached = 0.0
-        body = self.body
+        h = self._h
         (ox, oy), (dx, dy) = self.origin, self.dir
-        p, vel = body.position, body.velocity
-        s = (p.x - ox) * dx + (p.y - oy) * dy + 0.5 * self.plate[1]
+        p, vel = chipmunk.get_position(h), chipmunk.get_velocity(h)
+        s = (p.x - ox) * dx + (p.y - oy) * dy + self._back
         v = vel.x * dx + vel.y * dy
         if self.jammed:
-            body.velocity = (0.0, 0.0)
+            chipmunk.set_velocity(h, (0.0, 0.0))
             target = 0.0
         else:
             pressure = 1.0 if self.supply is None else self.supply()
@@ -181,12 +183,12 @@ class Piston:
             else:
                 target, cap = -self.retract_speed, self.spring
             f = max(-cap, min(cap, MASS_KG * (target - v) / dt))
-            body.force = (f * dx, f * dy)
+            chipmunk.set_force(h, (f * dx, f * dy))
         if s != self.s or s > self.reached or self._recheck:  # else _sense would change nothing
             self._sense(host, s)
         at_rest = s <= RETRACTED_WITHIN and target < 0 and abs(v) < 1e-3
         if at_rest:
-            body.velocity = (0.0, 0.0)
+            chipmunk.set_velocity(h, (0.0, 0.0))
         return not at_rest or self.open or self.due_ns is not None or self.jammed  # open: waiting for pressure
 
     def _sense(self, host: Host, s: float) -> None:

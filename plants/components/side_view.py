@@ -49,7 +49,7 @@ from typing import Any
 import numpy as np
 import pymunk
 
-from plants.components import draw
+from plants.components import chipmunk, draw
 from plants.components.belt import Belt
 from plants.components.collide import CT_BEAM, CT_FALL, CT_PART, CT_STOP, FALL_CAT
 from plants.components.component import Assembly, Component
@@ -73,16 +73,6 @@ from plcsim.scenario import RigVerb
 GRAVITY = 9810.0  # mm/s²
 
 __all__ = ["DeadPlate", "EndStop", "SideViewPlant", "StationOccupiedError"]
-
-
-def _raw_stepper(space: pymunk.Space):
-    """(function, handle) that steps ``space`` in C; falls back to ``Space.step`` if pymunk's internals differ."""
-    try:
-        from pymunk._chipmunk_cffi import lib
-
-        return lib.cpSpaceStep, space._space
-    except (ImportError, AttributeError):  # pragma: no cover - another pymunk release
-        return (lambda _handle, dt: space.step(dt)), None
 
 
 class StationOccupiedError(ValueError):
@@ -216,7 +206,7 @@ class SideViewPlant:
         # pymunk's Space.step wraps cpSpaceStep in bookkeeping for adding/removing objects inside callbacks (which
         # this plant never does: it defers removals to after the step) and costs 0.8 µs more than the physics of a
         # one-part belt. The plant calls the C step directly except in the step right after a body was added.
-        self._cp_step, self._cp_space = _raw_stepper(space)
+        self._cp_step, self._cp_space = chipmunk.stepper(space)
         self._fresh = False
         self.parts: dict[str, Part] = {}
         self._next_id = 1

@@ -11,6 +11,9 @@
   ``part left`` events); nothing is queried per step.
 * **Components** (piston, fence, sensors) plug in through :mod:`plants.components.component`; the rig steps the
   busy ones before each physics step.
+* **C step.** The space is stepped with ``cpSpaceStep`` (:mod:`plants.components.chipmunk`), so nothing may add
+  to or remove from it inside a step: the collision callbacks only change Python state, and a part that changes
+  support (:meth:`TopViewPlant.support`, a part off the belt) gets its new joints after the step.
 * **Still table, no physics.** After a step in which no part moves (speed < 1 µm/s) and no component is busy, the
   plant is quiescent and later steps only advance the clock, until something is actuated, placed or removed.
 """
@@ -24,7 +27,7 @@ from typing import Any
 import numpy as np
 import pymunk
 
-from plants.components import draw
+from plants.components import chipmunk, draw
 from plants.components.collide import BEAM_CAT, CT_BEAM, CT_PART, PART_CAT, STOP_CAT
 from plants.components.component import Assembly, Component
 from plants.components.sketch import Sketch
@@ -50,25 +53,21 @@ class TopPart:
         self.shape.collision_type = CT_PART
         self.shape.filter = pymunk.ShapeFilter(categories=PART_CAT)
         self.shape.part = self
+        self._h = chipmunk.handle(self.body)
         self.color = tuple(self.props.get("color", draw.PART))
         self._sketch = Sketch(lambda: [Drawable(f"parts/{pid}", "polygon", self.corners(), self.color, text=pid)])
 
     def drawable(self) -> Drawable:
         """The part drawn where it lies now."""
-        return self._sketch((self.body.position, self.body.angle))[0]
+        h = self._h
+        p = chipmunk.get_position(h)
+        return self._sketch((p.x, p.y, chipmunk.get_angle(h)))[0]
 
     def corners(self) -> np.ndarray:
-        """The four corners in world coordinates, (4, 2).
-
-        Plain float arithmetic, not a numpy matrix product: that one goes through BLAS, whose kernels may fuse
-        multiply-adds on one machine and not on another (the last bit of a measurement would then depend on it).
-        """
-        (x, y), a = self.body.position, self.body.angle
-        hl, hd = self.spec.length / 2, self.spec.depth / 2
-        c, s = math.cos(a), math.sin(a)
-        return np.array(
-            [(u * c - v * s + x, u * s + v * c + y) for u, v in ((-hl, -hd), (hl, -hd), (hl, hd), (-hl, hd))]
-        )
+        """The four corners in world coordinates, (4, 2) (:func:`~plants.components.draw.box`: no BLAS)."""
+        h = self._h
+        p = chipmunk.get_position(h)
+        return draw.box(p.x, p.y, chipmunk.get_angle(h), self.spec.length / 2, self.spec.depth / 2)
 
 
 class SpotSensor:
@@ -266,6 +265,10 @@ class TopViewPlant:
         self._joints: dict[str, tuple] = {}
         self._next_id = 1
         self._still = True
+        self._stepping = False
+        self._resupport: list[tuple[str, pymunk.Body]] = []  # parts that changed support during a step
+        self._cp_step, self._cp_space = chipmunk.stepper(self.space)
+        self._fresh = True  # a body was added: pymunk's own step checks it once
         self.assembly.reset(self)
 
     def quiescent(self) -> bool:
@@ -289,15 +292,25 @@ class TopViewPlant:
         dt = dt_ns / 1e9
         if assembly.busy:
             assembly.advance(self, dt)
-        self.space.step(dt)
+        self._stepping = True
+        if self._fresh:
+            self._fresh = False
+            self.space.step(dt)
+        else:  # the C step: nothing changes the space inside it (see support), so pymunk's bookkeeping is not needed
+            self._cp_step(self._cp_space, dt)
+        self._stepping = False
+        if self._resupport:
+            resupport, self._resupport = self._resupport, []
+            for pid, body in resupport:
+                self.support(pid, body)
         self._still = not assembly.busy and self._parts_still()
 
     def _parts_still(self) -> bool:
         """Whether no part moves (slower than 1 µm/s, turning slower than 10 µrad/s)."""
         for p in self.parts.values():
-            body = p.body
-            if not (body.velocity.length < STILL_MM_S and abs(body.angular_velocity) < 1e-5):
-                return False
+            v = chipmunk.get_velocity(p._h)
+            if not (math.sqrt(v.x**2 + v.y**2) < STILL_MM_S and abs(chipmunk.get_angular_velocity(p._h)) < 1e-5):
+                return False  # (Vec2d.length, as pymunk computes it)
         return True
 
     # -- parts --------------------------------------------------------------------------------
@@ -330,6 +343,7 @@ class TopViewPlant:
             if bb.intersects(other.shape.bb):  # the bounding boxes: an operator keeps a hand's width apart
                 raise ValueError(f"{self.name}: cannot place {part} at {station}: part {other.id} is there")
         self.space.add(p.body, p.shape)
+        self._fresh = True
         self.parts[part] = p
         self._tie(p, self.support_at(x, y))
         self._still = False
@@ -343,7 +357,11 @@ class TopViewPlant:
         return self.space.static_body
 
     def support(self, pid: str, body: pymunk.Body) -> None:
-        """Part ``pid`` now rests on ``body`` (it slid off a belt onto the table)."""
+        """Part ``pid`` now rests on ``body`` (it slid off a belt onto the table); called inside a step (a collision
+        callback), the joints change after it."""
+        if self._stepping:
+            self._resupport.append((pid, body))
+            return
         p = self.parts.get(pid)
         if p is not None:
             self.space.remove(*self._joints.pop(pid))

@@ -8,7 +8,6 @@ given by the caller (the scenario draws it from its own seeded generator); the p
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -16,6 +15,7 @@ from typing import Any
 import numpy as np
 import pymunk
 
+from plants.components import chipmunk, draw
 from plants.components.collide import CT_PART, FALL_CAT, OFF_CAT, PART_CAT
 from plcsim.plant import Drawable
 
@@ -58,6 +58,9 @@ class Part:
     at_stop: bool = False  # touching an end stop (debounces the "end stop hit" event)
     drawn: tuple = ()  # (pose, colour, drawable) of the last drawing, reused while the part rests
 
+    def __post_init__(self) -> None:
+        self._h = chipmunk.handle(self.body)  # the pose is read at every frame: straight from Chipmunk
+
     @classmethod
     def create(
         cls, part_id: str, spec: WorkpieceSpec, x: float, y: float, angle_rad: float, now_ns: int, props: dict
@@ -81,19 +84,17 @@ class Part:
 
     @property
     def x(self) -> float:
-        return self.body.position.x
+        return chipmunk.get_position(self._h).x
 
     def pose(self) -> tuple[float, float, float]:
         """(x, y, angle in rad) of the centre."""
-        p = self.body.position
-        return (p.x, p.y, self.body.angle)
+        p = chipmunk.get_position(self._h)
+        return (p.x, p.y, chipmunk.get_angle(self._h))
 
     def outline(self, pose: tuple[float, float, float] | None = None) -> np.ndarray:
         """The four corners in world coordinates, (4, 2) (at ``pose``, default: where the part is)."""
         x, y, a = self.pose() if pose is None else pose
-        c, s = math.cos(a), math.sin(a)
-        rot = np.array([[c, s], [-s, c]])
-        return _corners(self.spec) @ rot + (x, y)
+        return draw.box(x, y, a, self.spec.length / 2, self.spec.height / 2)
 
     def drawable(self, color: tuple[int, int, int]) -> Drawable:
         """The part's outline as drawn; the same drawable (they are frozen) while it rests in one pose."""
@@ -104,12 +105,3 @@ class Part:
         d = Drawable(f"parts/{self.id}", "polygon", self.outline(pose), color, text=self.id)
         self.drawn = (pose, color, d)
         return d
-
-
-@functools.cache
-def _corners(spec: WorkpieceSpec) -> np.ndarray:
-    """A block's corners around its centre, (4, 2) (read only: shared by every part of the spec)."""
-    hl, hh = spec.length / 2, spec.height / 2
-    local = np.array([(-hl, -hh), (hl, -hh), (hl, hh), (-hl, hh)])
-    local.flags.writeable = False
-    return local
