@@ -10,6 +10,8 @@ shows the machine beside or above the signals:
   became valid, see :meth:`Trace.signal_times`), internal tags at scan start;
 * ``signals/numbers`` (and ``signals/numbers/outputs`` for numeric outputs) — Int/Real tags,
   timer ETs and counter values as step series;
+* ``signals/analog`` — a plant's measured values (kind ``analog``: a press's ram height) as lines
+  through their samples, as in the PNG timing diagram;
 * ``events/plant``, ``events/cpu``, ``events/scenario``, ... — the events as a text log with levels
   (plant events INFO, mishaps such as a part falling off WARN, CPU errors ERROR, STOP WARN,
   scenario actions DEBUG);
@@ -60,13 +62,19 @@ GROUPS: dict[str, str] = {
     "internal": "signals/internal",
     "numbers": "signals/numbers",
     "number_outputs": "signals/numbers/outputs",
+    "analog": "signals/analog",
 }
 """Signal group -> entity path."""
 
 BOOL_GROUPS = ("inputs", "outputs", "internal")
 """The groups drawn one lane per signal, like a logic analyser."""
 
-LANE_COLORS: dict[str, int] = {"inputs": 0x2B8A3EFF, "outputs": 0xC92A2AFF, "internal": 0x1864ABFF}
+LANE_COLORS: dict[str, int] = {
+    "inputs": 0x2B8A3EFF,
+    "outputs": 0xC92A2AFF,
+    "internal": 0x1864ABFF,
+    "analog": 0xE8590CFF,
+}
 """Lane colours by group, as in the PNG timing diagram (:mod:`plcsim.trace_plot`)."""
 
 GROUP_TITLES: dict[str, str] = {
@@ -74,6 +82,7 @@ GROUP_TITLES: dict[str, str] = {
     "outputs": "Outputs (Q)",
     "internal": "Internal bits (M, DB, timers, counters)",
     "numbers": "Numbers",
+    "analog": "Plant measurements",
 }
 
 _NAMESPACE = uuid.UUID("6b1f6c1e-2f5e-4c11-9a57-706c6373696d")
@@ -196,11 +205,13 @@ def _rerun_enabled() -> Iterator[None]:
 
 def signal_groups(trace: TraceTable) -> dict[str, list[str]]:
     """The trace's signals by group (``inputs``, ``outputs``, ``internal``, ``numbers``,
-    ``number_outputs``), in trace order; empty groups are left out."""
+    ``number_outputs``, ``analog``), in trace order; empty groups are left out."""
     groups: dict[str, list[str]] = {g: [] for g in GROUPS}
     for name in trace.names:
         kind = trace.kinds.get(name, "memory")
-        if trace.types.get(name) == "bool":
+        if kind == "analog":
+            group = "analog"
+        elif trace.types.get(name) == "bool":
             group = {"input": "inputs", "output": "outputs"}.get(kind, "internal")
         else:
             group = "number_outputs" if kind == "output" else "numbers"
@@ -242,6 +253,26 @@ def step_rows(times: np.ndarray, values: np.ndarray, every_row: bool = False) ->
     return times[order], values[source]
 
 
+def line_rows(times: np.ndarray, values: np.ndarray, every_row: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """A sampled quantity's rows for a line through its samples: the first and last rows and every
+    row that differs from the one before or after it (so a plateau is drawn flat between its ends and
+    a ramp through each sample); ``every_row`` keeps them all.
+
+    >>> t, v = line_rows(np.array([0, 1, 2, 3, 4, 5]), np.array([[9.0], [9.0], [9.0], [8.0], [7.0], [7.0]]))
+    >>> t.tolist(), v[:, 0].tolist()
+    ([0, 2, 3, 4, 5], [9.0, 9.0, 8.0, 7.0, 7.0])
+    """
+    n = len(values)
+    if n == 0 or every_row:
+        return times, values
+    differs = np.any(values[1:] != values[:-1], axis=1)
+    keep = np.zeros(n, dtype=bool)
+    keep[0] = keep[-1] = True
+    keep[1:] |= differs
+    keep[:-1] |= differs
+    return times[keep], values[keep]
+
+
 def group_rows(trace: TraceTable, names: Sequence[str], every_row: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """The times (int64 ns) and values (rows, len(names)) sent for signals that share a timestamp
     (one group): rows sorted by the time the values became valid, as :func:`step_rows`."""
@@ -254,7 +285,11 @@ def group_rows(trace: TraceTable, names: Sequence[str], every_row: bool = False)
     order = np.argsort(times, kind="stable")
     if not np.all(order[1:] > order[:-1]):
         times, values = times[order], values[order]
-    return step_rows(times, values, every_row)
+    return (line_rows if _is_analog(trace, names) else step_rows)(times, values, every_row)
+
+
+def _is_analog(trace: TraceTable, names: Sequence[str]) -> bool:
+    return all(trace.kinds.get(n) == "analog" for n in names)
 
 
 def _time_column(t_ns: np.ndarray) -> Any:
@@ -263,13 +298,14 @@ def _time_column(t_ns: np.ndarray) -> Any:
     return rr.TimeColumn(TIMELINE, duration=np.asarray(t_ns, dtype=np.int64).astype("timedelta64[ns]"))
 
 
-def _series_style(rr: Any, names: list[str], color: int | None = None) -> Any:
-    """Step lines, never aggregated: the viewer would otherwise average the points under one pixel,
-    turning a one-scan pulse into a plateau at 0.5 (``AggregationPolicy.Off``, rerun 0.41)."""
+def _series_style(rr: Any, names: list[str], color: int | None = None, *, line: bool = False) -> Any:
+    """Step lines (``line``: straight lines through the samples of an analog value), never aggregated:
+    the viewer would otherwise average the points under one pixel, turning a one-scan pulse into a
+    plateau at 0.5 (``AggregationPolicy.Off``, rerun 0.41)."""
     return rr.SeriesLines(
         names=names,
         colors=None if color is None else [color] * len(names),
-        interpolation_mode="StepAfter",
+        interpolation_mode="Linear" if line else "StepAfter",
         aggregation_policy="Off",
     )
 
@@ -281,7 +317,7 @@ def _send_signals(rec: Any, trace: TraceTable, every_row: bool) -> None:
         bools = group in BOOL_GROUPS  # one lane (entity) per Bool; the numbers of a group share one
         lanes = [(lane_entity(group, n), [n]) for n in names] if bools else [(GROUPS[group], names)]
         for entity, series in lanes:
-            rec.log(entity, _series_style(rr, series, LANE_COLORS.get(group)), static=True)
+            rec.log(entity, _series_style(rr, series, LANE_COLORS.get(group), line=group == "analog"), static=True)
             times, values = group_rows(trace, series, every_row)
             if len(times):
                 rec.send_columns(entity, indexes=[_time_column(times)], columns=rr.Scalars.columns(scalars=values))
@@ -576,8 +612,8 @@ def signal_panel(trace: TraceTable) -> tuple[Any, float]:
 
 def signal_lanes(trace: TraceTable) -> tuple[list[Any], list[float]]:
     """The signal views, top to bottom, and their heights: one lane per Bool (inputs, outputs,
-    internal; the first lane of a group carries the group's title), then one plot of the numbers,
-    2.5 lanes high. All share one time axis, so zooming one zooms all."""
+    internal; the first lane of a group carries the group's title), then one plot of the numbers and
+    one of the plant's analog values, each 2.5 lanes high. All share one time axis, so zooming one zooms all."""
     import rerun.blueprint as rrb
 
     groups = signal_groups(trace)
@@ -602,6 +638,16 @@ def signal_lanes(trace: TraceTable) -> tuple[list[Any], list[float]]:
             rrb.TimeSeriesView(
                 origin=GROUPS["numbers"],
                 name=GROUP_TITLES["numbers"],
+                axis_x=linked,
+                plot_legend=rrb.PlotLegend("LeftTop"),
+            )
+        )
+        shares.append(2.5)
+    if "analog" in groups:
+        views.append(
+            rrb.TimeSeriesView(
+                origin=GROUPS["analog"],
+                name=GROUP_TITLES["analog"],
                 axis_x=linked,
                 plot_legend=rrb.PlotLegend("LeftTop"),
             )

@@ -605,3 +605,25 @@ def test_many_lanes_go_in_two_columns(tmp_path):
     few = Trace(names[:8], kinds=kinds, types=dict.fromkeys(names[:8], "bool"))
     few.add_row(0, 500_000, 1, (False,) * 8)
     assert blueprint_columns(export_rrd(few, tmp_path / "few.rrd"))["Signals"] == []  # views, no columns
+
+
+def test_a_plants_analog_value_is_a_line_through_its_samples(tmp_path):
+    """PUNCH traces its ram height (kind ``analog``): in the recording it is a straight-line series of its
+    own (the issue: the press's analog value drawn as a line), with a plateau's ends and every sample of
+    a ramp, so the line is the trace's value at every scan."""
+    from exercises import get
+
+    ex = get("6.3.3")
+    sim = ex.simulation(ex.reference.program(), ex.scenarios[0], seed=1)
+    sim.run()
+    trace = sim.trace
+    assert signal_groups(trace)["analog"] == ["plant:M2.z"]
+    data = read_rrd(trace.to_rrd(tmp_path / "punch.rrd"))
+    style = data[("/signals/analog", True)]
+    assert style["SeriesLines:interpolation_mode"] == [[1]]  # Linear
+    names, times, values = series(data, "/signals/analog")
+    assert names == ["plant:M2.z"]
+    when, col = trace.signal_times("plant:M2.z"), trace.column("plant:M2.z").astype(float)
+    assert len(times) < len(when) / 2  # the plateaus are sent by their ends
+    assert np.array_equal(np.interp(when, times, values[:, 0]), col)  # the line is the trace at every scan
+    assert col.max() > col.min() + 20  # the ram went down and up
