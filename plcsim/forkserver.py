@@ -251,7 +251,13 @@ def _start(control: socket.socket, data: bytes, fds: list[int], children: set[in
             with contextlib.suppress(Exception):  # the child imports it again and reports what fails
                 importlib.import_module(module)
     started_r, started_w = os.pipe()
-    pid = os.fork()
+    try:
+        pid = os.fork()
+    except OSError as exc:  # no process to spare: the grader starts this child afresh or reports it
+        for fd in (started_r, started_w, fds[0]):
+            os.close(fd)
+        _reply(control, {"id": request["id"], "error": f"cannot fork: {exc}"})
+        return
     if pid == 0:
         os.close(started_r)
         _become_child(request, fds[0], started_w)
