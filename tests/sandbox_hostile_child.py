@@ -62,13 +62,15 @@ def work(request: dict[str, Any]) -> bytes:
         message = encode_runs(_runs(request))
         return _TAMPER[order["how"]](message)
     if do == "grandchild":  # forks off a process that leaves the group and holds the result pipe
+        ready_r, ready_w = os.pipe()
         pid = os.fork()
         if pid == 0:
             os.setsid()
-            _name_myself(SLEEPER)
+            os.write(ready_w, str(_host_pid()).encode())
             time.sleep(60)
             os._exit(0)
-        Path(order["pid_file"]).write_text(str(pid))
+        os.close(ready_w)
+        Path(order["pid_file"]).write_text(os.read(ready_r, 64).decode())  # as the grader's machine numbers it
         os._exit(3)
     if do == "escape":  # after the lock-down: read secrets, write outside scratch, fork, connect
         runs = _runs(request)
@@ -128,14 +130,12 @@ def work(request: dict[str, Any]) -> bytes:
     raise ValueError(f"unknown behaviour {do!r}")
 
 
-SLEEPER = b"hostile-sleeper"
-"""The name (``/proc/PID/comm``) a process the hostile child leaves behind gives itself, for the tests to find."""
-
-
-def _name_myself(name: bytes) -> None:
-    import ctypes
-
-    ctypes.CDLL(None).prctl(15, ctypes.c_char_p(name), 0, 0, 0)  # PR_SET_NAME
+def _host_pid() -> int:
+    """This process's pid outside every PID namespace it is in (the first of ``NSpid``)."""
+    for line in Path("/proc/self/status").read_text().splitlines():
+        if line.startswith("NSpid:"):
+            return int(line.split()[1])
+    return os.getpid()
 
 
 def _target(fd: int) -> str:

@@ -73,7 +73,7 @@ def test_a_server_killed_between_grades_is_replaced(ex1):
     (server,) = servers()
     os.kill(server.process.pid, signal.SIGKILL)
     server.process.wait()
-    deadline = time.monotonic() + 2
+    deadline = time.monotonic() + 10  # (a loaded machine may take a while to reap them)
     while server.alive and time.monotonic() < deadline:
         time.sleep(0.01)
     r = grade_sandboxed(ex1, ex1.reference.path)
@@ -89,7 +89,7 @@ def test_a_server_dying_under_a_running_child_is_a_grader_error_and_takes_the_ch
     assert (r.error_kind, r.passed) == ("grader error", False)
     assert "fork server" in r.error
     assert r.elapsed_s < 10
-    deadline = time.monotonic() + 2
+    deadline = time.monotonic() + 10  # (a loaded machine may take a while to reap them)
     while _named(forkserver.CHILD_NAME) and time.monotonic() < deadline:
         time.sleep(0.02)
     assert not _named(forkserver.CHILD_NAME)
