@@ -633,23 +633,11 @@ def signal_lanes(trace: TraceTable) -> tuple[list[Any], list[float]]:
                 )
             )
             shares.append(1.0 + TITLE_SHARE * (k == 0))
-    if "numbers" in groups or "number_outputs" in groups:
+    plots = {"numbers": "numbers" in groups or "number_outputs" in groups, "analog": "analog" in groups}
+    for group in (g for g, shown in plots.items() if shown):
         views.append(
             rrb.TimeSeriesView(
-                origin=GROUPS["numbers"],
-                name=GROUP_TITLES["numbers"],
-                axis_x=linked,
-                plot_legend=rrb.PlotLegend("LeftTop"),
-            )
-        )
-        shares.append(2.5)
-    if "analog" in groups:
-        views.append(
-            rrb.TimeSeriesView(
-                origin=GROUPS["analog"],
-                name=GROUP_TITLES["analog"],
-                axis_x=linked,
-                plot_legend=rrb.PlotLegend("LeftTop"),
+                origin=GROUPS[group], name=GROUP_TITLES[group], axis_x=linked, plot_legend=rrb.PlotLegend("LeftTop")
             )
         )
         shares.append(2.5)
