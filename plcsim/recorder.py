@@ -238,6 +238,8 @@ def _compile_getter(
     >>> row = _compile_getter(["i['S1']", "d['M']"], sample=lambda: (1.5, 2.5), into=(lambda *v: v, 2))
     >>> row({"M": 7}, {"S1": True})
     (True, 7, 1.5, 2.5)
+    >>> _compile_getter([], sample=lambda: (1.5, 2.5))({}, {})
+    (1.5, 2.5)
     >>> _compile_getter([], sample=lambda: (1.5,), into=(lambda *v: v, 2))({}, {})
     Traceback (most recent call last):
     ValueError: not enough values to unpack (expected 2, got 1)
@@ -248,7 +250,7 @@ def _compile_getter(
     lines = [f"    {name} = {base}\n" for base, name in bases.items()]
     body = "".join(f"{source}, " for source in sources)
     if into is None:
-        row = f"({body}{'*s()' if sample is not None else ''})"
+        row = f"({body}{'*s(), ' if sample is not None else ''})"  # a tuple even when ``s()`` is all of it
     else:
         scope["p"], sampled = into
         names = [f"_s{k}" for k in range(sampled if sample is not None else 0)]

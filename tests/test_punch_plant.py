@@ -259,6 +259,16 @@ def test_the_ram_height_is_traced_as_an_analog_value_and_drawn_as_a_line():
     assert "plant:M2.z" in default_signals(tr)
 
 
+def test_a_trace_of_no_signals_still_records_the_plants_measurements():
+    """``signals=[]`` keeps only the analog observables: the row is the sample alone (it was a syntax error)."""
+    tags = {"M2_DOLE": Tag("%Q0.2")}
+    cpu = CPU(tags, "def OB1(t):\n    t.M2_DOLE = True\n")
+    sim = Simulation(cpu, Punch(), [Wire("M2_DOLE", "M2_DOLE")], signals=[])
+    sim.run("200ms")
+    z = sim.trace.column("plant:M2.z")
+    assert len(z) == 200 and z[0] == 105.5 and z[-1] < 105.5  # the ram is going down
+
+
 def test_a_plant_whose_traced_observables_disagree_is_refused():
     class Wrong(Punch):
         def sample_observables(self) -> tuple[float, ...]:
