@@ -393,10 +393,11 @@ def _saved_scenario(args: argparse.Namespace) -> Any:
     if not (args.scenario and args.scenario.endswith((".toml", ".py"))):
         args.seed = 1 if args.seed is None else args.seed
         return None
+    from plcsim.live.build import Target
     from plcsim.live.recording import load_scenario_file
 
     base = None if is_rig(args.target) else _exercise_scenario(args.target)
-    scenario, seed = load_scenario_file(args.scenario, base=base)
+    scenario, seed = load_scenario_file(args.scenario, base=base, rig_verbs=Target.find(args.target).verbs())
     args.seed = args.seed if args.seed is not None else (seed if seed is not None else 1)
     return scenario
 

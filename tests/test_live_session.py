@@ -28,7 +28,7 @@ def replayed_digest(session: LiveSession, path) -> str:
     """Save the session to ``path``, read the file back as the CLI does, run it afresh: the trace digest."""
     session.save(path)
     target = Target.find(session.target.name)
-    scenario, seed = load_scenario_file(path, base=target.base)
+    scenario, seed = load_scenario_file(path, base=target.base, rig_verbs=target.verbs())
     sim = target.simulation(session.program, scenario, seed=seed)
     sim.run()
     assert sim.now == session.now
@@ -119,6 +119,35 @@ def test_saved_midway_the_base_scenario_is_cut_where_the_session_ended(tmp_path)
     session.advance(3000 * MS)  # the jam scenario's acknowledgement at 13..14 s has not happened
     assert replayed_digest(session, tmp_path / "early.toml") == session.sim.trace.digest()
     assert replayed_digest(session, tmp_path / "early.py") == session.sim.trace.digest()
+
+
+@pytest.mark.parametrize("suffix", [".toml", ".py"])
+def test_the_rigs_own_verbs_and_a_parts_colour_are_recorded_and_replay(tmp_path, suffix):
+    """On the colour sorter (4.3.17's reference): daylight on the colour sensor, a red part placed at OS1, then the
+    compressor failing before the part reaches piston 2: the piston's pulse cannot move it, the program frees the
+    position all the same and the belt stops with the part on it, live and in the replay."""
+    session = LiveSession("4.3.17", "exercises/solutions/4_3_17/reference.py", seed=3)
+    verbs = {v["verb"]: v for v in session.layout()["rig_verbs"]}
+    assert verbs["set_ambient"]["targets"] == ["FARBA"] and verbs["set_ambient"]["args"] == ["offset"]
+    assert verbs["fail_compressor"]["targets"] == ["Kompresor"] and "interrupt" not in verbs  # an S7 program
+    session.do("set_ambient", "FARBA", offset=1500.0)
+    session.do("place", station="OS1", colour=2)
+    session.advance(5000 * MS)
+    session.do("fail_compressor", "Kompresor")
+    session.advance(9000 * MS)
+    trace = session.sim.trace
+    assert [e.kind for e in trace.events if e.kind in ("part in bin", "compressor failed")] == ["compressor failed"]
+    assert trace.column("DATA.POZ4_FARBA2").max() == 2 and trace.intervals("Piest2_Farba2")  # typed red, pushed
+    part = session.sim.plant.parts["p1"]
+    assert part.props["colour"] == 2 and 360 < part.body.position.x < 390 and not trace.column("D1_VPRED")[-1]
+    assert replayed_digest(session, tmp_path / f"sort{suffix}") == session.sim.trace.digest()
+
+
+def test_a_verb_of_another_rig_is_refused_with_the_verbs_there_are():
+    session = LiveSession("4.3.17", "exercises/solutions/4_3_17/reference.py")
+    with pytest.raises(ScenarioError, match=r"cannot record 'jam_piston' here; verbs: .*set_ambient, fail_compressor"):
+        session.do("jam_piston", "P1")
+    assert session.recorded == []
 
 
 def test_a_name_the_run_lacks_is_refused_and_not_recorded():

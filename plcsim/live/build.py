@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import importlib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -12,7 +13,8 @@ from plcsim.errors import PlcError
 from plcsim.frontends import read_program
 from plcsim.loaded import SourceProgram
 from plcsim.plant import Plant
-from plcsim.scenario import Scenario
+from plcsim.profiles import all_profiles
+from plcsim.scenario import RigVerb, Scenario
 from plcsim.sim import Pacing, Simulation
 from plcsim.tags import Tag
 from plcsim.wiring import Wire
@@ -41,6 +43,17 @@ class Target:
 
         exercise = get(name)
         return cls(exercise.number, exercise=exercise)
+
+    def verbs(self) -> dict[str, RigVerb]:
+        """The scenario verbs a session on this target may use besides :mod:`plcsim.scenario`'s: its rig's
+        (``set_ambient``) and every registered controller's (the Tecomat's ``interrupt``, ``set_clock``)."""
+        rig = self.exercise.rig if self.exercise is not None else self.rig
+        found: dict[str, RigVerb] = {}
+        for p in all_profiles():
+            module, _, name = p.controller.partition(":")
+            found.update(getattr(getattr(importlib.import_module(module), name), "VERBS", {}))
+        found.update(getattr(rig, "VERBS", {}) if rig is not None else {})
+        return found
 
     def base(self, name: str | None) -> Scenario | None:
         """The exercise's scenario ``name`` (None: none); a rig has none."""

@@ -27,14 +27,14 @@ from __future__ import annotations
 import json
 import runpy
 import tomllib
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from plcsim import scenario as verbs
 from plcsim.errors import PlcError
-from plcsim.scenario import Action, Scenario, ScenarioError
+from plcsim.scenario import Action, RigVerb, Scenario, ScenarioError
 
 # verb -> (constructor in plcsim.scenario, positional arguments after the target, keyword arguments);
 # an argument is (name in the call, key in Action.args)
@@ -67,6 +67,8 @@ _CALLS: dict[str, tuple[str, tuple[tuple[str, str], ...], tuple[tuple[str, str],
 }
 """How each verb a live session can record is written as a call of :mod:`plcsim.scenario`."""
 _NO_TARGET = {"stop_cpu", "start_cpu", "power_cycle"}
+_PLACE_ARGS = {"station", "noise", "offset_mm", "angle_deg"}
+"""The arguments of ``place`` that are not the part's properties."""
 LIVE_ORIGIN = "live session action {n}"
 """Where a recorded action was made (its ``defined_at``), the same live and replayed from ``.toml``."""
 
@@ -80,15 +82,24 @@ def time_literal(ns: int) -> str:
     return f"{ns // 1_000_000}ms" if ns % 1_000_000 == 0 else f"{ns}ns"
 
 
-def make_action(verb: str, target: str, t: str | int, args: dict[str, Any]) -> Action:
-    """The action ``verb`` on ``target`` at ``t`` built by its constructor in :mod:`plcsim.scenario`."""
+def make_action(
+    verb: str, target: str, t: str | int, args: dict[str, Any], rig_verbs: Mapping[str, RigVerb] | None = None
+) -> Action:
+    """The action ``verb`` on ``target`` at ``t`` built by its constructor in :mod:`plcsim.scenario`, or by the
+    rig's or the controller's own verb in ``rig_verbs`` (``set_ambient``, ``interrupt``). A part placed keeps its
+    properties (``colour=2``) besides the pose arguments."""
     if verb not in _CALLS:
-        raise ScenarioError(f"a live session cannot record {verb!r}; verbs: {', '.join(_CALLS)}")
+        if rig_verbs and verb in rig_verbs:
+            return rig_verbs[verb](target, t=t, **args)
+        known = [*_CALLS, *(rig_verbs or {})]
+        raise ScenarioError(f"a live session cannot record {verb!r} here; verbs: {', '.join(known)}")
     name, positional, keywords = _CALLS[verb]
     call: Callable[..., Any] = getattr(verbs, name)
     pos = [] if verb in _NO_TARGET else [target]
     pos += [args[key] for _, key in positional]
     kw = {arg: _tuples(args[key]) for arg, key in keywords if args.get(key) is not None}
+    if verb == "place":
+        kw.update({k: _tuples(v) for k, v in args.items() if k not in _PLACE_ARGS})
     made = call(*pos, t=t, **kw)
     return made[0] if isinstance(made, list) else made
 
@@ -99,8 +110,13 @@ def _tuples(value: Any) -> Any:
 
 def action_args(action: Action) -> dict[str, Any]:
     """The arguments of ``action`` a recording keeps (by their ``Action.args`` keys), None left out."""
+    if action.rig is not None:
+        return {key: value for key, value in action.args.items() if value is not None}
     _, positional, keywords = _CALLS[action.verb]
-    return {key: action.args[key] for _, key in positional + keywords if action.args.get(key) is not None}
+    kept = {key: action.args[key] for _, key in positional + keywords if action.args.get(key) is not None}
+    if action.verb == "place":  # the part's properties (colour=2), as keywords of their own
+        kept.update(action.args.get("properties") or {})
+    return kept
 
 
 @dataclass
@@ -166,15 +182,18 @@ class Recording:
         return "\n".join(lines) + "\n"
 
     @classmethod
-    def from_toml(cls, text: str, where: str = "<recording>") -> Recording:
-        """Read :meth:`to_toml`'s text; a mistake is reported with ``where`` and what to fix."""
+    def from_toml(
+        cls, text: str, where: str = "<recording>", rig_verbs: Mapping[str, RigVerb] | None = None
+    ) -> Recording:
+        """Read :meth:`to_toml`'s text; a mistake is reported with ``where`` and what to fix. ``rig_verbs``: the
+        verbs the target's rig and controllers bring (:meth:`~plcsim.live.build.Target.verbs`), if it used any."""
         try:
             data = tomllib.loads(text)
             session = data["session"]
             actions = []
             for n, item in enumerate(data.get("action", []), 1):
                 args = {k: v for k, v in item.items() if k not in ("t", "verb", "target")}
-                action = make_action(item["verb"], item.get("target", "CPU"), item["t"], args)
+                action = make_action(item["verb"], item.get("target", "CPU"), item["t"], args, rig_verbs)
                 action.defined_at = LIVE_ORIGIN.format(n=n)
                 actions.append(action)
             return cls(
@@ -197,12 +216,15 @@ class Recording:
 
     def to_python(self) -> str:
         """The recording as a Python file with ``SCENARIO = Scenario(...)``, as an exercise writes one."""
-        used = sorted({_CALLS[a.verb][0] for a in self.actions})
+        used = sorted({_CALLS[a.verb][0] for a in self.actions if a.rig is None})
         head = [
             f"# plcsim live session on {self.target}, seed {self.seed}: replay with  {self.replay_command()}",
             f"from plcsim.scenario import {', '.join(['Scenario', *used])}",
         ]
         body = ["", f"SEED = {self.seed}"]
+        if any(a.rig is not None for a in self.actions):  # the rig's and the controller's own verbs, by name
+            head.append("from plcsim.live.build import Target")
+            body.append(f"VERBS = Target.find({_py(self.target)}).verbs()")
         items = [f"    {_py(self.name)},"]
         if self.base is not None:
             head.append("from plcsim.catalog import get")
@@ -229,17 +251,22 @@ class Recording:
         return path
 
 
-def load_scenario_file(path: str | Path, base: Callable[[str], Scenario] | None = None) -> tuple[Scenario, int | None]:
+def load_scenario_file(
+    path: str | Path,
+    base: Callable[[str], Scenario] | None = None,
+    rig_verbs: Mapping[str, RigVerb] | None = None,
+) -> tuple[Scenario, int | None]:
     """A scenario from a file, and the seed it was recorded with (None if it names none).
 
-    ``.toml``: a live recording (:meth:`Recording.to_toml`); ``base(name)`` gives its base scenario.
+    ``.toml``: a live recording (:meth:`Recording.to_toml`); ``base(name)`` gives its base scenario, ``rig_verbs``
+    the verbs its rig and controllers bring.
     ``.py``: a file defining ``SCENARIO`` (and optionally ``SEED``), as :meth:`Recording.to_python` writes.
     """
     path = Path(path)
     if not path.is_file():
         raise PlcError(f"{path}: no such scenario file")
     if path.suffix == ".toml":
-        rec = Recording.from_toml(path.read_text(encoding="utf-8"), str(path))
+        rec = Recording.from_toml(path.read_text(encoding="utf-8"), str(path), rig_verbs)
         if rec.base is not None and base is None:
             raise PlcError(f"{path}: the recording builds on scenario {rec.base!r} of {rec.target}; replay it there")
         return rec.scenario(base(rec.base) if rec.base is not None and base is not None else None), rec.seed
@@ -254,11 +281,17 @@ def load_scenario_file(path: str | Path, base: Callable[[str], Scenario] | None 
 
 
 def _call(action: Action) -> str:
+    if action.rig is not None:
+        args = [f"{k}={_py(v)}" for k, v in action_args(action).items()]
+        when = f"t={_py(time_literal(action.t.lo_ns))}"  # type: ignore[union-attr]
+        return f"VERBS[{_py(action.verb)}]({', '.join([_py(action.target), when, *args])})"
     name, positional, keywords = _CALLS[action.verb]
     parts = [] if action.verb in _NO_TARGET else [_py(action.target)]
     parts += [_py(action.args[key]) for _, key in positional]
     parts.append(f"t={_py(time_literal(action.t.lo_ns))}")  # type: ignore[union-attr]
     parts += [f"{arg}={_py(action.args[key])}" for arg, key in keywords if action.args.get(key) is not None]
+    if action.verb == "place":
+        parts += [f"{k}={_py(v)}" for k, v in (action.args.get("properties") or {}).items()]
     return f"{name}({', '.join(parts)})"
 
 

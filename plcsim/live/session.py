@@ -19,6 +19,7 @@ True
 
 from __future__ import annotations
 
+import string
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -33,9 +34,9 @@ from plcsim.literals import format_ns
 from plcsim.live.build import LIVE, Target, open_ended
 from plcsim.live.recording import LIVE_ORIGIN, Recording, make_action
 from plcsim.loaded import SourceProgram
-from plcsim.plant import Drawable
+from plcsim.plant import Drawable, rig_verbs
 from plcsim.program import Program
-from plcsim.scenario import Action, Scenario
+from plcsim.scenario import Action, RigVerb, Scenario
 from plcsim.sim import Simulation
 
 PANEL_DEMO = "def OB1(t):\n    t.LED = t.TL\n"
@@ -82,6 +83,8 @@ class LiveSession:
         plant = self.sim.plant
         self._switches = set(getattr(getattr(plant, "panel", None), "switches", ()))
         self._base_count = len(self.sim.scenario.actions)  # type: ignore[union-attr]
+        self.verbs: dict[str, RigVerb] = {**getattr(self.sim.cpu, "VERBS", {}), **rig_verbs(plant)}
+        """The verbs this run's rig and controller bring (``set_ambient``, ``interrupt``), besides the scenario's."""
 
     # -- time ------------------------------------------------------------------------------------------
 
@@ -164,7 +167,7 @@ class LiveSession:
         if verb == "place":
             target = target or self.next_part_name()
             args = {"noise": True, **args}
-        action = make_action(verb, target, at_ns, args)
+        action = make_action(verb, target, at_ns, args, self.verbs)
         action.defined_at = LIVE_ORIGIN.format(n=len(self.recorded) + 1)
         everything = (*self.sim.scenario.actions, *self.recorded, action)  # type: ignore[union-attr]
         self.sim._check_scenario(Scenario(self.name, *everything, duration=NEVER))
@@ -262,11 +265,28 @@ class LiveSession:
             "sensors": [n for n, s in signals.items() if s.direction == "sensor" and not s.operator],
             "motors": motors,
             "faults": faults,
+            "rig_verbs": [self._verb_json(v) for v in self.verbs.values()],
             "watch": list(sim.trace.names),
             "inputs": list(sim.cpu.inputs),
             "outputs": list(sim.cpu.outputs),
             "min_hold_ns": self.min_hold_ns,
             "dt_ns": sim.dt_ns,
+        }
+
+    def _verb_json(self, verb: RigVerb) -> dict[str, Any]:
+        """A rig's or a controller's verb as the page offers it: its caption, what its target may be (empty:
+        typed, e.g. a time of day; ``parts``: a part on the machine) and the arguments its phrase names."""
+        owner = self.sim.cpu if verb.controller else self.sim.plant
+        targets = "parts" if verb.on_parts else sorted(getattr(owner, verb.targets, ())) if verb.targets else []
+        args = [f for _, f, _, _ in string.Formatter().parse(verb.phrase) if f and f != "target"]
+        caption = verb.name.replace("_", " ")
+        return {
+            "verb": verb.name,
+            "caption": caption,
+            "role": verb.role,
+            "targets": targets,
+            "args": args,
+            "doc": verb.doc,
         }
 
     def state(self) -> dict[str, Any]:

@@ -77,6 +77,7 @@ function buildLayout(layout) {
   buildStations(layout);
   buildControls(layout);
   buildFaults(layout);
+  buildRigVerbs(layout);
   buildWatch(layout);
   $("controls-card").classList.toggle("hidden", layout.controls.length === 0);
   $("parts-card").classList.toggle("hidden", layout.stations.length === 0);
@@ -105,7 +106,7 @@ function buildStations(layout) {
     g.appendChild(marker);
   }
   const list = $("stations-list");
-  list.replaceChildren(...layout.stations.map((s) => button(`place at ${s.name}`, () => send({ op: "do", verb: "place", args: { station: s.name } }), s.doc)));
+  list.replaceChildren(...layout.stations.map((s) => button(`place at ${s.name}`, () => placeAt(s.name), s.doc)));
 }
 
 function button(text, onclick, title = "") {
@@ -143,7 +144,7 @@ $("machine").addEventListener("pointerdown", (e) => {
   const control = e.target.closest("[data-control]"), station = e.target.closest("[data-station]");
   const part = e.target.closest("[data-part]");
   if (control) { e.preventDefault(); controlDown(control.dataset.control); }
-  else if (station) send({ op: "do", verb: "place", args: { station: station.dataset.station } });
+  else if (station) placeAt(station.dataset.station);
   else if (part) partMenu(part.dataset.part, e.clientX, e.clientY);
 });
 
@@ -157,7 +158,9 @@ function partMenu(name, x, y) {
     button(text, () => { send({ op: "do", verb, target: name }); menu.remove(); })));
   setTimeout(() => window.addEventListener("pointerdown", (e) => { if (!menu.contains(e.target)) menu.remove(); }, { once: true }), 0);
 }
+let lastParts = {};  // the parts on the machine now (the rig verbs that act on a part offer them)
 function renderParts(parts) {
+  lastParts = parts;
   const names = Object.values(parts);
   const key = names.join(",");
   if (key === renderParts.key) return;
@@ -168,6 +171,57 @@ function renderParts(parts) {
     row.append(b, ...PART_VERBS.map(([verb, text]) => button(text, () => send({ op: "do", verb, target: name }))));
     return row;
   }));
+}
+
+// a part's properties as typed ("colour=2 size=big"): numbers and true/false as such, the rest as text
+function typed(text) {
+  const t = text.trim();
+  if (t === "true" || t === "false") return t === "true";
+  return t !== "" && !isNaN(Number(t)) ? Number(t) : t;
+}
+function properties(text) {
+  const out = {};
+  for (const item of text.split(/[\s,]+/).filter(Boolean)) {
+    const [key, ...rest] = item.split("=");
+    if (key && rest.length) out[key] = typed(rest.join("="));
+  }
+  return out;
+}
+function placeAt(station) {
+  send({ op: "do", verb: "place", args: { station, ...properties($("part-props").value) } });
+}
+
+// -- the rig's and the controller's own verbs (set the ambient light, fail the compressor, an interrupt) --
+function buildRigVerbs(layout) {
+  const verbs = layout.rig_verbs || [];
+  $("rig-card").classList.toggle("hidden", verbs.length === 0);
+  const select = $("rig-verb");
+  select.replaceChildren(...verbs.map((v) => new Option(v.caption, v.verb)));
+  const chosen = () => verbs.find((v) => v.verb === select.value);
+  const form = () => {
+    const v = chosen();
+    if (!v) return;
+    select.title = v.doc;
+    const names = v.targets === "parts" ? Object.values(lastParts) : v.targets;
+    $("rig-target").replaceChildren(...names.map((n) => new Option(n, n)));
+    $("rig-target").classList.toggle("hidden", names.length === 0);
+    $("rig-target-text").classList.toggle("hidden", names.length > 0);
+    $("rig-target-text").placeholder = v.role;
+    $("rig-args").replaceChildren(...v.args.map((name) => {
+      const input = document.createElement("input"); input.placeholder = name; input.dataset.arg = name; input.size = 8;
+      return input;
+    }));
+  };
+  select.onchange = form;
+  $("rig-verb").onfocus = form;  // the parts on the machine change while the page is open
+  form();
+  $("rig-apply").onclick = () => {
+    const v = chosen();
+    const target = v.targets.length === 0 ? $("rig-target-text").value : $("rig-target").value;
+    const args = {};
+    for (const input of $("rig-args").querySelectorAll("input")) if (input.value !== "") args[input.dataset.arg] = typed(input.value);
+    send({ op: "do", verb: v.verb, target, args });
+  };
 }
 
 function buildFaults(layout) {
