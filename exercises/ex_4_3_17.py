@@ -346,6 +346,30 @@ EXERCISE = Exercise(
             )
             for line in (79, 89, 99)
         },
+        **{
+            key: (
+                "the shift rungs in another order: at the spacing of §5.8 each position is taken and freed within "
+                "1 scan of the reference (criterion 5); they differ only where objects closer than the sorter can "
+                "take meet at a barrier ('objects too close'), where they lose other objects than the reference"
+            )
+            for key in (
+                "OB1: networks loading and detection swapped",
+                "OB1: networks detection and colour_1 swapped",
+                "OB1: networks colour_1 and colour_2 swapped",
+                "OB1: networks colour_2 and colour_3 swapped",
+                "OB1: network detection moved to the end",
+                "OB1: network colour_1 moved to the end",
+                "OB1: network colour_2 moved to the end",
+                "OB1: network colour_3 moved to the end",
+            )
+        },
+        "OB1: networks colour_3 and conveyor swapped": (
+            "the belt follows the occupancy in the same scan (criterion 4 as the spec words it); it differs only in "
+            "'objects too close': when position 5 is freed while an object nobody tracks stands in OS5's beam, the "
+            "belt stops before rung 5 can take it over, and the object stays there; the reference takes it over with "
+            "type 0 and runs it off the end for ever. Both lose it; the spec asks nothing of an object the sorter "
+            "has lost"
+        ),
         "OB1: networks compressor and piston_1 swapped": (
             "the compressor follows piston 1 in the same scan and pistons 2 and 3 a scan later: inside criterion 2's "
             "'within 1 scan' (spec §4 item 1)"
