@@ -143,6 +143,19 @@ def test_the_rigs_own_verbs_and_a_parts_colour_are_recorded_and_replay(tmp_path,
     assert replayed_digest(session, tmp_path / f"sort{suffix}") == session.sim.trace.digest()
 
 
+def test_the_tecomats_own_verbs_are_offered_on_an_il_program_and_replay(tmp_path):
+    """A Tecomat program (t-05's .il reference) brings the controller's verbs: an interrupt source and the clock."""
+    session = LiveSession("t-05", "exercises/solutions/T_05/reference.il")
+    verbs = {v["verb"]: v for v in session.layout()["rig_verbs"]}
+    assert verbs["interrupt"]["targets"] == [str(k) for k in range(1, 9)] and verbs["set_clock"]["targets"] == []
+    session.do("set_clock", "07:59:30")
+    session.advance(1000 * MS)
+    session.do("interrupt", "1")
+    session.advance(100 * MS)
+    assert [e.kind for e in session.sim.trace.events if e.source == "scenario"] == ["set_clock", "interrupt"]
+    assert replayed_digest(session, tmp_path / "tecomat.toml") == session.sim.trace.digest()
+
+
 def test_a_verb_of_another_rig_is_refused_with_the_verbs_there_are():
     session = LiveSession("4.3.17", "exercises/solutions/4_3_17/reference.py")
     with pytest.raises(ScenarioError, match=r"cannot record 'jam_piston' here; verbs: .*set_ambient, fail_compressor"):
