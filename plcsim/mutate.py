@@ -70,6 +70,7 @@ from plcsim.errors import ExerciseError, PlcError, did_you_mean
 from plcsim.exercise import Exercise
 from plcsim.grading import Report, grade
 from plcsim.literals import time_ms
+from plcsim.loaded import SourceProgram
 from plcsim.program import Program
 from plcsim.tags import TagTable
 from plcsim.types import Bool
@@ -266,7 +267,7 @@ def _compare_sites(node: ast.Compare, index: dict[int, int]) -> Iterator[Site]:
             yield "boundary", node.lineno, f"{_text(node)} → {_text(after)}", _set_op(k, i, other)
     for operand in [node.left, *node.comparators]:
         if isinstance(operand, ast.Constant) and type(operand.value) is int:
-            for new in _steps(operand.value):
+            for new in preset_steps(operand.value):
                 after = _text(_with_constant(node, operand, new))
                 yield "preset", node.lineno, f"{_text(node)} → {after}", _set_attr(index[id(operand)], "value", new)
 
@@ -278,11 +279,11 @@ def _with_constant(node: ast.Compare, old: ast.Constant, new: int) -> ast.Compar
 
 def _preset_sites(const: ast.Constant, what: str, index: dict[int, int]) -> Iterator[Site]:
     value = const.value
-    for new in _steps(value):
+    for new in preset_steps(value):
         yield "preset", const.lineno, f"{what}{value!r} → {new!r}", _set_attr(index[id(const)], "value", new)
 
 
-def _steps(value: Any) -> list[Any]:
+def preset_steps(value: Any) -> list[Any]:
     """The preset one step below and above ``value`` (see the module docstring)."""
     if isinstance(value, bool):
         return []
@@ -523,16 +524,22 @@ def exercise_mutants(exercise: Exercise) -> list[Mutant]:
     Raises :class:`~plcsim.errors.ExerciseError` if the exercise's ``spec_equivalent`` names a mutant
     the reference does not have (see :func:`declared_equivalents`).
     """
-    path = exercise.reference.path
-    if Path(path).suffix != ".py":
-        raise PlcError(
-            f"exercise {exercise.number}: its reference {Path(path).name} is not a Python (S7) program; "
-            f"mutation testing derives mutants of Python programs only"
+    path = Path(exercise.reference.path)
+    if path.suffix == ".il":
+        from plcsim.frontends.il import IlProgram
+        from plcsim.mutate_il import derive_il_mutants
+
+        mutants = derive_il_mutants(IlProgram.from_file(path).text)
+    elif path.suffix == ".py":
+        nc = [row.tag for row in exercise.io if row.wiring == "NC" and row.direction == "input"]
+        mutants = derive_mutants(
+            path.read_text(encoding="utf-8"), exercise.tag_table(), nc_inputs=nc, filename=str(path)
         )
-    nc = [row.tag for row in exercise.io if row.wiring == "NC" and row.direction == "input"]
-    mutants = derive_mutants(
-        Path(path).read_text(encoding="utf-8"), exercise.tag_table(), nc_inputs=nc, filename=str(path)
-    )
+    else:
+        raise PlcError(
+            f"exercise {exercise.number}: its reference {path.name} is neither a Python (S7) nor an "
+            f"instruction-list (Tecomat, .il) program; mutation testing derives mutants of those two only"
+        )
     declared_equivalents(exercise, mutants)
     return mutants
 
@@ -611,7 +618,8 @@ class _Job:
         self.exercise = exercise
         self.seeds = seeds
         self.reference = exercise.reference.program()
-        self.ignore = edge_memories(self.reference)
+        self.il = Path(exercise.reference.path).suffix == ".il"
+        self.ignore = edge_memories(self.reference) if isinstance(self.reference, Program) else set()
         self._failed = {s: _failures(grade(exercise, self.reference, seed=s)) for s in seeds}
         self._behaviour: dict[tuple[int, str], dict[str, str]] = {}
 
@@ -620,7 +628,7 @@ class _Job:
 
     def outcome(self, mutant: Mutant) -> Outcome:
         try:
-            program = Program(mutant.source, f"<mutant {mutant.number}>")
+            program = self.load(mutant)
         except PlcError as exc:
             return Outcome(mutant, STILLBORN, str(exc))
         for seed in self.seeds:
@@ -648,14 +656,23 @@ class _Job:
                     )
         return Outcome(mutant, EQUIVALENT, "the same behaviour as the reference in every scenario and seed")
 
-    def _run(self, program: Program, scenario: str, seed: int) -> dict[str, str]:
+    def load(self, mutant: Mutant) -> SourceProgram:
+        """The mutant as a program of the reference's front end (PlcError if it does not load)."""
+        name = f"<mutant {mutant.number}>"
+        if self.il:
+            from plcsim.mutate_il import load_il
+
+            return load_il(mutant.source, name, self.exercise.tag_table())
+        return Program(mutant.source, name)
+
+    def _run(self, program: SourceProgram, scenario: str, seed: int) -> dict[str, str]:
         sim = self.exercise.simulation(program, scenario, seed=seed)
         error = ""
         try:
             sim.run()
         except PlcError as exc:
             error = str(exc)
-        return behaviour(self.exercise, sim.trace, error, self.ignore)
+        return behaviour(self.exercise, sim.trace, error, self.ignore, getattr(program, "filename", ""))
 
 
 def _failures(report: Report) -> set[str]:
@@ -673,12 +690,18 @@ def edge_memories(program: Program) -> set[str]:
     return out
 
 
-def behaviour(exercise: Exercise, trace: Any, error: str = "", ignore: Iterable[str] = ()) -> dict[str, str]:
+def behaviour(
+    exercise: Exercise, trace: Any, error: str = "", ignore: Iterable[str] = (), filename: str = ""
+) -> dict[str, str]:
     """What a check can see of a run, hashed per signal: when each exercise tag changed and to what,
-    the events and the CPU's error (tags in ``ignore``, the CPU's clock and system bits left out)."""
+    the events and the CPU's error (tags in ``ignore``, the CPU's clock and system bits left out;
+    the program's ``filename`` in a message is read as ``<program>``: a mutant's name is not behaviour)."""
     heads = {row.tag for row in exercise.io} | set(exercise.dbs)
     skip = _CPU_BITS | set(ignore)
-    out = {"events": _hash(json.dumps([asdict(e) for e in trace.events]).encode()), "CPU error": error}
+    events = json.dumps([asdict(e) for e in trace.events])
+    if filename:
+        events, error = (text.replace(json.dumps(filename)[1:-1], "<program>") for text in (events, error))
+    out = {"events": _hash(events.encode()), "CPU error": error}
     for name in trace.names:
         if name.split(".")[0] in heads and name not in skip:
             col = trace.column(name).astype(np.float64)
