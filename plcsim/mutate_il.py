@@ -12,6 +12,7 @@ negate     a contact negated: LD <-> LDC, AND <-> ANC, OR <-> ORC, XOR <-> XOC, 
 set-reset  SET <-> RES
 and-or     a series connection for a parallel one: AND <-> OR, ANC <-> ORC
 timer      TON <-> TOF <-> IMP (RTO takes three inputs, so it is no slip for these)
+time-base  a timer's time-base code one step off: ``ton casovac.0`` -> ``casovac.1`` (10 ms -> 100 ms)
 boundary   a comparison at its boundary: ``GT n`` -> ``GT n-1`` (> for >=) and ``LT n`` -> ``LT n+1``
            (< for <=), the set having no GE or LE; the flags S0.1 (<) <-> S0.2 (<=)
 constant   a ``#def NAME 25`` value, or an immediate operand of LD, EQ, LT, GT, moved by one step
@@ -21,7 +22,7 @@ swap       two adjacent instructions of a process exchanged
 
 A constant step is the preset step of :mod:`plcsim.mutate` (one unit in the decimal place below the
 leading digit, at least 1: ``#def zpozdeni 25`` -> 24 / 26, ``LD 1`` -> 0 / 2), written in the
-literal's own notation (``$A1E`` -> ``$A1D``, ``%0011`` -> ``%0010``); other notations and
+literal's own notation (``$0A`` -> ``$09`` / ``$0B``, ``%0011`` -> ``%0010`` / ``%0100``); other notations and
 expressions are left alone. ``P n`` and ``E n`` bracket a process and are not mutated.
 
 >>> for mutant in derive_il_mutants("LD  START  ; START\\nANC STOP\\n"):
@@ -58,6 +59,7 @@ _LINE = re.compile(
     r"^(?P<lead>\s*(?:[^\W\d]\w*\s*:\s*)?)(?P<mnemonic>[A-Za-z]+)(?P<gap>\s*)(?P<arg>.*?)(?P<trail>\s*)$"
 )
 _DEF = re.compile(r"^(?P<head>\s*#def\s+\w+\s+)(?P<value>\S+)(?P<trail>\s*)$", re.IGNORECASE)
+_TIME_BASE = re.compile(r"^(?P<word>[^\W\d]\w*)\s*\.\s*(?P<code>[0-3])$")
 _LITERAL = re.compile(r"^(\d+|\$[0-9A-Fa-f]+|%[01]+)$")
 
 
@@ -198,6 +200,12 @@ def _instruction_sites(ins: _Instruction, constants: set[str]) -> Iterator[Site]
         for other in TIMERS:
             if other != key:
                 yield change("timer", other)
+    code = _TIME_BASE.match(arg)
+    if key in (*TIMERS, "RTO") and code is not None:
+        for other in (int(code["code"]) - 1, int(code["code"]) + 1):
+            if 0 <= other <= 3:
+                new = f"{code['word']}.{other}"
+                yield "time-base", k, f"{ins.text} → {ins.mnemonic} {new}", {k: ins.with_arg(new)}
     if arg.upper() in _FLAGS:
         flag = _FLAGS[arg.upper()]
         yield "boundary", k, f"{ins.text} → {ins.mnemonic} {flag}", {k: ins.with_arg(flag)}

@@ -125,14 +125,6 @@ def test_the_tecomat_exercises_ship_il_programs_only():
         assert sum(s.kind == "wrong" for s in exercise.solutions) >= 2
 
 
-def test_mutation_testing_of_an_il_reference_is_refused_with_the_reason():
-    from plcsim.errors import PlcError
-    from plcsim.mutate import exercise_mutants
-
-    with pytest.raises(PlcError, match=r"T-01: its reference reference\.il is not a Python \(S7\) program"):
-        exercise_mutants(exercises.get("T-01"))
-
-
 @pytest.mark.xdist_group("sandbox")
 def test_the_grader_s_sandbox_grades_t05_whose_scenario_sets_the_tecomat_s_clock():
     """The sandbox's trusted probe runs on the S7, which cannot set a Tecomat clock: it must leave the
