@@ -24,6 +24,9 @@ A preset step is one unit in the decimal place below the value's leading digit, 
 unit of the literal (10 s -> 9 s / 11 s, 3 s -> 2.9 s / 3.1 s, 100 ms -> 90 ms / 110 ms, PV 3 -> 2 / 4):
 about a tenth of the preset, the size of slip that a check's tolerance should not absorb.
 
+A Tecomat instruction-list reference (``.il``) gets the mutants of :mod:`plcsim.mutate_il` (the same
+slips in its instructions), loaded through the Tecomat front end and graded and classified as below.
+
 Each mutant is graded with :func:`plcsim.grading.grade` (in this process: the mutants derive from
 the trusted reference) on seeds 1..N. It is **killed** if some check fails on some seed that the
 reference passes on that seed, **stillborn** if it does not load (counted apart, not as killed).

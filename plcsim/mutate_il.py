@@ -17,13 +17,14 @@ boundary   a comparison at its boundary: ``GT n`` -> ``GT n-1`` (> for >=) and `
            (< for <=), the set having no GE or LE; the flags S0.1 (<) <-> S0.2 (<=)
 constant   a ``#def NAME 25`` value, or an immediate operand of LD, EQ, LT, GT, moved by one step
 drop       one instruction dropped (its line keeps its label and comment)
-swap       two adjacent instructions of a process exchanged
+swap       two adjacent instructions of a process exchanged (comment lines between them stay)
 ========== ==================================================================================
 
 A constant step is the preset step of :mod:`plcsim.mutate` (one unit in the decimal place below the
 leading digit, at least 1: ``#def zpozdeni 25`` -> 24 / 26, ``LD 1`` -> 0 / 2), written in the
 literal's own notation (``$0A`` -> ``$09`` / ``$0B``, ``%0011`` -> ``%0010`` / ``%0100``); other notations and
-expressions are left alone. ``P n`` and ``E n`` bracket a process and are not mutated.
+expressions are left alone. ``P n`` and ``E n`` bracket a process and ``L n`` or ``name:`` mark a
+jump target: they are not mutated, and no swap moves an instruction across them.
 
 >>> for mutant in derive_il_mutants("LD  START  ; START\\nANC STOP\\n"):
 ...     print(mutant)
@@ -54,7 +55,7 @@ AND_OR = {"AND": "OR", "OR": "AND", "ANC": "ORC", "ORC": "ANC"}
 TIMERS = ("TON", "TOF", "IMP")
 COMPARE = ("EQ", "LT", "GT")
 _FLAGS = {"S0.1": "S0.2", "S0.2": "S0.1"}
-_STRUCTURE = frozenset({"P", "E"})
+_STRUCTURE = frozenset({"P", "E", "L"})
 _LINE = re.compile(
     r"^(?P<lead>\s*(?:[^\W\d]\w*\s*:\s*)?)(?P<mnemonic>[A-Za-z]+)(?P<gap>\s*)(?P<arg>.*?)(?P<trail>\s*)$"
 )

@@ -101,11 +101,11 @@ def test_a_dropped_instruction_keeps_its_label_and_comment():
 
 
 def test_a_swap_exchanges_two_instructions_of_one_process_and_keeps_their_comments():
-    text = "P 0\nLD x0.0 ; a\n; between\nWR y0.0 ; b\nE 0\nP 1\nLD x0.1\nlab: WR y0.1\nWR y0.2\nE 1\n"
+    text = "P 0\nLD x0.0 ; a\n; between\nWR y0.0 ; b\nE 0\nP 1\nLD x0.1\nlab: WR y0.1\nWR y0.2\nL 3\nWR y0.3\nE 1\n"
     assert mutants_of(text, "swap") == [
         ("line 2: LD x0.0 ⇄ WR y0.0 (lines 2 and 4)", {2: "WR y0.0 ; a", 4: "LD x0.0 ; b"}),
         ("line 8: WR y0.1 ⇄ WR y0.2 (lines 8 and 9)", {8: "lab: WR y0.2", 9: "WR y0.1"}),
-    ]  # nothing moves across P/E or a label: 'LD x0.1' and 'lab: WR y0.1' stay apart
+    ]  # nothing moves across P/E or a label: 'LD x0.1' and 'lab: WR y0.1' stay apart, and so do y0.2 and y0.3
 
 
 def test_mutants_with_the_text_of_an_earlier_one_are_left_out():
