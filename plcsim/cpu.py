@@ -375,7 +375,9 @@ class CPU(TaskRunner, HostAccess):
                 self._run_preemptive(until_ns, None)
             else:
                 self._run_cyclic(until_ns, None)
-        if self.mode != RUN:
+            if self.mode != RUN:
+                self._refresh_inputs_stopped()
+        else:
             self._refresh_inputs_stopped()
         if self.clock.now < until_ns:
             self.clock.now = until_ns

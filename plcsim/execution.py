@@ -298,6 +298,8 @@ class TaskRunner:
                 # -- end of _end_scan --
                 if scan_target is not None and self.scan_count >= scan_target:
                     break
+                if end >= until_ns and not stack:  # the next scan starts after the call (what the top would find)
+                    break
 
     def _push_scan(self, t0: int, duration: int) -> Execution:
         """Put OB1's execution from ``t0`` on the stack, its networks not run yet (the end of :meth:`_begin_scan`)."""
