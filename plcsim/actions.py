@@ -42,6 +42,7 @@ class ActionRunner:
         self._held: list[Planned] = []  # sensor triggers, not fired yet
         self._on_event: list[Planned] = []  # event triggers, not fired yet
         self.polled: list[Planned] = []  # the sensor triggers that can fire now
+        self._polls: list[tuple[Planned, str, Any, int]] = []
         self._scenario_parts: set[str] = set()
         if scenario is not None:
             self._scenario_parts = {a.target for a in scenario.actions if a.verb == "place"}
@@ -64,6 +65,10 @@ class ActionRunner:
 
     def _refresh_polled(self) -> None:
         self.polled = [item for item in self._held if self._ready(item)]
+        # what poll() compares for each, looked up once (it runs after every physics step)
+        self._polls = [
+            (item, item.action.when.signal, item.action.when.value, item.action.when.for_ns) for item in self.polled
+        ]  # type: ignore[union-attr]
 
     def _schedule(self, item: Planned, at_ns: int) -> None:
         insort(self._timed, (at_ns, item.order, item.action), key=lambda e: (e[0], e[1]))
@@ -94,12 +99,11 @@ class ActionRunner:
     def poll(self, t: int, sensors: dict[str, Any]) -> None:
         """Arm or fire the sensor triggers that can fire now (called after every physics step)."""
         fired = False
-        for item in self.polled:
-            trig = item.action.when
-            if sensors.get(trig.signal) == trig.value:  # type: ignore[union-attr]
+        for item, signal, value, for_ns in self._polls:
+            if sensors.get(signal) == value:
                 if item.armed_since is None:
                     item.armed_since = t
-                if t - item.armed_since >= trig.for_ns:  # type: ignore[union-attr]
+                if t - item.armed_since >= for_ns:
                     self._held.remove(item)
                     self._schedule(item, t + item.action.delay.draw(self.rng))
                     fired = True

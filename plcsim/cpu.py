@@ -118,6 +118,7 @@ class CPU(TaskRunner, HostAccess):
         self._stack: list[Execution] = []
         self._ob1: RunningTask | None = None
         self._cyclic_plan: tuple[int, Any, bool] = (0, None, False)
+        self._cyclic: Any = None  # the generator of TaskRunner._cyclic_loop (made at each download)
         self._interrupts: list[RunningTask] = []
         self._next_irq = NEVER
         self._ob1_next = 0
@@ -369,9 +370,14 @@ class CPU(TaskRunner, HostAccess):
         scan. So whatever happens at ``until_ns`` itself (an operator's press, an HMI write, a plant's
         new sensor values) is seen by the tasks that start at ``until_ns`` and by no scan before.
         """
-        if self.mode == RUN:
-            self._run(until_ns, None)
-        if self.mode != RUN:
+        if self.mode == RUN:  # TaskRunner._run without a call of its own: this is every physics step's
+            if self._interrupts:
+                self._run_preemptive(until_ns, None)
+            else:
+                self._run_cyclic(until_ns, None)
+            if self.mode != RUN:
+                self._refresh_inputs_stopped()
+        else:
             self._refresh_inputs_stopped()
         if self.clock.now < until_ns:
             self.clock.now = until_ns

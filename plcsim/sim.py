@@ -213,7 +213,6 @@ class Simulation:
         cpu, plant, wiring, actions, trace = self.cpu, self.plant, self.wiring, self.actions, self.trace
         inputs = cpu.inputs
         run_cpu = cpu.run_until
-        read_inputs = wiring.read_inputs if wiring is not None else None
         plant_step = plant.step if plant is not None else None
         events = plant.events if plant is not None else []
         sensors = plant.sensors if plant is not None else {}
@@ -227,15 +226,16 @@ class Simulation:
             self._out_version = cpu.output_version
             wiring.write_outputs(cpu.outputs)
         # what the loop compares in every step, as locals (written back to self where they change)
-        out_version, diag_last, next_frame = self._out_version, self._diag_last, self._next_frame
+        out_version, diag_last = self._out_version, self._diag_last
+        next_frame = self._next_frame if frame_ns else NEVER  # (one comparison per step instead of two)
         diagnostics = cpu.diagnostics
         try:
             while t < end_ns and not self.paused:
                 if t >= actions.next_due:
                     actions.apply_due(t)
                     self._frame_still = False  # an operator's action may change the picture of a still machine
-                if read_inputs is not None:
-                    read_inputs(inputs, t)
+                if wiring is not None:
+                    wiring.step_inputs(inputs, t)
                 run_cpu(t + dt)
                 if cpu.mode != RUN:
                     self.recorder.on_stopped(t, t + dt)
@@ -261,14 +261,15 @@ class Simulation:
                         wiring.write_outputs(cpu.outputs)
                 t += dt
                 self.now = t
-                if frame_ns and t >= next_frame:
+                if t >= next_frame:
                     self._sample_frame(t, quiet)
                     next_frame = self._next_frame
                 if actions.polled:
                     actions.poll(t, sensors)
                 if quiet is not None and cpu.mode == RUN and quiet():
                     t = self._skip_quiet(t, end_ns)
-                    next_frame = self._next_frame
+                    if frame_ns:
+                        next_frame = self._next_frame
                 if t >= next_report:
                     progress(t - start, end_ns - start)  # type: ignore[misc]
                     next_report = t + report_every

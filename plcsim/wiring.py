@@ -101,9 +101,12 @@ class Wiring:
                     self._inputs_analog.append((w, spec))
             else:
                 self._outputs.append((w, spec))
-        self._copy_inputs = _input_copier(self._inputs_bool, self._inputs_analog)
+        self._copy_inputs = _input_copier(self._inputs_bool, self._inputs_analog, plant, self.rng)
         self.faults: dict[str, _Fault] = {}
         self._chatter: dict[str, list[tuple[int, int]]] = {}
+        self.step_inputs: Callable[[dict[str, Any], int], None] = self._copy_inputs
+        """What the simulator calls in every step: :meth:`read_inputs`, or without a fault its fault-free copy
+        itself (one call less per step; the fault methods switch between them)."""
         self._last_physical: dict[str, Any] = {}
         self._sent: dict[str, Any] = {}
         self._outputs_seen: Mapping[str, Any] | None = None
@@ -171,14 +174,17 @@ class Wiring:
 
     def read_inputs(self, inputs: dict[str, Any], now_ns: int) -> None:
         """Copy the sensors' electrical levels into the CPU's input terminals."""
-        sensors = self.plant.sensors
         if self.faults or self._chatter:
+            sensors = self.plant.sensors
             for signal, tag, invert in self._inputs_bool:
                 inputs[tag] = self._faulted_level(signal, invert, sensors[signal], now_ns)
             for wire, spec in self._inputs_analog:
                 inputs[wire.tag] = self._raw(wire, spec, sensors[wire.signal], wire.signal)
             return
-        self._copy_inputs(sensors, inputs, self.rng)
+        self._copy_inputs(inputs, now_ns)
+
+    def _faults_changed(self) -> None:
+        self.step_inputs = self.read_inputs if self.faults or self._chatter else self._copy_inputs
 
     def write_outputs(self, outputs: Mapping[str, Any]) -> None:
         """Send changed PLC outputs to the plant's actuators."""
@@ -251,6 +257,7 @@ class Wiring:
         """Stuck-at: the PLC input (or the actuator) sees ``value`` whatever happens."""
         signal = self.signal_for(name)
         self.faults[signal] = _Fault("stuck", value)
+        self._faults_changed()
         self._sent.pop(signal, None)
         self._resend()
 
@@ -258,6 +265,7 @@ class Wiring:
         """Wire break: the input reads FALSE (an NC sensor then reads 'actuated'); an actuator gets nothing."""
         signal = self.signal_for(name)
         self.faults[signal] = _Fault("wire break")
+        self._faults_changed()
         self._sent.pop(signal, None)
         self._resend()
 
@@ -268,6 +276,7 @@ class Wiring:
         signal = self.signal_for(name)
         self.faults[signal] = _Fault("chatter", transitions=transitions, width_ns=(to_ns(width[0]), to_ns(width[1])))
         self._last_physical[signal] = self.plant.sensors.get(signal)
+        self._faults_changed()
 
     def clear(self, name: str | None = None) -> None:
         """Remove a fault (or all faults)."""
@@ -276,6 +285,7 @@ class Wiring:
             self.faults.pop(signal, None)
             self._chatter.pop(signal, None)
             self._sent.pop(signal, None)
+        self._faults_changed()
         self._resend()
 
     def _resend(self) -> None:
@@ -304,25 +314,29 @@ _UNSET = object()
 
 
 def _input_copier(
-    levels: list[tuple[str, str, bool]], analogs: list[tuple[Wire, SignalSpec]]
-) -> Callable[[Mapping[str, Any], dict[str, Any], random.Random], None]:
+    levels: list[tuple[str, str, bool]], analogs: list[tuple[Wire, SignalSpec]], plant: Any, rng: random.Random
+) -> Callable[[dict[str, Any], int], None]:
     """One function copying every sensor to its input, the fault-free loop of :meth:`Wiring.read_inputs`
     written out once per wiring: Boolean sensors NC-inverted, analog ones scaled as :meth:`Wiring._raw`
     scales them (the same operations in the same order, the same noise draws). Built from the wiring's
-    signal and tag names (``repr`` literals) and numbers, never from a program's text.
+    signal and tag names (``repr`` literals) and numbers, never from a program's text. It takes what
+    :meth:`Wiring.read_inputs` takes, reading ``plant.sensors`` and drawing the noise from ``rng``.
 
-    >>> sensors = {"S1": True, "S2": True, "T": 50.0}
-    >>> copy, image = _input_copier([("S1", "I_S1", False), ("S2", "I_S2", True)], []), {}
-    >>> copy(sensors, image, random.Random(0))
+    >>> from types import SimpleNamespace
+    >>> plant, image = SimpleNamespace(sensors={"S1": True, "S2": True, "T": 50.0}), {}
+    >>> copy = _input_copier([("S1", "I_S1", False), ("S2", "I_S2", True)], [], plant, random.Random(0))
+    >>> copy(image, 0)
     >>> image
     {'I_S1': True, 'I_S2': False}
-    >>> copy = _input_copier([], [(analog("T", "IW_T"), SignalSpec("T", "sensor", "analog", lo=0.0, hi=100.0))])
-    >>> copy(sensors, image, random.Random(0))
-    >>> image["IW_T"], copy({"T": 100.0}, image, random.Random(0)), image["IW_T"]
-    (13824, None, 27648)
+    >>> spec = SignalSpec("T", "sensor", "analog", lo=0.0, hi=100.0)
+    >>> copy = _input_copier([], [(analog("T", "IW_T"), spec)], plant, random.Random(0))
+    >>> copy(image, 0)
+    >>> image["IW_T"], plant.sensors.update(T=100.0), copy(image, 0), image["IW_T"]
+    (13824, None, None, 27648)
     """
-    lines = [f"    i[{tag!r}] = {'not ' if invert else ''}s[{signal!r}]" for signal, tag, invert in levels]
-    scope: dict[str, Any] = {"__builtins__": {}, "max": max, "min": min, "round": round}
+    lines = ["    s = p.sensors"]
+    lines += [f"    i[{tag!r}] = {'not ' if invert else ''}s[{signal!r}]" for signal, tag, invert in levels]
+    scope: dict[str, Any] = {"__builtins__": {}, "max": max, "min": min, "round": round, "p": plant, "r": rng}
     for k, (wire, spec) in enumerate(analogs):
         lo_raw, hi_raw = wire.raw
         scope.update({f"lo{k}": spec.lo, f"span{k}": spec.hi - spec.lo})
@@ -340,5 +354,5 @@ def _input_copier(
                 f"        last{k}[0], last{k}[1] = v, {scaled}",
                 f"    i[{wire.tag!r}] = last{k}[1]",
             ]
-    exec("def copy(s, i, r):\n" + ("\n".join(lines) or "    pass"), scope)  # built from wiring names
+    exec("def copy(i, now_ns):\n" + "\n".join(lines), scope)  # built from wiring names
     return scope["copy"]

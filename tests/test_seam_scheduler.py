@@ -121,3 +121,46 @@ def test_a_scan_off_the_stack_runs_alike_in_both_loops(options, step_ns):
     fast = run(make_cpu, schedule, general=False, step_ns=step_ns)
     assert fast == run(make_cpu, schedule, general=True, step_ns=step_ns)
     assert fast[2] == "STOP"  # the 40th scan that ran n2 divided by zero, in both loops
+
+
+def _hooked_run(general: bool) -> tuple[str, int, list[str], int]:
+    """A run in 1 ms steps whose scan-end subscriber fails once (at scan 30), downloads a new program at scan 60
+    and, at scan 90, runs the CPU on for 3 ms from inside the hook (a call of the loop while it runs)."""
+    tags = {name: tag for name, tag in TAGS.items() if name != "IN_LOW"}
+    cpu = CPU(tags=tags, program=JUMPING.replace("== 40", "== 4000"))
+    if general:
+        cpu._run_cyclic = cpu._run_preemptive
+    recorder = Recorder(cpu)
+    recorder.attach()
+    seen: list[str] = []
+
+    def hook(cpu: CPU) -> None:
+        if cpu.scan_count == 30:
+            raise RuntimeError("a subscriber's bug")
+        if cpu.scan_count == 60:
+            cpu.load(JUMPING.replace("== 40", "== 4000").replace("COUNT += 1", "COUNT += 2"))
+            cpu.start()
+        if cpu.scan_count == 90:
+            cpu.run_until(cpu.now + 3_000_000)
+        seen.append(f"{cpu.scan_count}@{cpu.now}")
+
+    cpu.scan_end.add(hook)
+    failures = 0
+    for k in range(150):
+        cpu.inputs.update({"TL": k % 6 < 3, "IN_WORD": k})
+        try:
+            cpu.run_until(cpu.now + 1_000_000)
+        except RuntimeError:
+            failures += 1
+    return recorder.trace.digest(), cpu.scan_count, seen, failures
+
+
+def test_the_kept_loop_survives_a_failing_subscriber_a_download_and_a_nested_call():
+    """The cyclic loop is a generator kept between calls (made at each download): a subscriber's exception ends
+    it (the next call makes a new one), a download in the middle of a run replaces it, and a call from inside a
+    subscriber gets a loop of its own; the scans, their times and the trace are those of the general loop."""
+    fast = _hooked_run(general=False)
+    assert fast == _hooked_run(general=True)
+    assert fast[3] == 1
+    assert "30@30000000" not in fast[2] and fast[2].count("93@93000000") == 2  # the nested call ran scans 91-93
+    assert fast[1] == 153

@@ -331,3 +331,33 @@ def test_describe_lists_the_wires():
         ("FULL", "FULL", "NC", "sensor"),
         ("PUMP", "PUMP", "NO", "actuator"),
     ]
+
+
+def test_each_step_reads_through_the_fault_path_exactly_while_a_fault_is_injected():
+    """``Wiring.step_inputs`` (what the simulator calls in every step) is the generated fault-free copy until a
+    fault is injected, ``read_inputs`` while one is, and the copy again once every fault is cleared; both give
+    the same levels where no fault acts."""
+    sim = tank_sim()
+    wiring = sim.wiring
+    assert wiring.step_inputs is wiring._copy_inputs
+    fast: dict = {}
+    wiring.step_inputs(fast, 0)
+    assert fast == {"LEVEL": 6912, "FULL": False}
+    for inject in (
+        lambda: wiring.stick("FULL", True),
+        lambda: wiring.break_wire("FULL"),
+        lambda: wiring.chatter("FULL"),
+    ):
+        inject()
+        assert wiring.step_inputs == wiring.read_inputs
+        wiring.clear("FULL")
+        assert wiring.step_inputs is wiring._copy_inputs
+    wiring.stick("FULL", True)
+    wiring.stick("LEVEL", 100)
+    wiring.clear("FULL")  # one fault left: still the fault path
+    assert wiring.step_inputs == wiring.read_inputs
+    faulted: dict = {}
+    wiring.step_inputs(faulted, 0)
+    assert faulted == {"LEVEL": 100, "FULL": False}
+    wiring.clear()
+    assert wiring.step_inputs is wiring._copy_inputs
