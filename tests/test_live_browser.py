@@ -57,6 +57,17 @@ def browser():
         chromium.close()
 
 
+def paused_and_saved(page, screenshot) -> dict:
+    """Pause the page's simulation, save the session (the digest is then of a standing simulation), take a
+    screenshot; what the page saved."""
+    page.click("#run")
+    page.wait_for_function("window.plcsimLive.state.paused === true")
+    page.click("#save")
+    page.wait_for_function("window.plcsimLive.lastSaved !== null", timeout=10_000)
+    page.screenshot(path=str(screenshot))
+    return page.evaluate("window.plcsimLive.lastSaved")
+
+
 def test_a_click_lights_the_lamp_and_the_saved_session_replays(browser, tmp_path):
     from plcsim.live.server import open_live
 
@@ -133,12 +144,7 @@ def test_parts_faults_and_the_watch_table_from_the_page_replay(browser, tmp_path
         page.fill('tr[data-tag="D1"] input', "1")
         page.click('tr[data-tag="D1"] button:text("force")')
         page.locator('tr[data-tag="D1"].forced').wait_for(timeout=10_000)
-        page.click("#run")  # pause, then save: the digest is of a standing simulation
-        page.wait_for_function("window.plcsimLive.state.paused === true")
-        page.click("#save")
-        page.wait_for_function("window.plcsimLive.lastSaved !== null", timeout=10_000)
-        saved = page.evaluate("window.plcsimLive.lastSaved")
-        page.screenshot(path=str(tmp_path / "conv1.png"))
+        saved = paused_and_saved(page, tmp_path / "conv1.png")
     finally:
         panel.stop()
     assert errors == []
@@ -177,12 +183,7 @@ def test_the_sorters_own_verbs_and_a_coloured_part_from_the_page_replay(browser,
         page.click("#rig-apply")
         page.wait_for_function("window.plcsimLive.state.events.some((e) => e.includes('scenario set_ambient FARBA'))")
         page.wait_for_function("window.plcsimLive.state.watch['DATA.POZ2_DETEKCIA'] === 2", timeout=20_000)
-        page.click("#run")
-        page.wait_for_function("window.plcsimLive.state.paused === true")
-        page.click("#save")
-        page.wait_for_function("window.plcsimLive.lastSaved !== null", timeout=10_000)
-        saved = page.evaluate("window.plcsimLive.lastSaved")
-        page.screenshot(path=str(tmp_path / "sort.png"))
+        saved = paused_and_saved(page, tmp_path / "sort.png")
     finally:
         panel.stop()
     assert errors == []
