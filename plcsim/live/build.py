@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-import importlib
+import pkgutil
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -50,8 +50,7 @@ class Target:
         rig = self.exercise.rig if self.exercise is not None else self.rig
         found: dict[str, RigVerb] = {}
         for p in all_profiles():
-            module, _, name = p.controller.partition(":")
-            found.update(getattr(getattr(importlib.import_module(module), name), "VERBS", {}))
+            found.update(getattr(pkgutil.resolve_name(p.controller), "VERBS", {}))
         found.update(getattr(rig, "VERBS", {}) if rig is not None else {})
         return found
 

@@ -198,22 +198,28 @@ function buildRigVerbs(layout) {
   const select = $("rig-verb");
   select.replaceChildren(...verbs.map((v) => new Option(v.caption, v.verb)));
   const chosen = () => verbs.find((v) => v.verb === select.value);
+  const targets = () => {
+    const v = chosen();
+    const names = v.targets === "parts" ? Object.values(lastParts) : v.targets;
+    $("rig-target").replaceChildren(...names.map((n) => new Option(n, n)));
+    const free = v.targets.length === 0;  // no list (a time of day): the target is typed
+    $("rig-target").classList.toggle("hidden", free);
+    $("rig-target-text").classList.toggle("hidden", !free);
+    $("rig-target-text").placeholder = v.role;
+  };
   const form = () => {
     const v = chosen();
     if (!v) return;
     select.title = v.doc;
-    const names = v.targets === "parts" ? Object.values(lastParts) : v.targets;
-    $("rig-target").replaceChildren(...names.map((n) => new Option(n, n)));
-    $("rig-target").classList.toggle("hidden", names.length === 0);
-    $("rig-target-text").classList.toggle("hidden", names.length > 0);
-    $("rig-target-text").placeholder = v.role;
+    targets();
     $("rig-args").replaceChildren(...v.args.map((name) => {
       const input = document.createElement("input"); input.placeholder = name; input.dataset.arg = name; input.size = 8;
       return input;
     }));
   };
   select.onchange = form;
-  $("rig-verb").onfocus = form;  // the parts on the machine change while the page is open
+  // a verb on a part offers the parts on the machine now (they come and go while the page is open)
+  $("rig-target").onfocus = () => { if (chosen()?.targets === "parts") targets(); };
   form();
   $("rig-apply").onclick = () => {
     const v = chosen();
