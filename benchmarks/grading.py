@@ -32,7 +32,7 @@ def run(settings: Settings) -> Iterator[dict[str, Any]]:
 
 def _all_solutions(settings: Settings) -> dict[str, Any]:
     from exercises import all_exercises
-    from plcsim.grading import grade_sandboxed
+    from plcsim.grading.grader import grade_sandboxed
 
     jobs = [(ex, sol) for ex in all_exercises() for sol in ex.solutions]
     if settings.quick:
@@ -69,7 +69,7 @@ def _all_solutions(settings: Settings) -> dict[str, Any]:
 
 def _rates(settings: Settings) -> Iterator[dict[str, Any]]:
     from exercises import get
-    from plcsim.executors import open_executor
+    from plcsim.grading.executors import open_executor
 
     classes = [(ex, [s.path for s in ex.solutions]) for ex in map(get, CLASS[:1] if settings.quick else CLASS)]
     if settings.quick:
@@ -91,7 +91,7 @@ def _rates(settings: Settings) -> Iterator[dict[str, Any]]:
 
 def _grade_class(classes: list[tuple[Any, list[Any]]], pool: Any) -> tuple[float, list[str]]:
     """Grade each exercise's folder through ``pool``: the seconds taken and the grades that went wrong."""
-    from plcsim.grading import grade_batch
+    from plcsim.grading.grader import grade_batch
 
     unexpected = []
     t0 = time.perf_counter()

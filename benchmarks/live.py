@@ -22,8 +22,8 @@ FRAME_S = 0.02
 
 def _session(rig: str) -> Any:
     from exercises import get
-    from plcsim.live import LiveSession
-    from plcsim.live.session import PANEL_DEMO
+    from plcsim.apps.live import LiveSession
+    from plcsim.apps.live.session import PANEL_DEMO
 
     if rig == "PANEL":
         return LiveSession("PANEL", PANEL_DEMO, seed=1)
@@ -33,7 +33,7 @@ def _session(rig: str) -> Any:
 
 
 def run(settings: Settings) -> Iterator[dict[str, Any]]:
-    from plcsim.live.runner import Runner
+    from plcsim.apps.live.runner import Runner
 
     wall_s = 0.3 if settings.quick else 3.0
     riding_ns = 500_000_000 if settings.quick else 4_500_000_000

@@ -23,7 +23,7 @@ JOBS = 2
 
 def run(settings: Settings) -> Iterator[dict[str, Any]]:
     from exercises import all_exercises, get
-    from plcsim.mutate import EQUIVALENT, EXPLAINED, KILLED, STILLBORN, SURVIVED, mutate_exercise
+    from plcsim.mutate.engine import EQUIVALENT, EXPLAINED, KILLED, STILLBORN, SURVIVED, mutate_exercise
 
     chosen = [get("4.3.1")] if settings.quick else [e for e in all_exercises() if e.reference.path.suffix == ".py"]
     seeds = 1 if settings.quick else SEEDS

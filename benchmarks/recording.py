@@ -1,4 +1,4 @@
-"""Recording figure: exporting a run to a rerun ``.rrd`` (:func:`plcsim.trace_rerun.export_rrd`), for
+"""Recording figure: exporting a run to a rerun ``.rrd`` (:func:`plcsim.trace.rerun.export_rrd`), for
 4.3.7's jam scenario (16 simulated s, 16000 scans, 7 signals, 391 geometry frames), as
 ``plcsim run ... --rrd`` does. The simulation is not timed, only the export; the file's size and the
 rows sent are reported beside the time."""
@@ -22,7 +22,7 @@ def run(settings: Settings) -> Iterator[dict[str, Any]]:
         yield figure("rrd_export_s", None, "s", skipped="rerun-sdk is not installed")
         return
     from exercises import get
-    from plcsim.trace_rerun import export_rrd, group_rows, signal_groups
+    from plcsim.trace.rerun import export_rrd, group_rows, signal_groups
 
     ex = get("4.3.7")
     sim = ex.simulation(ex.reference.program(), ex.scenario("jam"), seed=1)

@@ -14,7 +14,7 @@ MARK = "<!-- plcsim --help -->"
 
 def cli_help() -> str:
     """Markdown: the help of ``plcsim`` and of every subcommand, as code blocks 80 columns wide (the page's)."""
-    from plcsim.cli import _parser
+    from plcsim.apps.cli import _parser
 
     parser = _parser()
     sections = [("plcsim", parser)]

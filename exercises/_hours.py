@@ -15,7 +15,7 @@ from collections.abc import Callable
 import numpy as np
 
 from plcsim.check import Quantity, measure
-from plcsim.literals import datetime_literal, format_ns, to_ns
+from plcsim.core.literals import datetime_literal, format_ns, to_ns
 from plcsim.scenario import Action, write
 from plcsim.trace import Trace
 

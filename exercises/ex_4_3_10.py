@@ -26,7 +26,7 @@ from plcsim.check import (
 from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, after_event, held, place, remove, wire_break
 from plcsim.tags import DB
-from plcsim.types import Bool
+from plcsim.tags.types import Bool
 
 NUMBER = "4.3.10"
 

@@ -23,7 +23,7 @@ from plants import Conv1
 from plcsim.exercise import Exercise, only
 from plcsim.scenario import Scenario, held, knock_off, place, power_cycle, remove, write
 from plcsim.tags import DB
-from plcsim.types import DTL, Bool, DInt
+from plcsim.tags.types import DTL, Bool, DInt
 
 NUMBER = "4.3.14"
 METER = "MOTOR.SEKUNDY"

@@ -23,7 +23,7 @@ from plcsim.check import always, value
 from plcsim.exercise import Exercise, only
 from plcsim.scenario import Action, Scenario, knock_off, place, power_cycle, write
 from plcsim.tags import DB
-from plcsim.types import DTL, Bool, UInt, USInt
+from plcsim.tags.types import DTL, Bool, UInt, USInt
 
 NUMBER = "4.3.15"
 SIGNALS = ("MOTOR.HODINY", "MOTOR.MINUTY", "MOTOR.SEKUNDY")

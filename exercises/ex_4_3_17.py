@@ -15,7 +15,7 @@ from plcsim.check import all_of, any_of, count, durations, event, event_data, fi
 from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, after_event, place
 from plcsim.tags import DB
-from plcsim.types import Bool, Int
+from plcsim.tags.types import Bool, Int
 
 NUMBER = "4.3.17"
 PISTONS = ("Piest1_Farba1", "Piest2_Farba2", "Piest3_Farba3")

@@ -7,7 +7,7 @@ from plcsim.check import eventually, final, never, value
 from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, press, start_cpu, stop_cpu
 from plcsim.tags import DB
-from plcsim.types import Int
+from plcsim.tags.types import Int
 
 NUMBER = "4.3.22"
 CASE_A, CASE_B = "case a", "case b"

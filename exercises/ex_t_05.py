@@ -14,9 +14,9 @@ same for a program that follows the clock minute by minute and one that compares
 from exercises._tecomat import OnSchedule, il_solution
 from plants import Panel
 from plcsim.check import always, implies, not_, off
+from plcsim.controllers.tecomat.verbs import set_clock
 from plcsim.exercise import IO, Exercise
 from plcsim.scenario import Scenario
-from plcsim.tecomat.verbs import set_clock
 
 NUMBER = "T-05"
 ON_TIMES = (0x800, 0x832, 0x92D, 0xA32, 0xB28, 0xE0A, 0xF05)

@@ -14,7 +14,7 @@ from plants.panel import Panel
 from plants.punch import Punch
 from plants.slide import Slide
 from plants.sort import Sort
-from plcsim import registry
+from plcsim.core import registry
 
 
 class _Registered(Mapping[str, Callable[..., object]]):

@@ -1,22 +1,26 @@
 """plcsim: a teaching simulator of an S7-1200 PLC, its training rigs and graded exercises.
 
 The names here are the ones a program author, a notebook reader or an instructor needs; the
-scenario verbs live in :mod:`plcsim.scenario` and the checker language in :mod:`plcsim.check`.
+scenario verbs live in :mod:`plcsim.scenario` and the checker language in :mod:`plcsim.check`. The
+packages, one per job, are drawn in ``docs/architecture.md``; the module paths of plcsim 0.1 still import
+for one release (:mod:`plcsim.core.moved`).
 """
 
-from plcsim.cpu import CPU, RUN, STOP, CPUConfig
-from plcsim.errors import PlcError
-from plcsim.exercise import Exercise
-from plcsim.grading import grade
-from plcsim.program import CyclicInterrupt, Program
-from plcsim.scenario import Scenario
-from plcsim.sim import RealtimeSimulation, Simulation
-from plcsim.tags import DB, Tag, TagTable
-from plcsim.trace import Trace
-from plcsim.types import Bool, DInt, Int, Real, Time
-from plcsim.wiring import NC, NO, Wire
+from plcsim.controllers.s7.cpu import CPU, RUN, STOP, CPUConfig
+from plcsim.core import moved
+from plcsim.core.errors import PlcError
+from plcsim.core.version import __version__
+from plcsim.exercise.model import Exercise
+from plcsim.frontends.python.program import CyclicInterrupt, Program
+from plcsim.grading.grader import grade
+from plcsim.scenario.verbs import Scenario
+from plcsim.sim.simulation import RealtimeSimulation, Simulation
+from plcsim.sim.wiring import NC, NO, Wire
+from plcsim.tags.table import DB, Tag, TagTable
+from plcsim.tags.types import Bool, DInt, Int, Real, Time
+from plcsim.trace.facade import Trace
 
-__version__ = "0.1.0"
+moved.install()
 
 __all__ = [
     "CPU",

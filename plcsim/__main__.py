@@ -2,6 +2,6 @@
 
 import sys
 
-from plcsim.cli import main
+from plcsim.apps.cli import main
 
 sys.exit(main())

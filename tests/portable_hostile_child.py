@@ -17,8 +17,8 @@ from typing import Any
 from sandbox_hostile_child import _runs
 from sandbox_hostile_child import work as hostile_work
 
-from plcsim.run_result import encode_runs
-from plcsim.sandbox_child import main
+from plcsim.grading.run_result import encode_runs
+from plcsim.grading.sandbox.child import main
 
 
 def work(request: dict[str, Any]) -> bytes:

@@ -18,15 +18,15 @@ import time
 from pathlib import Path
 from typing import Any
 
-from plcsim import run_result
-from plcsim.run_result import LENGTH, MAGIC, encode_runs
-from plcsim.sandbox_child import lock_down, main
+from plcsim.grading import run_result
+from plcsim.grading.run_result import LENGTH, MAGIC, encode_runs
+from plcsim.grading.sandbox.child import lock_down, main
 
 
 def _runs(request: dict[str, Any], solution: str = "reference") -> list[Any]:
     import importlib
 
-    from plcsim.grading import run_scenarios
+    from plcsim.grading.grader import run_scenarios
 
     exercise = getattr(importlib.import_module(request["module"]), request["attribute"])
     chosen = exercise.reference if solution == "reference" else exercise.solution(solution)
@@ -116,11 +116,11 @@ def work(request: dict[str, Any]) -> bytes:
         runs[0].warnings = [f"open {fd} -> {_target(int(fd))}" for fd in sorted(listing, key=int)]
         return encode_runs(runs)
     if do == "poison":  # change in this process what the next child would use, if it were inherited
-        import plcsim.grading
-        import plcsim.run_result
+        import plcsim.grading.grader
+        import plcsim.grading.run_result
 
-        plcsim.grading.run_scenarios = None
-        plcsim.run_result.encode_runs = lambda *a, **k: b"forged"
+        plcsim.grading.grader.run_scenarios = None
+        plcsim.grading.run_result.encode_runs = lambda *a, **k: b"forged"
         sys.modules[request["module"]].__dict__.clear()
         os._exit(3)
     if do == "raise-memory-error":

@@ -12,8 +12,8 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from plcsim.check import StaticCheck
-from plcsim.exercise import Exercise
-from plcsim.grading import Report, grade
+from plcsim.exercise.model import Exercise
+from plcsim.grading.grader import Report, grade
 
 SEEDS = range(1, 21)
 

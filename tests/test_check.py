@@ -38,8 +38,8 @@ from plcsim.check import (
     value,
     value_at,
 )
-from plcsim.errors import ConfigurationError
-from plcsim.trace import Trace, TraceEvent
+from plcsim.core.errors import ConfigurationError
+from plcsim.trace.facade import Trace, TraceEvent
 
 MS = 1_000_000
 

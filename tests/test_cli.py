@@ -1,6 +1,6 @@
 """The ``plcsim`` command: list, show, run, grade (single, batch), its files and exit codes.
 
-Most calls go through ``plcsim.cli.main([...])`` in this process; one runs the installed entry point.
+Most calls go through ``plcsim.apps.cli.main([...])`` in this process; one runs the installed entry point.
 """
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 
 from exercises import get
-from plcsim.cli import EXIT_FAILED, EXIT_USAGE, main
-from plcsim.trace import Trace
+from plcsim.apps.cli import EXIT_FAILED, EXIT_USAGE, main
+from plcsim.trace.facade import Trace
 
 
 @pytest.fixture(autouse=True)

@@ -1,4 +1,4 @@
-"""Class-scale grading (plcsim.executors, plcsim.grading.grade_batch): a Dask cluster of two local
+"""Class-scale grading (plcsim.grading.executors, plcsim.grading.grader.grade_batch): a Dask cluster of two local
 worker processes grades a class folder into the same gradebook, JSON reports and JUnit file as
 ``--jobs 2``, each submission still in its own confined child; a worker killed mid-grade voids that
 one grade as a grader error and keeps the others; nothing in batch grading calls ``os.fork``.
@@ -17,10 +17,10 @@ from pathlib import Path
 import pytest
 
 from exercises import get
-from plcsim.cli import EXIT_FAILED, EXIT_GRADER, EXIT_USAGE, main
-from plcsim.errors import ConfigurationError
-from plcsim.executors import open_executor
-from plcsim.grading import Limits, grade_batch, write_gradebook, write_junit
+from plcsim.apps.cli import EXIT_FAILED, EXIT_GRADER, EXIT_USAGE, main
+from plcsim.core.errors import ConfigurationError
+from plcsim.grading.executors import open_executor
+from plcsim.grading.grader import Limits, grade_batch, write_gradebook, write_junit
 
 # one xdist worker runs them: they share one local Dask cluster (a second would double the workers)
 pytestmark = pytest.mark.xdist_group("cluster")
@@ -186,13 +186,13 @@ def test_executor_names_and_jobs_are_checked(capsys, classes):
 
 
 def test_an_existing_scheduler_is_reached_by_its_address_and_its_workers_versions_are_checked(cluster, monkeypatch):
-    import plcsim
+    import plcsim.core.version
 
     ex = get("4.3.1")
     address = cluster.scheduler.address  # tcp://127.0.0.1:PORT
     (report,) = grade_batch(ex, [ex.reference.path], executor=address.replace("tcp://", "dask://"))
     assert (report.passed, report.score) == (True, 3.0)
-    monkeypatch.setattr(plcsim, "__version__", "0.0.0-other")
+    monkeypatch.setattr(plcsim.core.version, "__version__", "0.0.0-other")
     with pytest.raises(
         ConfigurationError, match=r"the Dask workers tcp://127\.0\.0\.1:\d+, tcp://127\.0\.0\.1:\d+ run"
     ):
@@ -203,7 +203,7 @@ def test_a_scheduler_that_does_not_answer_and_a_missing_dask_are_usage_errors(mo
     import socket
     import sys
 
-    from plcsim import executors
+    from plcsim.grading import executors
 
     with socket.socket() as s:  # a port nobody listens on
         s.bind(("127.0.0.1", 0))
@@ -217,7 +217,7 @@ def test_a_scheduler_that_does_not_answer_and_a_missing_dask_are_usage_errors(mo
 
 
 def test_a_task_that_raises_is_a_grader_error_of_that_submission_alone(classes, monkeypatch):
-    from plcsim import grading
+    from plcsim.grading import grader as grading
 
     real = grading.grade_sandboxed
 

@@ -1,4 +1,4 @@
-"""The batch's trusted probe (plcsim.sandbox.Probes): run once per (exercise, scenario, seed) for a
+"""The batch's trusted probe (plcsim.grading.sandbox.parent.Probes): run once per (exercise, scenario, seed) for a
 whole batch instead of once per submission, and out of reach of the submissions: every submission is
 validated against its own copy, and hostile children graded in the same batch leave the cached
 probes as a fresh probe computes them.
@@ -12,9 +12,9 @@ import shutil
 import pytest
 
 from exercises import get
-from plcsim import sandbox
-from plcsim.grading import grade_batch
-from plcsim.sandbox import Probes
+from plcsim.grading.grader import grade_batch
+from plcsim.grading.sandbox import parent as sandbox
+from plcsim.grading.sandbox.parent import Probes
 
 # one xdist worker runs them: they share one local Dask cluster (a second would double the workers)
 pytestmark = pytest.mark.xdist_group("cluster")

@@ -9,11 +9,11 @@ from plants.components import Axis, Belt, EndStop, LightBarrier, LimitSwitch, Op
 from plants.conveyors import BarrierLayout, BeltLayout, ConveyorLine
 from plcsim import CPU, Tag
 from plcsim.check import action, count, event
-from plcsim.errors import ExerciseError
-from plcsim.plant import OPERATOR, Station, check_plant
-from plcsim.scenario import RigVerb, Scenario, place
-from plcsim.sim import Simulation
-from plcsim.wiring import Wire
+from plcsim.core.errors import ExerciseError
+from plcsim.plant.protocol import OPERATOR, Station, check_plant
+from plcsim.scenario.verbs import RigVerb, Scenario, place
+from plcsim.sim.simulation import Simulation
+from plcsim.sim.wiring import Wire
 
 MS = 1_000_000
 
@@ -112,7 +112,7 @@ def test_the_colour_sensor_reads_the_part_over_its_spot_with_noise_and_ambient_l
     from plants.components.colour_sensor import ColourSensor
     from plants.components.top_view import TopViewPlant
     from plants.components.workpiece import WorkpieceSpec
-    from plcsim.plant import Station
+    from plcsim.plant.protocol import Station
 
     sensor = ColourSensor("FARBA", 0.0, 0.0, colours={1: 5000, 2: 13000, 3: 21000}, noise=500.0)
     plant = TopViewPlant(
@@ -168,8 +168,8 @@ def test_a_piston_moves_out_only_once_the_compressor_has_built_30_percent():
 def test_a_plant_that_declares_nothing_is_refused_with_the_reason():
     from types import SimpleNamespace
 
-    from plcsim.errors import ConfigurationError
-    from plcsim.scenario import plant_vocabulary
+    from plcsim.core.errors import ConfigurationError
+    from plcsim.scenario.verbs import plant_vocabulary
 
     old = SimpleNamespace(name="OLD", VERBS={}, event_subjects=set)  # a plant of the old protocol
     with pytest.raises(ConfigurationError, match=r"'OLD' does not declare \['EVENTS', 'CAPABILITIES'\]"):

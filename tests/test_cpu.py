@@ -27,7 +27,7 @@ import pytest
 from plcharness import Probe, drive, held, ns
 
 from plcsim import CPU, Tag
-from plcsim.errors import ConfigurationError, ProgramError
+from plcsim.core.errors import ConfigurationError, ProgramError
 
 PANEL = {"TL": Tag("%I0.0"), "ZAP": Tag("%I0.1"), "LED": Tag("%Q0.0"), "D1": Tag("%Q0.2")}
 

@@ -1,4 +1,4 @@
-"""Instructors' mistakes are the exercise's errors, found when it is loaded (plcsim.validation), not a
+"""Instructors' mistakes are the exercise's errors, found when it is loaded (plcsim.exercise.validation), not a
 student's failed grade: unknown stations, signals, tags and plant events, negative times, checks on
 scenarios that do not exist, actions that can never work at run time, and a broken exercise module
 beside good ones. Every error names the file and line the instructor wrote and the fix.
@@ -13,15 +13,16 @@ from pathlib import Path
 import pytest
 
 import exercises
-import plcsim.catalog
+import plcsim.exercise.catalog
 from exercises import all_exercises, broken_exercises, load_package
 from plants import Conv1, Panel
 from plcsim import CPU, Simulation, Tag
+from plcsim.apps.cli import main
 from plcsim.check import action, count, event, eventually, falls, final, never, rises
-from plcsim.cli import main
-from plcsim.errors import ConfigurationError, ExerciseError
-from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import (
+from plcsim.core.errors import ConfigurationError, ExerciseError
+from plcsim.exercise.model import IO, Exercise, only
+from plcsim.exercise.validation import validate
+from plcsim.scenario.verbs import (
     Scenario,
     ScenarioError,
     after_event,
@@ -33,8 +34,7 @@ from plcsim.scenario import (
     stuck,
     write,
 )
-from plcsim.validation import validate
-from plcsim.wiring import NO
+from plcsim.sim.wiring import NO
 
 HERE = re.escape(__file__)
 CONV1_EVENTS = (  # an open end: no end stop, no "end stop hit"
@@ -465,8 +465,8 @@ def test_a_bug_of_ours_in_an_action_is_not_recorded_as_the_students(monkeypatch)
 GOOD = """\
 from plants import Conv1
 from plcsim.check import never
-from plcsim.exercise import IO, Exercise
-from plcsim.scenario import Scenario, place
+from plcsim.exercise.model import IO, Exercise
+from plcsim.scenario.verbs import Scenario, place
 
 EXERCISE = Exercise(
     number="9.9.{n}",
@@ -482,8 +482,8 @@ EXERCISE = Exercise(
 """
 BROKEN = {
     "ex_9_9_03": (GOOD.replace("{n}", "3").replace("{actions}", 'place("p1", at="S3", t="0.5s"), '), None),
-    "ex_9_9_04": ("from plcsim.exercise import Exercise\n\nEXERCISE = Exercise(\n    number=\n", 3),
-    "ex_9_9_05": ("from plcsim.exercise import Exercise\n\n\nEXERCISE = Exercize(number='9.9.5')\n", 4),
+    "ex_9_9_04": ("from plcsim.exercise.model import Exercise\n\nEXERCISE = Exercise(\n    number=\n", 3),
+    "ex_9_9_05": ("from plcsim.exercise.model import Exercise\n\n\nEXERCISE = Exercize(number='9.9.5')\n", 4),
     "ex_9_9_06": ("NUMBER = '9.9.6'\n", None),
 }
 
@@ -524,7 +524,7 @@ def test_a_broken_module_beside_good_ones(package):
 def test_the_cli_lists_the_good_and_names_the_broken_without_a_traceback(package, monkeypatch, capsys):
     name, root = package
     loaded, broken = load_package(name)
-    monkeypatch.setattr(plcsim.catalog, "_catalog", lambda: (tuple(loaded), tuple(broken)))
+    monkeypatch.setattr(plcsim.exercise.catalog, "_catalog", lambda: (tuple(loaded), tuple(broken)))
     assert main(["list"]) == 2
     out, err = capsys.readouterr()
     assert "9.9.1" in out and "9.9.2" in out and "good-2" in out
@@ -541,7 +541,7 @@ def test_the_cli_lists_the_good_and_names_the_broken_without_a_traceback(package
 def test_an_unknown_exercise_mentions_the_modules_that_did_not_load(package, monkeypatch):
     name, _root = package
     loaded, broken = load_package(name)
-    monkeypatch.setattr(plcsim.catalog, "_catalog", lambda: (tuple(loaded), tuple(broken)))
+    monkeypatch.setattr(plcsim.exercise.catalog, "_catalog", lambda: (tuple(loaded), tuple(broken)))
     with pytest.raises(ConfigurationError) as info:
         exercises.get("9.9.9")
     message = str(info.value)

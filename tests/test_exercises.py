@@ -11,7 +11,7 @@ from __future__ import annotations
 import pytest
 
 from exercises import all_exercises
-from plcsim.grading import grade
+from plcsim.grading.grader import grade
 
 CASES = [(ex, sol) for ex in all_exercises() for sol in ex.solutions]
 

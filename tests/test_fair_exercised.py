@@ -1,4 +1,4 @@
-"""Fair grades (plcsim.exercised): a check earns its points only if the run showed the behaviour it
+"""Fair grades (plcsim.check.exercised): a check earns its points only if the run showed the behaviour it
 guards. A program that does nothing, whose CPU stops at 0 s, or that has no OB1 earns nothing on the
 conveyor exercises (before, 6/12 on 4.3.6, 7/21 on 4.3.7, 15/25 on 4.3.9, from safety checks that
 held because nothing moved); the shipped solutions still grade as their kinds say
@@ -16,12 +16,12 @@ import pytest
 from exercises import get
 from plcsim.check import action, all_of, always, never, off, rises, same
 from plcsim.check.base import Context
-from plcsim.errors import ExerciseError
-from plcsim.exercise import Exercise
-from plcsim.exercised import Activity, unprovoked
-from plcsim.grading import grade, grade_sandboxed, write_gradebook
-from plcsim.scenario import Scenario, press
-from plcsim.trace import Trace
+from plcsim.check.exercised import Activity, unprovoked
+from plcsim.core.errors import ExerciseError
+from plcsim.exercise.model import Exercise
+from plcsim.grading.grader import grade, grade_sandboxed, write_gradebook
+from plcsim.scenario.verbs import Scenario, press
+from plcsim.trace.facade import Trace
 
 DOES_NOTHING = "def nothing(t):\n    pass\n\n\nOB1 = [nothing]\n"
 STOPS_AT_ONCE = "def spin(t):\n    while True:\n        pass\n\n\nOB1 = [spin]\n"  # the watchdog: STOP in scan 1

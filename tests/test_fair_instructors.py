@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 
 from exercises import get, load_path
-from plcsim.cli import EXIT_USAGE, main
-from plcsim.errors import ConfigurationError, ExerciseError
+from plcsim.apps.cli import EXIT_USAGE, main
+from plcsim.core.errors import ConfigurationError, ExerciseError
 
 LAMP = '''"""A lamp that follows its button (an instructor's exercise, outside the package)."""
 
@@ -19,8 +19,8 @@ from pathlib import Path
 
 from plants import Panel
 from plcsim.check import always, same
-from plcsim.exercise import IO, Exercise, Solution
-from plcsim.scenario import Scenario, press
+from plcsim.exercise.model import IO, Exercise, Solution
+from plcsim.scenario.verbs import Scenario, press
 
 HERE = Path(__file__).parent
 SOLUTIONS = [Solution("reference", HERE / "solutions" / "{slug}.py", explanation="LED := button")]

@@ -8,11 +8,11 @@ from pathlib import Path
 
 import pytest
 
-from plcsim.cli import main
-from plcsim.compiler import ALLOWED_BUILTINS
-from plcsim.errors import ProgramError
-from plcsim.program import DECLARATION_NAMES, PROGRAM_NAMES, Program
-from plcsim.reference import PAGE, instruction_reference, network_instructions
+from plcsim.apps.cli import main
+from plcsim.core.errors import ProgramError
+from plcsim.frontends.python.compiler import ALLOWED_BUILTINS
+from plcsim.frontends.python.program import DECLARATION_NAMES, PROGRAM_NAMES, Program
+from plcsim.frontends.python.reference import PAGE, instruction_reference, network_instructions
 
 ROOT = Path(__file__).parents[1]
 

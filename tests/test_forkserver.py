@@ -1,4 +1,4 @@
-"""The fork server (plcsim.forkserver) as the hostile child sees it: a child forked from it reaches
+"""The fork server (plcsim.grading.sandbox.forkserver) as the hostile child sees it: a child forked from it reaches
 nothing of the server, changes nothing the next child gets, and a server that dies costs no student
 a grade. Linux only (elsewhere every child is a fresh interpreter)."""
 
@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 from exercises import get
-from plcsim import forkserver
-from plcsim.grading import Limits, grade_sandboxed
+from plcsim.grading.grader import Limits, grade_sandboxed
+from plcsim.grading.sandbox import forkserver
 
 pytestmark = [
     pytest.mark.xdist_group("sandbox"),
@@ -98,8 +98,8 @@ def test_a_server_dying_under_a_running_child_is_a_grader_error_and_takes_the_ch
 def test_the_server_ends_with_its_grader_and_leaves_no_child(tmp_path):
     script = (
         "import exercises\n"
-        "from plcsim import forkserver\n"
-        "from plcsim.grading import grade_sandboxed\n"
+        "from plcsim.grading.sandbox import forkserver\n"
+        "from plcsim.grading.grader import grade_sandboxed\n"
         "ex = exercises.get('4.3.1')\n"
         "r = grade_sandboxed(ex, ex.reference.path)\n"
         "print(r.score, list(forkserver._SERVERS.values())[0].process.pid, flush=True)\n"

@@ -1,4 +1,4 @@
-"""Grading (plcsim.grading): scores and failed checks of shipped solutions, the JSON / JUnit / CSV
+"""Grading (plcsim.grading.grader): scores and failed checks of shipped solutions, the JSON / JUnit / CSV
 outputs, hostile submissions in the sandbox (each reported as what it is, never a crash of the
 grader), batch grading, and a program that replays fixed times failing under another seed.
 
@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from exercises import get
-from plcsim.grading import Limits, Report, grade, grade_batch, grade_sandboxed, write_gradebook
+from plcsim.grading.grader import Limits, Report, grade, grade_batch, grade_sandboxed, write_gradebook
 
 # one xdist worker runs them in turn: they look for the hostile child's leftovers machine-wide and
 # time their limits, so two at once on two cores would see each other
@@ -129,7 +129,7 @@ def test_only_some_scenarios(ex5):
     assert [c.scenario for c in r.checks].count("placed at S2") == 3
     assert (r.score, r.max_score, r.passed) == (9.0, 9.0, True)
     # alone, "placed at S2" (the belt must stay off) cannot tell the reference from a program that does
-    # nothing: its checks are not exercised (plcsim.exercised)
+    # nothing: its checks are not exercised (plcsim.check.exercised)
     alone = grade(ex5, ex5.reference.path, scenarios=["placed at S2"])
     assert [c.status for c in alone.checks] == ["not exercised"] * 3
     assert (alone.score, alone.max_score, alone.passed) == (0.0, 3.0, False)
@@ -305,7 +305,7 @@ def child_start_mb(ex1) -> int:
     """The address space a grading child starts with: its fork server's (Linux), else this process's as a
     bound. (This process's own grows with its threads' arenas: as a limit it once let the bomb run into the
     time limit.)"""
-    from plcsim import forkserver
+    from plcsim.grading.sandbox import forkserver
 
     grade_sandboxed(ex1, ex1.reference.path)  # starts the fork server, if there is one
     servers = [s for s in forkserver._SERVERS.values() if s.alive]

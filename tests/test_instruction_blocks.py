@@ -1,4 +1,4 @@
-"""One description per instance type (:data:`plcsim.instructions.BLOCKS`): the compiler's typing, the host
+"""One description per instance type (:data:`plcsim.controllers.s7.instructions.BLOCKS`): the compiler's typing, the host
 access, the recorder and the student reference all read it, so none of them can drift from the others."""
 
 from __future__ import annotations
@@ -9,10 +9,10 @@ from pathlib import Path
 import pytest
 
 from plcsim import CPU, Tag
-from plcsim.errors import PlcTypeError, ProgramError, UnknownTagError
-from plcsim.instructions import BLOCKS, block_of
-from plcsim.recorder import Recorder, default_signals
-from plcsim.reference import instruction_reference
+from plcsim.controllers.s7.instructions import BLOCKS, block_of
+from plcsim.core.errors import PlcTypeError, ProgramError, UnknownTagError
+from plcsim.frontends.python.reference import instruction_reference
+from plcsim.sim.recorder import Recorder, default_signals
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -116,8 +116,8 @@ def test_an_instance_is_described_by_its_class_and_nothing_else_reads_its_privat
 
 
 def test_every_function_instruction_is_described_once_and_in_the_reference():
-    from plcsim.instructions import BOOL_RESULTS, CPU_BOUND, FUNCTIONS, PURE_INSTRUCTIONS
-    from plcsim.reference import network_instructions
+    from plcsim.controllers.s7.instructions import BOOL_RESULTS, CPU_BOUND, FUNCTIONS, PURE_INSTRUCTIONS
+    from plcsim.frontends.python.reference import network_instructions
 
     assert set(network_instructions()) == set(FUNCTIONS)
     assert sorted(CPU_BOUND) == ["MOVE", "N", "N_COIL", "N_TRIG", "P", "P_COIL", "P_TRIG", "RD_LOC_T"]

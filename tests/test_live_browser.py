@@ -11,9 +11,9 @@ import shutil
 
 import pytest
 
-from plcsim.live import Recording
-from plcsim.live.build import Target
-from plcsim.live.session import PANEL_DEMO
+from plcsim.apps.live import Recording
+from plcsim.apps.live.build import Target
+from plcsim.apps.live.session import PANEL_DEMO
 
 CHROMIUM_ARGS = [
     "--headless",
@@ -69,7 +69,7 @@ def paused_and_saved(page, screenshot) -> dict:
 
 
 def test_a_click_lights_the_lamp_and_the_saved_session_replays(browser, tmp_path):
-    from plcsim.live.server import open_live
+    from plcsim.apps.live.server import open_live
 
     program = tmp_path / "lamp.py"
     program.write_text(PANEL_DEMO, encoding="utf-8")
@@ -118,7 +118,7 @@ def test_a_click_lights_the_lamp_and_the_saved_session_replays(browser, tmp_path
 
 
 def test_parts_faults_and_the_watch_table_from_the_page_replay(browser, tmp_path):
-    from plcsim.live.server import open_live
+    from plcsim.apps.live.server import open_live
 
     program = tmp_path / "belt.py"
     program.write_text("def OB1(t):\n    if t.S1:\n        t.D1 = True\n    if t.S2:\n        t.D1 = False\n")
@@ -164,7 +164,7 @@ def test_parts_faults_and_the_watch_table_from_the_page_replay(browser, tmp_path
 def test_the_sorters_own_verbs_and_a_coloured_part_from_the_page_replay(browser, tmp_path):
     """4.3.17 live: a red part (properties typed as ``colour=2``), then daylight on the colour sensor from the
     'Machine' card; the saved session holds both and replays to the page's digest."""
-    from plcsim.live.server import open_live
+    from plcsim.apps.live.server import open_live
 
     program = "exercises/solutions/4_3_17/reference.py"
     panel = open_live("4.3.17", program, port=0, speed=2.0)

@@ -7,10 +7,10 @@ import time
 
 import pytest
 
-from plcsim.live import LiveSession, Recording
-from plcsim.live.build import Target
-from plcsim.live.runner import Runner
-from plcsim.live.session import PANEL_DEMO
+from plcsim.apps.live import LiveSession, Recording
+from plcsim.apps.live.build import Target
+from plcsim.apps.live.runner import Runner
+from plcsim.apps.live.session import PANEL_DEMO
 
 MS = 1_000_000
 
@@ -49,7 +49,7 @@ def test_the_websocket_protocol_presses_lights_saves_and_replays(tmp_path):
     pytest.importorskip("uvicorn", reason="the live extra is not installed: pip install 'plcsim[live]'")
     from websockets.sync.client import connect
 
-    from plcsim.live.server import open_live
+    from plcsim.apps.live.server import open_live
 
     program = tmp_path / "lamp.py"
     program.write_text(PANEL_DEMO, encoding="utf-8")
@@ -92,7 +92,7 @@ def test_plcsim_live_ends_from_the_page_saving_the_scenario_and_the_recording(tm
 
     from websockets.sync.client import connect
 
-    from plcsim.cli import main
+    from plcsim.apps.cli import main
 
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
@@ -126,7 +126,7 @@ def test_plcsim_live_ends_from_the_page_saving_the_scenario_and_the_recording(tm
 
 def test_the_notebook_handle_shows_the_page_inline(tmp_path):
     pytest.importorskip("uvicorn", reason="the live extra is not installed: pip install 'plcsim[live]'")
-    from plcsim.live import open_live
+    from plcsim.apps.live import open_live
 
     panel = open_live("PANEL", PANEL_DEMO, port=0, paused=True)
     try:

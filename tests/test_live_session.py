@@ -8,11 +8,11 @@ from __future__ import annotations
 
 import pytest
 
-from plcsim.errors import PlcError
-from plcsim.live import LiveSession, Recording, load_scenario_file
-from plcsim.live.build import Target
-from plcsim.live.session import PANEL_DEMO
-from plcsim.scenario import ScenarioError
+from plcsim.apps.live import LiveSession, Recording, load_scenario_file
+from plcsim.apps.live.build import Target
+from plcsim.apps.live.session import PANEL_DEMO
+from plcsim.core.errors import PlcError
+from plcsim.scenario.verbs import ScenarioError
 
 CONVEYOR = """\
 def OB1(t):
@@ -205,7 +205,7 @@ def _reference(number: str) -> str:
 
 
 def test_the_cli_replays_a_saved_session_with_its_seed(tmp_path, capsys):
-    from plcsim.cli import main
+    from plcsim.apps.cli import main
 
     program = tmp_path / "lamp.py"
     program.write_text(PANEL_DEMO, encoding="utf-8")

@@ -18,10 +18,10 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from plcsim import CPU, DB, Tag
-from plcsim.errors import AddressError
-from plcsim.memory import ByteMemory, parse_address
-from plcsim.tags import non_optimized_offsets
-from plcsim.types import Bool, Byte, DInt, DWord, Int, Real, Word
+from plcsim.core.errors import AddressError
+from plcsim.tags.memory import ByteMemory, parse_address
+from plcsim.tags.table import non_optimized_offsets
+from plcsim.tags.types import Bool, Byte, DInt, DWord, Int, Real, Word
 
 
 @pytest.mark.parametrize(

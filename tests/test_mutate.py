@@ -1,4 +1,4 @@
-"""Mutation testing of the checks (plcsim.mutate): the operators, kill / survive / equivalent, the CLI.
+"""Mutation testing of the checks (plcsim.mutate.engine): the operators, kill / survive / equivalent, the CLI.
 
 The full sweep over every exercise is the benchmark ``python -m benchmarks --only mutation``; these
 tests use the smallest exercises and one seed.
@@ -14,9 +14,10 @@ import pytest
 from rich.console import Console
 
 from exercises import all_exercises, get
-from plcsim.cli import main
-from plcsim.errors import ExerciseError
-from plcsim.mutate import (
+from plcsim.apps.cli import main
+from plcsim.core.errors import ExerciseError
+from plcsim.frontends.python.program import Program
+from plcsim.mutate.engine import (
     EQUIVALENT,
     EXPLAINED,
     KILLED,
@@ -30,9 +31,8 @@ from plcsim.mutate import (
     mutate_exercise,
     print_mutation_report,
 )
-from plcsim.program import Program
-from plcsim.tags import Tag, TagTable
-from plcsim.types import Int
+from plcsim.tags.table import Tag, TagTable
+from plcsim.tags.types import Int
 
 SMALL = """T = IEC_TIMER()
 

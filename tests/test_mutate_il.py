@@ -1,4 +1,4 @@
-"""Mutation testing of Tecomat instruction-list references (plcsim.mutate_il): each operator's exact
+"""Mutation testing of Tecomat instruction-list references (plcsim.mutate.il): each operator's exact
 mutated line, what is left alone, and the grading of T-01's, T-02's and T-06's mutants on one seed."""
 
 from __future__ import annotations
@@ -9,11 +9,11 @@ import json
 import pytest
 
 from exercises import get
-from plcsim.cli import main
-from plcsim.errors import PlcError
-from plcsim.exercise import Solution
-from plcsim.mutate import EQUIVALENT, EXPLAINED, KILLED, STILLBORN, Mutant, exercise_mutants, mutate_exercise
-from plcsim.mutate_il import derive_il_mutants
+from plcsim.apps.cli import main
+from plcsim.core.errors import PlcError
+from plcsim.exercise.model import Solution
+from plcsim.mutate.engine import EQUIVALENT, EXPLAINED, KILLED, STILLBORN, Mutant, exercise_mutants, mutate_exercise
+from plcsim.mutate.il import derive_il_mutants
 
 
 def changed(original: str, mutant: Mutant) -> dict[int, str]:

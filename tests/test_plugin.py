@@ -1,4 +1,4 @@
-"""The pytest plugin for instructors (plcsim.pytest_plugin), through pytest's own plugin-testing fixture:
+"""The pytest plugin for instructors (plcsim.apps.pytest_plugin), through pytest's own plugin-testing fixture:
 a correct and a wrong shipped solution of 4.3.1 must be reported as passed and failed, with the check's
 explanation, by the fixtures, by a folder of submissions, over seeds and as one item per check.
 """
@@ -103,8 +103,8 @@ def test_programs_run_in_the_sandbox_unless_the_instructor_opts_out(pytester):
     pytester.makepyfile(
         test_sandbox="""
         import pytest
-        from plcsim.grading import Limits
-        from plcsim.pytest_plugin import SubmissionError
+        from plcsim.grading.grader import Limits
+        from plcsim.apps.pytest_plugin import SubmissionError
 
         def test_sandboxed(plcsim_run):
             assert plcsim_run("4.3.1", solution="reference").sandboxed

@@ -48,8 +48,8 @@ for package in (plcsim, plants, exercises):
             except Exception as exc:
                 failed[module.name] = repr(exc)
 from exercises import get
-from plcsim import sandbox
-from plcsim.grading import grade_sandboxed
+from plcsim.grading.sandbox import parent as sandbox
+from plcsim.grading.grader import grade_sandboxed
 ex = get("4.3.1")
 good = grade_sandboxed(ex, ex.reference.path)
 wrong = grade_sandboxed(ex, ex.solution("wrong-latch").path)

@@ -1,6 +1,6 @@
 """The portable sandbox path (Windows' path), proved on Linux with ``PLCSIM_SANDBOX=portable``: every
 Unix-only part is off (resource limits, process group, namespaces, Landlock, cgroups, fork) and the
-grader watches the child from outside (plcsim.watchdog). The hostile children of the POSIX tests must
+grader watches the child from outside (plcsim.grading.sandbox.watchdog). The hostile children of the POSIX tests must
 still be contained: the forged results refused, the CPU hog, the wall-clock hog, the memory hog and
 the huge output stopped and named, nothing left behind.
 
@@ -42,10 +42,10 @@ from test_sandbox_child import (  # noqa: F401 - fixtures and tests re-run on th
     test_the_control_an_honest_trace_of_the_reference_gets_full_marks,
 )
 
-from plcsim.confine import ORPHANED_EXIT
-from plcsim.errors import ConfigurationError
-from plcsim.grading import Limits, grade_sandboxed
-from plcsim.sandbox import MODE_VARIABLE, portable_mode
+from plcsim.core.errors import ConfigurationError
+from plcsim.grading.grader import Limits, grade_sandboxed
+from plcsim.grading.sandbox.confine import ORPHANED_EXIT
+from plcsim.grading.sandbox.parent import MODE_VARIABLE, portable_mode
 
 # one xdist worker runs them in turn: they look for the hostile child's leftovers machine-wide and
 # time their limits, so two at once on two cores would see each other
@@ -130,7 +130,7 @@ def test_a_child_whose_grader_is_killed_ends_itself(tmp_path):
     order.write_text(json.dumps({"do": "tell-pid-then-hog", "pid_file": str(pid_file)}), encoding="utf-8")
     script = (
         "import sys; sys.path[:0] = sys.argv[2:]\n"
-        "from exercises import get\nfrom plcsim.grading import grade_sandboxed\n"
+        "from exercises import get\nfrom plcsim.grading.grader import grade_sandboxed\n"
         f"grade_sandboxed(get('4.3.1'), sys.argv[1], child_entry={PORTABLE_HOSTILE!r})\n"
     )
     grader = subprocess.Popen(
@@ -178,7 +178,7 @@ def _alive(pid: int) -> bool:
 )
 def test_the_portable_child_s_watch_on_its_grader(script, close_stdin, code):
     child = subprocess.Popen(
-        [sys.executable, "-c", f"from plcsim import confine; confine.exit_with_grader(); {script}"],
+        [sys.executable, "-c", f"from plcsim.grading.sandbox import confine; confine.exit_with_grader(); {script}"],
         stdin=subprocess.PIPE,
         stderr=subprocess.PIPE,
     )

@@ -16,7 +16,7 @@ from __future__ import annotations
 import pytest
 
 from plcsim import CPU, Program, Tag
-from plcsim.errors import AddressError, DeclarationError, ProgramError, SubsetError, UnknownTagError
+from plcsim.core.errors import AddressError, DeclarationError, ProgramError, SubsetError, UnknownTagError
 
 PANEL = {"TLACIDLO": Tag("%I0.0"), "LED": Tag("%Q0.0")}
 

@@ -12,7 +12,7 @@ import pytest
 from exercises import get
 from exercises._punch import TAKEN_FROM_THE_PRESS, strokes_of, visits
 from plants import Punch
-from plcsim.grading import grade
+from plcsim.grading.grader import grade
 
 
 def failed(report) -> set[str]:

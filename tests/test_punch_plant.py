@@ -10,11 +10,11 @@ from plants import RIGS, Punch
 from plants.components.component import Bench
 from plants.components.press import Press
 from plcsim import CPU, Tag
-from plcsim.plant import check_plant
-from plcsim.scenario import Scenario
-from plcsim.sim import Simulation
-from plcsim.trace_plot import default_signals, timing_diagram
-from plcsim.wiring import Wire
+from plcsim.plant.protocol import check_plant
+from plcsim.scenario.verbs import Scenario
+from plcsim.sim.simulation import Simulation
+from plcsim.sim.wiring import Wire
+from plcsim.trace.plot import default_signals, timing_diagram
 
 MS = 1_000_000
 

@@ -20,10 +20,10 @@ from pathlib import Path
 import pytest
 
 import plants
-import plcsim.catalog
-from plcsim import registry
-from plcsim.cli import main
-from plcsim.errors import ConfigurationError, ProgramError
+import plcsim.exercise.catalog
+from plcsim.apps.cli import main
+from plcsim.core import registry
+from plcsim.core.errors import ConfigurationError, ProgramError
 from plcsim.frontends import read_program, suffixes
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -31,8 +31,8 @@ ROOT = Path(__file__).resolve().parents[1]
 EXERCISE = """
 from plants import Panel
 from plcsim.check import always, same
-from plcsim.exercise import IO, Exercise
-from plcsim.scenario import Scenario, press
+from plcsim.exercise.model import IO, Exercise
+from plcsim.scenario.verbs import Scenario, press
 
 EXERCISE = Exercise(
     number="9.1.1",
@@ -68,9 +68,9 @@ def instructor_package(tmp_path, monkeypatch):
     (package / "led.py").write_text(EXERCISE)
     (package / "_helpers.py").write_text("raise RuntimeError('a helper module is not an exercise')\n")
     monkeypatch.syspath_prepend(str(site))
-    plcsim.catalog._catalog.cache_clear()
+    plcsim.exercise.catalog._catalog.cache_clear()
     yield package
-    plcsim.catalog._catalog.cache_clear()
+    plcsim.exercise.catalog._catalog.cache_clear()
     for name in [m for m in sys.modules if m == "my_course" or m.startswith("my_course.")]:
         del sys.modules[name]
 
@@ -106,8 +106,8 @@ def test_the_course_registers_its_rigs_and_exercises():
     assert registry.rig_names() == sorted(registry.rig_names())
     assert registry.rig("conv1") is plants.Conv1 and plants.RIGS["PANEL"] is plants.Panel
     assert [ep.value for ep in registry.entry_points(registry.EXERCISES)] == ["exercises"]
-    numbers = [e.number for e in plcsim.catalog.all_exercises()]
-    assert numbers[0] == "4.3.1" and "4.3.7" in numbers and plcsim.catalog.broken_exercises() == ()
+    numbers = [e.number for e in plcsim.exercise.catalog.all_exercises()]
+    assert numbers[0] == "4.3.1" and "4.3.7" in numbers and plcsim.exercise.catalog.broken_exercises() == ()
 
 
 def test_an_unknown_rig_names_the_registered_ones():
@@ -136,7 +136,7 @@ def test_an_instructors_package_is_listed_and_graded(instructor_package, capsys,
     assert main(["list"]) == 0
     out = capsys.readouterr().out
     assert "9.1.1" in out and "my-led" in out and "4.3.1" in out
-    exercise = plcsim.catalog.get("my-led")
+    exercise = plcsim.exercise.catalog.get("my-led")
     assert exercise.number == "9.1.1" and exercise.defined_at.startswith(str(instructor_package / "led.py"))
     right = tmp_path / "right.py"
     right.write_text("def OB1(t):\n    t.LED1 = t.TL1\n")
@@ -150,7 +150,7 @@ def test_an_instructors_package_is_listed_and_graded(instructor_package, capsys,
 def test_a_broken_entry_point_is_named_and_the_others_still_load(instructor_package, tmp_path, monkeypatch, capsys):
     site = _dist(tmp_path / "other", "broken_course", "[plcsim.exercises]\nbroken = no_such_course.sub\n")
     monkeypatch.syspath_prepend(str(site))
-    plcsim.catalog._catalog.cache_clear()
+    plcsim.exercise.catalog._catalog.cache_clear()
     assert main(["list"]) == 2
     out, err = capsys.readouterr()
     assert "9.1.1" in out and "4.3.1" in out
@@ -161,7 +161,7 @@ def test_a_broken_entry_point_is_named_and_the_others_still_load(instructor_pack
 def test_another_packages_front_end_reads_its_suffix(tmp_path, monkeypatch):
     site = _dist(tmp_path, "my_frontend", "[plcsim.frontends]\nlad = my_frontend:read_lad\n")
     (site / "my_frontend.py").write_text(
-        "from plcsim.program import Program\n\n"
+        "from plcsim.frontends.python.program import Program\n\n"
         "def read_lad(path):\n"
         "    a, b = path.read_text().split('->')\n"
         "    return Program.from_source(f'def OB1(t):\\n    t.{b.strip()} = t.{a.strip()}\\n', filename=str(path))\n"
@@ -210,7 +210,7 @@ def test_in_a_session_whose_working_folder_is_on_the_path_the_installed_course_i
         (tmp_path / name).write_text(text)
     code = (
         "import sys; sys.path.insert(0, '')\n"
-        "from plcsim import catalog, registry\n"
+        "from plcsim.core import registry\nfrom plcsim.exercise import catalog\n"
         "print(catalog.get('4.3.1').number, registry.rig('PANEL').__name__)\n"
         "import exercises, plants; print(exercises.__file__ != 'exercises.py', plants.__file__)\n"
     )
@@ -223,7 +223,7 @@ def test_in_a_session_whose_working_folder_is_on_the_path_the_installed_course_i
 
 def test_a_shadowing_module_the_session_imported_itself_is_named_by_its_file(tmp_path):
     (tmp_path / "exercises.py").write_text("EXERCISE = None\n")
-    code = "import sys; sys.path.insert(0, ''); import exercises\nfrom plcsim import catalog\ncatalog.get('4.3.1')\n"
+    code = "import sys; sys.path.insert(0, ''); import exercises\nfrom plcsim.exercise import catalog\ncatalog.get('4.3.1')\n"
     done = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert done.returncode != 0
     message = " ".join(done.stderr.split())

@@ -1,4 +1,4 @@
-"""The grading child as a hostile process (plcsim.sandbox, plcsim.confine): a test-double child
+"""The grading child as a hostile process (plcsim.grading.sandbox.parent, plcsim.grading.sandbox.confine): a test-double child
 (``tests/sandbox_hostile_child.py``, started through ``grade_sandboxed(child_entry=...)``) does what a
 submission that escaped the compiler could do. The grader must refuse every forged result, kill
 what the child leaves behind, keep nothing on disk and report the true outcome.
@@ -19,9 +19,9 @@ from pathlib import Path
 import pytest
 
 from exercises import get
-from plcsim import forkserver
-from plcsim.errors import ConfigurationError
-from plcsim.grading import Limits, grade_sandboxed
+from plcsim.core.errors import ConfigurationError
+from plcsim.grading.grader import Limits, grade_sandboxed
+from plcsim.grading.sandbox import forkserver
 
 # one xdist worker runs them in turn: they look for the hostile child's leftovers machine-wide and
 # time their limits, so two at once on two cores would see each other
@@ -185,9 +185,9 @@ def test_limits_cannot_be_switched_off(options, word):
 def test_the_portable_path_without_process_groups_grades_and_stops_at_the_wall_limit(ex1, tmp_path, monkeypatch):
     """Windows' path (a result file, the grader's outside watch), forced here on a POSIX system; the
     hostile programs on this path are in tests/test_portable_sandbox.py."""
-    import plcsim.sandbox
+    import plcsim.grading.sandbox.parent
 
-    monkeypatch.setattr(plcsim.sandbox, "POSIX", False)
+    monkeypatch.setattr(plcsim.grading.sandbox.parent, "POSIX", False)
     r = grade_sandboxed(ex1, ex1.reference.path)
     assert (r.error_kind, r.passed, r.score) == (None, True, 3.0)
     assert r.warnings[0].startswith("sandbox: portable path (no resource limits, process group, namespaces")
@@ -199,7 +199,7 @@ def test_a_project_inside_the_temporary_folder_is_readable_the_scratch_beside_it
     """A clone under /tmp once made every lazy import of the child fail after the lock-down (every
     sandboxed ``.il`` grade crashed on ``plcsim.frontends.il``): the temporary folder is hidden from a
     root that holds it, never from a root inside it."""
-    from plcsim import sandbox
+    from plcsim.grading.sandbox import parent as sandbox
 
     temp = tmp_path / "tmp"
     package = temp / "clone" / "plcsim"
@@ -231,7 +231,7 @@ def test_a_project_installed_under_the_temporary_folder_grades_an_il_program_in_
     script = (
         "import exercises, sys\n"
         "from pathlib import Path\n"
-        "from plcsim.grading import grade_sandboxed\n"
+        "from plcsim.grading.grader import grade_sandboxed\n"
         "r = grade_sandboxed(exercises.get('T-01'), Path(sys.argv[1]))\n"
         "print(r.error_kind, r.error, r.score, r.max_score)\n"
     )

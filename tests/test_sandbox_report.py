@@ -1,4 +1,4 @@
-"""The report layer against hostile text (plcsim.report, plcsim.grade_report, the grade command):
+"""The report layer against hostile text (plcsim.grading.terminal, plcsim.grading.report, the grade command):
 Rich markup in messages and file names is printed as text, gradebook cells cannot become formulas,
 JUnit tells errors from failures with correct counts, the JSON report names its schema, a batch
 of hostile files still grades the reference at full marks, an exercise's broken check is a grader
@@ -17,12 +17,12 @@ import pytest
 from rich.console import Console
 
 from exercises import get
+from plcsim.apps.cli import EXIT_FAILED, EXIT_GRADER, EXIT_USAGE, _exit_code, main
 from plcsim.check.base import Check
-from plcsim.cli import EXIT_FAILED, EXIT_GRADER, EXIT_USAGE, _exit_code, main
-from plcsim.exercise import GradedCheck
-from plcsim.grade_report import CheckResult, Report, ScenarioRun, spreadsheet_safe, write_junit
-from plcsim.grading import grade, grade_sandboxed
-from plcsim.report import print_report
+from plcsim.exercise.model import GradedCheck
+from plcsim.grading.grader import grade, grade_sandboxed
+from plcsim.grading.report import CheckResult, Report, ScenarioRun, spreadsheet_safe, write_junit
+from plcsim.grading.terminal import print_report
 
 # one xdist worker runs them in turn: they look for the hostile child's leftovers machine-wide and
 # time their limits, so two at once on two cores would see each other
@@ -208,7 +208,7 @@ def test_exporters_change_no_grade_and_name_each_students_files(ex1, tmp_path):
 def test_an_exercise_that_cannot_be_set_up_is_a_grader_error_in_both_paths(ex1, monkeypatch):
     """An instructor's mistake the simulation reveals (a scenario naming an unknown station) is not the
     student's: grade() and grade_sandboxed() report a grader error, before any submission code runs."""
-    from plcsim.errors import ConfigurationError
+    from plcsim.core.errors import ConfigurationError
 
     def broken(*args, **kwargs):
         raise ConfigurationError("scenario 'presses' places a part at an unknown station 'S9'")
@@ -222,8 +222,8 @@ def test_an_exercise_that_cannot_be_set_up_is_a_grader_error_in_both_paths(ex1, 
 def test_an_exercise_error_raised_while_a_scenario_runs_is_a_grader_error_not_a_cut_short_run(ex1, monkeypatch):
     """A scenario action the exercise cannot perform (ExerciseError in the middle of the run) voids the grade as
     the grader's fault; it is not a plant failure that would fail every run-time check of the student."""
-    from plcsim.errors import ExerciseError
-    from plcsim.sim import Simulation
+    from plcsim.core.errors import ExerciseError
+    from plcsim.sim.simulation import Simulation
 
     def broken(self, *args, **kwargs):
         raise ExerciseError("ex.py:12: shift sensor TL by 5.0 mm at 1 s: the plant PANEL does not support it")
@@ -239,8 +239,9 @@ def test_a_module_the_grading_child_cannot_import_is_a_grader_error_not_the_stud
     installation is broken or unreadable (a clone under /tmp once hid plcsim from the child): the grade is
     void, never a 0 for the student."""
     import plcsim.frontends
-    from plcsim import sandbox, sandbox_child
-    from plcsim.run_result import decode
+    from plcsim.grading.run_result import decode
+    from plcsim.grading.sandbox import child as sandbox_child
+    from plcsim.grading.sandbox import parent as sandbox
 
     def unreadable(path):
         raise ModuleNotFoundError("No module named 'plcsim.frontends.il'", name="plcsim.frontends.il")

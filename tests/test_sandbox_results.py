@@ -1,4 +1,4 @@
-"""The grader's side of the result pipe (plcsim.run_result): a message built from a real run of the
+"""The grader's side of the result pipe (plcsim.grading.run_result): a message built from a real run of the
 reference of 4.3.1 decodes to the same trace and grades 3/3 here; each forgery of it is refused
 with a reason, before any check reads it. No child process is started: these are the decoder alone.
 """
@@ -10,10 +10,10 @@ import pytest
 from sandbox_hostile_child import _TAMPER, _retitle
 
 from exercises import get
-from plcsim.grade_report import Report
-from plcsim.grading import evaluate, run_scenarios
-from plcsim.run_result import InvalidResultError, decode, encode_failure, encode_runs, message_length
-from plcsim.sandbox import _expected
+from plcsim.grading.grader import evaluate, run_scenarios
+from plcsim.grading.report import Report
+from plcsim.grading.run_result import InvalidResultError, decode, encode_failure, encode_runs, message_length
+from plcsim.grading.sandbox.parent import _expected
 
 # one xdist worker runs them in turn: they look for the hostile child's leftovers machine-wide and
 # time their limits, so two at once on two cores would see each other
@@ -132,7 +132,7 @@ def test_a_failure_message_can_only_lose_points(ex1, expected):
 
 
 def test_a_message_announcing_more_than_it_may_is_refused_at_its_header():
-    from plcsim.run_result import LENGTH, MAGIC
+    from plcsim.grading.run_result import LENGTH, MAGIC
 
     with pytest.raises(InvalidResultError, match="header has 1099511627776 bytes"):
         message_length(MAGIC + LENGTH.pack(1 << 40))

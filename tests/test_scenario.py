@@ -1,4 +1,4 @@
-"""Scenarios (plcsim.scenario, carried out by the simulator): seeded time ranges, triggers, the name
+"""Scenarios (plcsim.scenario.verbs, carried out by the simulator): seeded time ranges, triggers, the name
 checks before a run (with the file and line of the action and the valid choices), actions that fail
 during a run, and the plant faults (shifted sensor, jammed motor).
 """
@@ -14,7 +14,7 @@ import pytest
 from exercises import get
 from plants import Conv1, Panel
 from plcsim import CPU, CPUConfig, Simulation, Tag
-from plcsim.scenario import (
+from plcsim.scenario.verbs import (
     Scenario,
     ScenarioError,
     TimeSpec,
@@ -31,7 +31,7 @@ from plcsim.scenario import (
     stuck,
     write,
 )
-from plcsim.wiring import NO
+from plcsim.sim.wiring import NO
 
 MS = 1_000_000
 S = 1_000_000_000

@@ -12,14 +12,15 @@ from pathlib import Path
 import pytest
 
 from plants import Panel
-from plcsim import Simulation, Tag, frontends, profiles
-from plcsim.cli import main
-from plcsim.controller import controller_for
+from plcsim import Simulation, Tag, frontends
+from plcsim.apps.cli import main
+from plcsim.controllers import profiles
+from plcsim.controllers.profiles import Profile
+from plcsim.controllers.protocol import controller_for
+from plcsim.controllers.s7.profile import task_kind
 from plcsim.frontends import CONTRACT_TAGS, FrontEnd
-from plcsim.profiles import Profile
-from plcsim.profiles.s7 import task_kind
-from plcsim.scenario import Scenario, press
-from plcsim.wiring import NO
+from plcsim.scenario.verbs import Scenario, press
+from plcsim.sim.wiring import NO
 
 FRONT_ENDS = frontends.front_ends()
 PROFILES = profiles.all_profiles()

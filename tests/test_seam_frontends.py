@@ -18,16 +18,24 @@ import pytest
 import exercises
 from plants import Panel
 from plcsim import CPU, Program, Simulation, Tag, frontends
-from plcsim.compiler import STORE
-from plcsim.errors import ConfigurationError, ProgramError, UnknownTagError
+from plcsim.controllers.loaded import (
+    LinkTarget,
+    LoadedNetwork,
+    LoadedProgram,
+    LoadedTask,
+    NetworkSpec,
+    ProgramFacts,
+    TaskSpec,
+)
+from plcsim.controllers.s7.instructions import FB_TYPES
+from plcsim.core.errors import ConfigurationError, ProgramError, UnknownTagError
 from plcsim.frontends import read_program, register, suffixes, unregister
-from plcsim.grade_report import Report
-from plcsim.grading import evaluate, run_scenarios
-from plcsim.instructions import FB_TYPES
-from plcsim.loaded import LinkTarget, LoadedNetwork, LoadedProgram, LoadedTask, NetworkSpec, ProgramFacts, TaskSpec
-from plcsim.scenario import Scenario, press
-from plcsim.tags import TagTable
-from plcsim.wiring import NO
+from plcsim.frontends.python.compiler import STORE
+from plcsim.grading.grader import evaluate, run_scenarios
+from plcsim.grading.report import Report
+from plcsim.scenario.verbs import Scenario, press
+from plcsim.sim.wiring import NO
+from plcsim.tags.table import TagTable
 
 COMBINE = {"AND": operator.and_, "OR": operator.or_}
 

@@ -7,9 +7,9 @@ from pathlib import Path
 import pytest
 
 from plcsim import CPU, Int, Program, Tag
-from plcsim.errors import ProgramError
+from plcsim.controllers.loaded import LoadedProgram
+from plcsim.core.errors import ProgramError
 from plcsim.frontends import read_program
-from plcsim.loaded import LoadedProgram
 
 TAGS = {"TL": Tag("%I0.0"), "LED": Tag("%Q0.0"), "N": Tag("%MW10", Int)}
 SOURCE = '''

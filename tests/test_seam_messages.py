@@ -8,7 +8,7 @@ import re
 import pytest
 
 from plcsim import CPU, Tag
-from plcsim.errors import ProgramError
+from plcsim.core.errors import ProgramError
 
 TAGS = {"TL": Tag("%I0.0"), "LED": Tag("%Q0.0"), "SB1": Tag("%M0.0")}
 

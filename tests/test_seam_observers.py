@@ -12,9 +12,9 @@ from plants import Panel
 from plcsim import CPU, CPUConfig, Int, Program, Simulation, Tag
 from plcsim.check.base import Context
 from plcsim.check.occurrences import calls
-from plcsim.sim import Realtime, RealtimeSimulation
-from plcsim.trace import Trace
-from plcsim.wiring import NO
+from plcsim.sim.simulation import Realtime, RealtimeSimulation
+from plcsim.sim.wiring import NO
+from plcsim.trace.facade import Trace
 
 TAGS = {"TL": Tag("%I0.0"), "LED": Tag("%Q0.0"), "N": Tag("%MW10", Int)}
 BLINK = """
@@ -104,7 +104,7 @@ def test_pacing_is_chosen_when_the_simulation_is_built_and_changes_nothing_but_t
 
 
 def test_the_trace_core_imports_none_of_its_exporters():
-    exporters = "('plcsim.trace_plot', 'plcsim.trace_rerun')"
-    code = f"import sys, plcsim.trace; print(sorted(m for m in sys.modules if m in {exporters}))"
+    exporters = "('plcsim.trace.plot', 'plcsim.trace.rerun')"
+    code = f"import sys, plcsim.trace.facade; print(sorted(m for m in sys.modules if m in {exporters}))"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"

@@ -9,7 +9,7 @@ import pytest
 
 from benchmarks import workload
 from plcsim import CPU, Int, Tag
-from plcsim.recorder import Recorder
+from plcsim.sim.recorder import Recorder
 
 COUNTER = """
 def n1(t):

@@ -1,4 +1,4 @@
-"""The scheduler (plcsim.sim): order of work per step, scan()/run_until(), pause/resume, real-time
+"""The scheduler (plcsim.sim.simulation): order of work per step, scan()/run_until(), pause/resume, real-time
 pacing, fast-forward of quiescent plants, determinism across processes, plant and CPU failures.
 
 Times are integer nanoseconds; the CPU's cycle and the physics step are 1 ms unless a test says otherwise.
@@ -18,11 +18,11 @@ import pytest
 from exercises import get
 from plants import Conv1, Panel
 from plcsim import CPU, RUN, STOP, CPUConfig, RealtimeSimulation, Simulation, Tag
-from plcsim.errors import ConfigurationError
-from plcsim.plant import SignalSpec
-from plcsim.scenario import Scenario, held, place, press, remove
-from plcsim.sim import SimulationError
-from plcsim.wiring import NO
+from plcsim.core.errors import ConfigurationError
+from plcsim.plant.protocol import SignalSpec
+from plcsim.scenario.verbs import Scenario, held, place, press, remove
+from plcsim.sim.simulation import SimulationError
+from plcsim.sim.wiring import NO
 
 MS = 1_000_000
 ROOT = Path(__file__).resolve().parents[1]
@@ -383,7 +383,7 @@ def test_a_cpu_fault_stops_the_cpu_and_the_run_goes_on():
 
 
 def test_a_stopped_cpu_can_be_started_again_by_the_scenario():
-    from plcsim.scenario import start_cpu, stop_cpu
+    from plcsim.scenario.verbs import start_cpu, stop_cpu
 
     scenario = Scenario("s", stop_cpu(t="10ms"), start_cpu(t="20ms"), duration="30ms")
     sim = panel_sim(scenario=scenario)

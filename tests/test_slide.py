@@ -8,10 +8,10 @@ import tomllib
 from pathlib import Path
 
 from plants.slide import Slide
+from plcsim.apps.live.build import rig_simulation
 from plcsim.frontends import read_program
-from plcsim.live.build import rig_simulation
-from plcsim.plant import Plant, check_plant
-from plcsim.scenario import Scenario, jam_motor, press
+from plcsim.plant.protocol import Plant, check_plant
+from plcsim.scenario.verbs import Scenario, jam_motor, press
 
 ROOT = Path(__file__).resolve().parent.parent
 MS = 1_000_000

@@ -9,7 +9,7 @@ from __future__ import annotations
 import pytest
 
 from plcsim import Program
-from plcsim.errors import NoOB1Error, ProgramError, ProgramFileError
+from plcsim.core.errors import NoOB1Error, ProgramError, ProgramFileError
 
 SLOVAK = "def OB1(t):\n    # Ľahký štart: žltá LED svieti\n    t.LED = t.TL\n"
 

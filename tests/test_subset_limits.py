@@ -10,8 +10,8 @@ from __future__ import annotations
 import pytest
 
 from plcsim import CPU, Program, Tag
-from plcsim.compiler import MAX_NESTING
-from plcsim.errors import DeclarationError, ProgramError, SubsetError
+from plcsim.core.errors import DeclarationError, ProgramError, SubsetError
+from plcsim.frontends.python.compiler import MAX_NESTING
 
 PANEL = {"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")}
 
@@ -84,13 +84,15 @@ def test_mutual_recursion_stops_the_cpu_with_the_network_named():
 def test_a_base_exception_from_a_network_stops_the_cpu(monkeypatch):
     # the subset cannot raise one itself; an instruction that does (a SystemExit deep in a library) still
     # must be a STOP with the network named, not a crash of the grader
-    import plcsim.instructions.arithmetic as arithmetic
+    import plcsim.controllers.s7.instructions.arithmetic as arithmetic
 
     def leaving(x: float) -> float:
         raise SystemExit(3)
 
     monkeypatch.setitem(arithmetic.MATH_FUNCTIONS, "SQRT", leaving)
-    monkeypatch.setitem(__import__("plcsim.instructions", fromlist=["x"]).PURE_INSTRUCTIONS, "SQRT", leaving)
+    monkeypatch.setitem(
+        __import__("plcsim.controllers.s7.instructions", fromlist=["x"]).PURE_INSTRUCTIONS, "SQRT", leaving
+    )
     cpu = run(
         "R = Real(0.0)\ndef first(t):\n    t.R = 1.0\ndef second(t):\n    t.R = SQRT(4.0)\nOB1 = [first, second]\n"
     )

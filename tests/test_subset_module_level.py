@@ -11,9 +11,9 @@ from __future__ import annotations
 import pytest
 
 from plcsim import CPU, Program, Tag
-from plcsim.errors import ProgramError, SubsetError
-from plcsim.instructions import IEC_TIMER
-from plcsim.types import DTL, Int
+from plcsim.controllers.s7.instructions import IEC_TIMER
+from plcsim.core.errors import ProgramError, SubsetError
+from plcsim.tags.types import DTL, Int
 
 PANEL = {"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")}
 NET = "def OB1(t):\n    t.LED = t.TL\n"

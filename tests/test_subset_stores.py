@@ -10,8 +10,8 @@ from __future__ import annotations
 import pytest
 
 from plcsim import CPU, Program, Tag
-from plcsim.errors import ProgramError, SubsetError
-from plcsim.types import Bool, Int
+from plcsim.core.errors import ProgramError, SubsetError
+from plcsim.tags.types import Bool, Int
 
 PANEL = {"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")}
 
@@ -89,7 +89,7 @@ def test_a_network_called_with_something_else_than_t_cannot_write_into_it():
 def test_a_type_shared_by_every_program_cannot_be_changed_through_a_method():
     cpu = run("def OB1(t):\n    DTL.members.clear()\n")
     assert cpu.mode == "STOP" and "mappingproxy" in cpu.error.message
-    from plcsim.types import DTL
+    from plcsim.tags.types import DTL
 
     assert "YEAR" in DTL.members
 
@@ -108,7 +108,7 @@ def test_refused_programs_name_the_fix_in_words():
 
 
 def test_shared_types_are_read_only_even_for_the_host():
-    from plcsim.types import String
+    from plcsim.tags.types import String
 
     for dtype in (Int, Bool, String):
         with pytest.raises(AttributeError, match="is read-only"):

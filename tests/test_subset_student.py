@@ -11,7 +11,7 @@ from __future__ import annotations
 import pytest
 
 from plcsim import CPU, Program, Tag
-from plcsim.errors import ConfigurationError, ProgramError, UnknownTagError
+from plcsim.core.errors import ConfigurationError, ProgramError, UnknownTagError
 
 PANEL = {"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")}
 

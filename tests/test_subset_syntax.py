@@ -8,8 +8,8 @@ import ast
 import pytest
 
 from plcsim import Program
-from plcsim.compiler import ALLOWED_NODES
-from plcsim.errors import ProgramError, SubsetError
+from plcsim.core.errors import ProgramError, SubsetError
+from plcsim.frontends.python.compiler import ALLOWED_NODES
 
 
 @pytest.mark.parametrize(

@@ -6,8 +6,8 @@ from __future__ import annotations
 import ast
 import inspect
 
-from plcsim.cpu import CPU
-from plcsim.execution import TaskRunner
+from plcsim.controllers.s7.cpu import CPU
+from plcsim.controllers.s7.execution import TaskRunner
 
 
 def test_task_runner_uses_only_attributes_it_declares_and_the_cpu_sets_them():

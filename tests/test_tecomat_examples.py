@@ -10,9 +10,9 @@ from pathlib import Path
 
 import pytest
 
-from plcsim.tecomat import instructions
-from plcsim.tecomat.assembler import assemble
-from plcsim.tecomat.cpu import TecomatCPU, load_file
+from plcsim.controllers.tecomat import instructions
+from plcsim.controllers.tecomat.assembler import assemble
+from plcsim.controllers.tecomat.cpu import TecomatCPU, load_file
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples" / "tecomat"
 

@@ -12,15 +12,15 @@ import exercises
 from plants import Panel
 from plcsim import CPU, Program, Simulation, Tag
 from plcsim.check import action, count, final
-from plcsim.controller import program_text
-from plcsim.errors import ExerciseError
-from plcsim.exercise import IO, Exercise, Solution
+from plcsim.controllers.protocol import program_text
+from plcsim.controllers.tecomat.verbs import INTERRUPT, interrupt, set_clock
+from plcsim.core.errors import ExerciseError
+from plcsim.exercise.model import IO, Exercise, Solution
 from plcsim.frontends import read_program
-from plcsim.grade_report import Report
-from plcsim.grading import evaluate, run_scenarios
-from plcsim.scenario import Scenario, ScenarioError, switch
-from plcsim.tecomat.verbs import INTERRUPT, interrupt, set_clock
-from plcsim.types import Byte
+from plcsim.grading.grader import evaluate, run_scenarios
+from plcsim.grading.report import Report
+from plcsim.scenario.verbs import Scenario, ScenarioError, switch
+from plcsim.tags.types import Byte
 
 ROOT = Path(__file__).resolve().parent.parent
 EVENTS = ROOT / "examples" / "tecomat" / "p41_event_counter.il"
@@ -129,7 +129,7 @@ def test_the_tecomat_exercises_ship_il_programs_only():
 def test_the_grader_s_sandbox_grades_t05_whose_scenario_sets_the_tecomat_s_clock():
     """The sandbox's trusted probe runs on the S7, which cannot set a Tecomat clock: it must leave the
     controller's verbs out (it once made every T-05 grade a grader error)."""
-    from plcsim.grading import grade_sandboxed
+    from plcsim.grading.grader import grade_sandboxed
 
     exercise = exercises.get("T-05")
     graded = {s.name: grade_sandboxed(exercise, s.path, seed=1, scenarios=s.scenarios) for s in exercise.solutions}

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import datetime as dt
 
-from plcsim.tecomat.cpu import TecomatCPU
+from plcsim.controllers.tecomat.cpu import TecomatCPU
 
 PROGRAM = "#def B x0.0\n#def L y0.0\n#def N r4\nLD B\nWR L\nLD N\nADD 1\nWR N\n"
 

@@ -1,4 +1,4 @@
-"""The generated code (``plcsim.tecomat.fused``) and the plain closures compute the same machine: random
+"""The generated code (``plcsim.controllers.tecomat.fused``) and the plain closures compute the same machine: random
 small IL programs over every instruction the generator handles (and some it hands to closures: tables,
 stack switches, long operands, forward jumps), run on random inputs, leave the same scratchpad, stacks, active stack and
 block state after every cycle."""
@@ -8,7 +8,7 @@ from __future__ import annotations
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from plcsim.tecomat.cpu import TecomatCPU
+from plcsim.controllers.tecomat.cpu import TecomatCPU
 
 BITS = [
     f"{area}{n}.{b}"
@@ -89,7 +89,7 @@ def test_the_benchmark_workload_runs_the_same_on_both_paths():
     """benchmarks/workload.il (what the tecomat benchmark times) on its input schedule, 3000 cycles."""
     from benchmarks import workload
     from benchmarks.tecomat import SOURCE
-    from plcsim.controller import controller_for, program_text
+    from plcsim.controllers.protocol import controller_for, program_text
 
     fast, plain = (controller_for(program_text(SOURCE, "workload.il"), workload.tags(), fuse=f) for f in (True, False))
     outputs = set()

@@ -5,14 +5,14 @@ from __future__ import annotations
 
 import pytest
 
-from plcsim.controller import controller_for, program_text
-from plcsim.errors import ConfigurationError
-from plcsim.tags import Tag
-from plcsim.tecomat import instructions
-from plcsim.tecomat.assembler import AssemblyError, assemble
-from plcsim.tecomat.cpu import TecomatCPU
-from plcsim.tecomat.mnemonics import DEFINED, NAMED_ONLY
-from plcsim.types import DWord
+from plcsim.controllers.protocol import controller_for, program_text
+from plcsim.controllers.tecomat import instructions
+from plcsim.controllers.tecomat.assembler import AssemblyError, assemble
+from plcsim.controllers.tecomat.cpu import TecomatCPU
+from plcsim.controllers.tecomat.mnemonics import DEFINED, NAMED_ONLY
+from plcsim.core.errors import ConfigurationError
+from plcsim.tags.table import Tag
+from plcsim.tags.types import DWord
 
 
 @pytest.fixture(autouse=True, params=["fused", "closures"])

@@ -10,15 +10,15 @@ import pytest
 import exercises
 from plants import Panel
 from plcsim import CPU, Program, Simulation, Tag
-from plcsim.controller import controller_for, program_text
-from plcsim.errors import ConfigurationError, ProgramError
+from plcsim.controllers.protocol import controller_for, program_text
+from plcsim.controllers.tecomat.assembler import AssemblyError
+from plcsim.core.errors import ConfigurationError, ProgramError
 from plcsim.frontends import read_program
 from plcsim.frontends.il import IlProgram
-from plcsim.grade_report import Report
-from plcsim.grading import evaluate, grade, run_scenarios
-from plcsim.scenario import Scenario, press
-from plcsim.tecomat.assembler import AssemblyError
-from plcsim.wiring import NO
+from plcsim.grading.grader import evaluate, grade, run_scenarios
+from plcsim.grading.report import Report
+from plcsim.scenario.verbs import Scenario, press
+from plcsim.sim.wiring import NO
 
 SOLUTIONS = Path(__file__).resolve().parent.parent / "examples" / "tecomat" / "exercises"
 

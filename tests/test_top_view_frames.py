@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from exercises import get
-from plcsim.plant import Drawable
+from plcsim.plant.protocol import Drawable
 
 
 def _fresh(plant) -> list[Drawable]:

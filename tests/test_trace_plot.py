@@ -11,11 +11,11 @@ from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 
 from plcsim import CPU, Int, Tag
-from plcsim.errors import UnknownTagError
-from plcsim.scenario import Scenario, press
-from plcsim.sim import Simulation
-from plcsim.trace import Trace, TraceEvent
-from plcsim.trace_plot import HIGH, LANE, save_timing_diagram, steps, timing_diagram
+from plcsim.core.errors import UnknownTagError
+from plcsim.scenario.verbs import Scenario, press
+from plcsim.sim.simulation import Simulation
+from plcsim.trace.facade import Trace, TraceEvent
+from plcsim.trace.plot import HIGH, LANE, save_timing_diagram, steps, timing_diagram
 
 MS = 1_000_000
 

@@ -11,11 +11,12 @@ import pytest
 rr = pytest.importorskip("rerun")
 
 from plcsim import CPU, Tag  # noqa: E402
-from plcsim.plant import Drawable, PlantEvent, SignalSpec, Station  # noqa: E402
-from plcsim.scenario import Scenario, place, stop_cpu  # noqa: E402
-from plcsim.sim import Simulation  # noqa: E402
-from plcsim.trace import Trace, TraceEvent  # noqa: E402
-from plcsim.trace_rerun import (  # noqa: E402
+from plcsim.plant.protocol import Drawable, PlantEvent, SignalSpec, Station  # noqa: E402
+from plcsim.scenario.verbs import Scenario, place, stop_cpu  # noqa: E402
+from plcsim.sim.simulation import Simulation  # noqa: E402
+from plcsim.sim.wiring import NO  # noqa: E402
+from plcsim.trace.facade import Trace, TraceEvent  # noqa: E402
+from plcsim.trace.rerun import (  # noqa: E402
     GROUPS,
     default_recording_id,
     event_level,
@@ -26,7 +27,6 @@ from plcsim.trace_rerun import (  # noqa: E402
     static_texts,
     step_rows,
 )
-from plcsim.wiring import NO  # noqa: E402
 
 # rerun logs conversion errors as warnings and drops the data: make them fail the tests
 pytestmark = pytest.mark.filterwarnings("error::rerun.error_utils.RerunWarning")

@@ -16,9 +16,9 @@ import pytest
 from exercises import get
 from plcsim import CPU, Tag
 from plcsim.check import seen, seen_at
-from plcsim.grading import grade
-from plcsim.scenario import Scenario, power_cycle, write
-from plcsim.sim import Simulation
+from plcsim.grading.grader import grade
+from plcsim.scenario.verbs import Scenario, power_cycle, write
+from plcsim.sim.simulation import Simulation
 
 MS = 1_000_000
 
@@ -270,7 +270,7 @@ def test_hours_meters_grade_every_solution_right(number: str, seeds: range | tup
 def test_4_3_14_power_cycle_is_the_same_with_and_without_fast_forward():
     """The long hours runs skip the physics of the idle belt: the cut scan's row, like every other row,
     is the same bit for bit whether the quiet steps are skipped or stepped one by one."""
-    from plcsim.program import Program
+    from plcsim.frontends.python.program import Program
 
     ex = get("4.3.14")
     program = Program.from_file(next(s.path for s in ex.solutions if s.name == "reference"))

@@ -1,4 +1,4 @@
-"""Issue 12: the trace stores a row's values only when they changed (plcsim.trace_rows), and reads back the same
+"""Issue 12: the trace stores a row's values only when they changed (plcsim.trace.rows), and reads back the same
 dense float64 table, bit for bit, as converting every row: rows that repeat, then change, read in the middle of
 a run, zeros of both signs, values a column's packing cannot hold."""
 
@@ -9,9 +9,9 @@ import pytest
 
 from exercises import get
 from plcsim import CPU, Int, Simulation, Tag
-from plcsim.recorder import Recorder
-from plcsim.trace_rows import BLOCK, RunLengthRows
-from plcsim.trace_table import TraceTable
+from plcsim.sim.recorder import Recorder
+from plcsim.trace.rows import BLOCK, RunLengthRows
+from plcsim.trace.table import TraceTable
 
 NAMES = ["S1", "N", "X"]
 TYPES = {"S1": "bool", "N": "int", "X": "real"}

@@ -22,8 +22,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from plcsim import CPU, Tag
-from plcsim.errors import LiteralError, PlcTypeError
-from plcsim.instructions.arithmetic import (
+from plcsim.controllers.s7.instructions.arithmetic import (
     ACOS,
     ASIN,
     ATAN,
@@ -42,8 +41,9 @@ from plcsim.instructions.arithmetic import (
     SQRT,
     TRUNC,
 )
-from plcsim.literals import duration_ns, format_time_ms, integer_literal, time_ms
-from plcsim.types import (
+from plcsim.core.errors import LiteralError, PlcTypeError
+from plcsim.core.literals import duration_ns, format_time_ms, integer_literal, time_ms
+from plcsim.tags.types import (
     DTL,
     Bool,
     Byte,

@@ -1,4 +1,4 @@
-"""Wiring (plcsim.wiring): NO/NC contacts, analog scaling and noise, the faults (stuck-at, wire break,
+"""Wiring (plcsim.sim.wiring): NO/NC contacts, analog scaling and noise, the faults (stuck-at, wire break,
 chatter) and every validation error, which is raised before a run starts and names the fix.
 """
 
@@ -10,9 +10,9 @@ import pytest
 
 from plants import Conv1, Panel
 from plcsim import CPU, Int, Simulation, Tag
-from plcsim.plant import SignalSpec
-from plcsim.scenario import Scenario, chatter, clear, place, press, stuck, wire_break
-from plcsim.wiring import NC, NO, Wire, Wiring, WiringError, analog
+from plcsim.plant.protocol import SignalSpec
+from plcsim.scenario.verbs import Scenario, chatter, clear, place, press, stuck, wire_break
+from plcsim.sim.wiring import NC, NO, Wire, Wiring, WiringError, analog
 
 MS = 1_000_000
 IDLE = "def OB1(t):\n    pass\n"

@@ -80,7 +80,7 @@ from plcsim.check.occurrences import (
 from plcsim.check.quantities import Quantity, count, durations, duty, event_data, final, measure, spacing, value_at
 from plcsim.check.static import StaticCheck, program_uses_no
 from plcsim.check.temporal import Always, Eventually, Holds, HoldsBuilder, Never, always, eventually, holds, never
-from plcsim.trace import Trace
+from plcsim.trace.facade import Trace
 
 
 def evaluate_all(checks: Iterable[Check], trace: Trace, analysis: Any = None) -> list[tuple[Check, Verdict]]:

@@ -9,9 +9,9 @@ from typing import Any
 
 import numpy as np
 
-from plcsim.errors import ConfigurationError, defined_at
-from plcsim.literals import duration_ns, format_ns
-from plcsim.trace import Trace
+from plcsim.core.errors import ConfigurationError, defined_at
+from plcsim.core.literals import duration_ns, format_ns
+from plcsim.trace.facade import Trace
 
 # --------------------------------------------------------------------------------------------
 # Durations with scans
@@ -178,7 +178,7 @@ class Check:
     def exercised_by(self, *whats: Any) -> Check:
         """Count the check only in scenarios in which one of ``whats`` happened: an occurrence
         (``rises("D3")``) or a condition (a tag name, ``value("N") > 1``) true in some scan. Without
-        it the generic rule of :mod:`plcsim.exercised` applies alone."""
+        it the generic rule of :mod:`plcsim.check.exercised` applies alone."""
         from plcsim.check.conditions import as_condition
         from plcsim.check.occurrences import Occurrences
 

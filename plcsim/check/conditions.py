@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 from plcsim.check.base import Context, Names, signals_of
-from plcsim.errors import ConfigurationError
+from plcsim.core.errors import ConfigurationError
 
 # --------------------------------------------------------------------------------------------
 # Conditions: a Bool per trace row

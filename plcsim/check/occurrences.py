@@ -9,7 +9,7 @@ import numpy as np
 
 from plcsim.check.base import Check, Context, Names, Span, Verdict, names_of, signals_of
 from plcsim.check.conditions import Condition, as_condition
-from plcsim.trace import Trace
+from plcsim.trace.facade import Trace
 
 # --------------------------------------------------------------------------------------------
 # Occurrences: points in time
@@ -159,7 +159,7 @@ def seen_at(trace: Trace, t_ns: np.ndarray | list[int], task: str = "OB1") -> np
 
     An HMI write at 150 ms is seen by the 10 ms scan that starts at 150 ms; one at 155 ms by the scan at 160 ms:
 
-    >>> from plcsim.trace import Trace
+    >>> from plcsim.trace.facade import Trace
     >>> tr = Trace(["M"], types={"M": "bool"})
     >>> for k in range(20):
     ...     tr.add_row(k * 10_000_000, (k + 1) * 10_000_000, 1, (False,))

@@ -10,7 +10,7 @@ from typing import Any
 from plcsim.check.base import Check, Context, Names, Span, Verdict, names_of, show_number
 from plcsim.check.conditions import Condition, as_condition
 from plcsim.check.occurrences import Occurrences, becomes, event
-from plcsim.trace import Trace
+from plcsim.trace.facade import Trace
 
 
 @dataclass

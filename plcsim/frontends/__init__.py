@@ -1,11 +1,11 @@
 """Front ends, chosen by file suffix: each reads a source file into a program a controller can load.
 
 A front end is described by a :class:`FrontEnd`: the suffix it reads, its reader, the CPU profile its
-programs are written for (:mod:`plcsim.profiles`) and its **contract program**, the self-holding motor of
-:data:`CONTRACT_TASK` in its language. ``.py`` (the Python subset, :class:`plcsim.program.Program`, on
+programs are written for (:mod:`plcsim.controllers.profiles`) and its **contract program**, the self-holding motor of
+:data:`CONTRACT_TASK` in its language. ``.py`` (the Python subset, :class:`plcsim.frontends.python.program.Program`, on
 the S7-1200) and ``.il`` (the Tecomat instruction list, on the Tecomat NS950) are plcsim's own; another
 registers with :func:`register` (``register(".st", read_st, profile="s7-1200", contract=MOTOR_ST)``), or
-from another package through the entry-point group ``plcsim.frontends`` (:mod:`plcsim.registry`), and
+from another package through the entry-point group ``plcsim.frontends`` (:mod:`plcsim.core.registry`), and
 every tool that reads a program file through :func:`read_program` accepts it. The contract test
 (``tests/test_seam_contract.py``) runs every registered front end's contract program and asks for the
 Python one's trace digest, bit for bit.
@@ -20,9 +20,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from plcsim import registry
-from plcsim.errors import ProgramError
-from plcsim.loaded import SourceProgram
+from plcsim.controllers.loaded import SourceProgram
+from plcsim.core import registry
+from plcsim.core.errors import ProgramError
 
 Reader = Callable[[Path], SourceProgram]
 DEFAULT_PROFILE = "s7-1200"
@@ -104,7 +104,7 @@ def read_program(path: str | Path) -> SourceProgram:
 
 
 def _read_python(path: Path) -> SourceProgram:
-    from plcsim.program import Program
+    from plcsim.frontends.python.program import Program
 
     return Program.from_file(path)
 

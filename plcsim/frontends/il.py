@@ -13,9 +13,9 @@ from dataclasses import fields
 from pathlib import Path
 from typing import Any
 
-from plcsim.errors import ProgramError, ProgramFileError
-from plcsim.tags import Tag, TagTable
-from plcsim.tecomat.memory import Operand
+from plcsim.controllers.tecomat.memory import Operand
+from plcsim.core.errors import ProgramError, ProgramFileError
+from plcsim.tags.table import Tag, TagTable
 
 S7_ONLY = frozenset({"seed", "clock_memory_byte", "system_memory_byte"})
 """S7 options a Tecomat run ignores without a word: there is no scan jitter to seed, and the Tecomat has
@@ -41,9 +41,9 @@ class IlProgram:
 
     def controller(self, tags: TagTable | Mapping[str, Any] | None = None, **options: Any) -> Any:
         """A Tecomat CPU running this program, its symbols bound to the I/O table ``tags``."""
-        from plcsim.tecomat.assembler import assemble
-        from plcsim.tecomat.cpu import TecomatCPU
-        from plcsim.tecomat.settings import TecomatConfig
+        from plcsim.controllers.tecomat.assembler import assemble
+        from plcsim.controllers.tecomat.cpu import TecomatCPU
+        from plcsim.controllers.tecomat.settings import TecomatConfig
 
         known = {f.name for f in fields(TecomatConfig)}
         chosen = {k: v for k, v in options.items() if k in known}
@@ -58,8 +58,8 @@ class IlProgram:
     def analysis(self, tags: TagTable | Mapping[str, Any] | None = None) -> Any:
         """What the program uses, assembled against ``tags`` without running it (None if it does not
         assemble: the run reports why)."""
-        from plcsim.tecomat.analysis import IlAnalysis
-        from plcsim.tecomat.assembler import AssemblyError, assemble
+        from plcsim.controllers.tecomat.analysis import IlAnalysis
+        from plcsim.controllers.tecomat.assembler import AssemblyError, assemble
 
         try:
             return IlAnalysis.of(assemble(self.text, self.filename, predefined=io_symbols(tags)))
@@ -71,7 +71,7 @@ class IlProgram:
     def declare_into(self, table: TagTable) -> TagTable:
         raise ProgramError(
             f"{self.filename} is a Tecomat instruction-list program: it runs on the Tecomat controller "
-            f"(plcsim.controller.controller_for picks it), not on the S7-1200 CPU"
+            f"(plcsim.controllers.protocol.controller_for picks it), not on the S7-1200 CPU"
         )
 
     def absolute_addresses(self) -> list[str]:

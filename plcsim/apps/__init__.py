@@ -1,0 +1,1 @@
+"""What people start: the ``plcsim`` command, the pytest plugin and the live panel."""

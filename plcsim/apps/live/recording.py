@@ -1,0 +1,315 @@
+"""A live session written down as a scenario, and read back: ``.toml`` (exact) or ``.py`` (the shipped format).
+
+Each click of a live session becomes one scenario action at the simulated instant it was applied, so the
+session replays bit for bit: same program, seed and actions give the same trace digest.
+
+>>> from plcsim.scenario.verbs import press, release
+>>> clicks = [press("TL", t=2_000_000)[0], release("TL", t="40ms")]
+>>> rec = Recording("PANEL", seed=1, actions=clicks, ended_ns=50_000_000)
+>>> print(rec.to_python(), end="")  # doctest: +ELLIPSIS
+# plcsim live session on PANEL, seed 1: replay with  plcsim run PANEL --program FILE --scenario THIS_FILE
+from plcsim.scenario.verbs import Scenario, press, release
+<BLANKLINE>
+SEED = 1
+SCENARIO = Scenario(
+    "live",
+    press("TL", t="2ms"),
+    release("TL", t="40ms"),
+    duration="50ms",
+)
+>>> again = Recording.from_toml(rec.to_toml(), "live.toml")
+>>> [(a.verb, a.target, a.t.lo_ns) for a in again.actions], again.ended_ns, again.seed
+([('press', 'TL', 2000000), ('release', 'TL', 40000000)], 50000000, 1)
+"""
+
+from __future__ import annotations
+
+import json
+import runpy
+import tomllib
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from plcsim.scenario import verbs
+from plcsim.core.errors import PlcError
+from plcsim.scenario.verbs import Action, RigVerb, Scenario, ScenarioError
+
+# verb -> (constructor in plcsim.scenario.verbs, positional arguments after the target, keyword arguments);
+# an argument is (name in the call, key in Action.args)
+_CALLS: dict[str, tuple[str, tuple[tuple[str, str], ...], tuple[tuple[str, str], ...]]] = {
+    "press": ("press", (), ()),
+    "release": ("release", (), ()),
+    "switch": ("switch", (("on", "on"),), ()),
+    "write": ("write", (("value", "value"),), ()),
+    "force": ("force", (("value", "value"),), ()),
+    "unforce": ("unforce", (), ()),
+    "place": (
+        "place",
+        (),
+        (("at", "station"), ("noise", "noise"), ("offset_mm", "offset_mm"), ("angle_deg", "angle_deg")),
+    ),
+    "remove": ("remove", (), ()),
+    "jam": ("jam", (), ()),
+    "unjam": ("unjam", (), ()),
+    "knock_off": ("knock_off", (), ()),
+    "stick": ("stuck", (("value", "value"),), ()),
+    "break_wire": ("wire_break", (), ()),
+    "chatter": ("chatter", (), (("transitions", "transitions"), ("width", "width"))),
+    "clear": ("clear", (), ()),
+    "shift": ("shift_sensor", (("mm", "mm"),), ()),
+    "jam_motor": ("jam_motor", (), ()),
+    "free_motor": ("free_motor", (), ()),
+    "stop_cpu": ("stop_cpu", (), ()),
+    "start_cpu": ("start_cpu", (), ()),
+    "power_cycle": ("power_cycle", (), ()),
+}
+"""How each verb a live session can record is written as a call of :mod:`plcsim.scenario.verbs`."""
+_NO_TARGET = {"stop_cpu", "start_cpu", "power_cycle"}
+_PLACE_ARGS = {"station", "noise", "offset_mm", "angle_deg"}
+"""The arguments of ``place`` that are not the part's properties."""
+LIVE_ORIGIN = "live session action {n}"
+"""Where a recorded action was made (its ``defined_at``), the same live and replayed from ``.toml``."""
+
+
+def time_literal(ns: int) -> str:
+    """An exact duration literal: ``"1234ms"`` where whole milliseconds, else ``"1234567ns"``.
+
+    >>> time_literal(1_234_000_000), time_literal(1_500)
+    ('1234ms', '1500ns')
+    """
+    return f"{ns // 1_000_000}ms" if ns % 1_000_000 == 0 else f"{ns}ns"
+
+
+def make_action(
+    verb: str, target: str, t: str | int, args: dict[str, Any], rig_verbs: Mapping[str, RigVerb] | None = None
+) -> Action:
+    """The action ``verb`` on ``target`` at ``t`` built by its constructor in :mod:`plcsim.scenario.verbs`, or by the
+    rig's or the controller's own verb in ``rig_verbs`` (``set_ambient``, ``interrupt``). A part placed keeps its
+    properties (``colour=2``) besides the pose arguments."""
+    if verb not in _CALLS:
+        if rig_verbs and verb in rig_verbs:
+            return rig_verbs[verb](target, t=t, **args)
+        known = [*_CALLS, *(rig_verbs or {})]
+        raise ScenarioError(f"a live session cannot record {verb!r} here; verbs: {', '.join(known)}")
+    name, positional, keywords = _CALLS[verb]
+    call: Callable[..., Any] = getattr(verbs, name)
+    pos = [] if verb in _NO_TARGET else [target]
+    pos += [args[key] for _, key in positional]
+    kw = {arg: _tuples(args[key]) for arg, key in keywords if args.get(key) is not None}
+    if verb == "place":
+        kw.update({k: _tuples(v) for k, v in args.items() if k not in _PLACE_ARGS})
+    made = call(*pos, t=t, **kw)
+    return made[0] if isinstance(made, list) else made
+
+
+def _tuples(value: Any) -> Any:
+    return tuple(value) if isinstance(value, list) else value
+
+
+def action_args(action: Action) -> dict[str, Any]:
+    """The arguments of ``action`` a recording keeps (by their ``Action.args`` keys), None left out."""
+    if action.rig is not None:
+        return {key: value for key, value in action.args.items() if value is not None}
+    _, positional, keywords = _CALLS[action.verb]
+    kept = {key: action.args[key] for _, key in positional + keywords if action.args.get(key) is not None}
+    if action.verb == "place":  # the part's properties (colour=2), as keywords of their own
+        kept.update(action.args.get("properties") or {})
+    return kept
+
+
+@dataclass
+class Recording:
+    """What a live session did: its target, seed, base scenario and the actions at their instants.
+
+    Attributes:
+        target: the exercise (``4.3.7``) or rig (``PANEL``) the session ran.
+        seed: the simulation's seed.
+        actions: the recorded actions, each at a fixed time, in the order they were applied.
+        ended_ns: the simulated time the recording covers (the replay runs exactly this long).
+        name: the scenario's name (the base scenario's, so its checks and CPU options apply).
+        base: the exercise scenario whose actions come first (None: none).
+        program: the program's file, for the reader.
+    """
+
+    target: str
+    seed: int
+    actions: Sequence[Action] = field(default_factory=list)
+    ended_ns: int = 0
+    name: str = "live"
+    base: str | None = None
+    program: str | None = None
+
+    def scenario(self, base: Scenario | None = None) -> Scenario:
+        """The scenario to replay: ``base``'s actions, then the recorded ones; it lasts :attr:`ended_ns`.
+
+        Actions of the base that fall after the end never happened live, and do not happen in the replay.
+        """
+        if (base is None) != (self.base is None):
+            raise PlcError(f"the recording's base scenario is {self.base!r}; give it (not {base!r}) to replay it")
+        before = list(base.actions) if base is not None else []
+        longest = max([self.ended_ns + 1] + [a.t.hi_ns + 1 for a in before if a.t is not None])
+        made = Scenario(self.name, *before, *self.actions, duration=longest, description="recorded live")
+        made.duration_ns = self.ended_ns
+        return made
+
+    def replay_command(self) -> str:
+        """The command line that replays the saved file."""
+        return f"plcsim run {self.target} --program {self.program or 'FILE'} --scenario THIS_FILE"
+
+    # -- TOML: exact --------------------------------------------------------------------------------
+
+    def to_toml(self) -> str:
+        """The recording as TOML; read back with :meth:`from_toml`, it replays bit for bit."""
+        lines = [
+            f"# plcsim live session on {self.target}: replay with  {self.replay_command()}",
+            "[session]",
+            f"target = {_toml(self.target)}",
+            f"seed = {self.seed}",
+            f"scenario = {_toml(self.name)}",
+            f"ended = {_toml(time_literal(self.ended_ns))}",
+        ]
+        if self.base is not None:
+            lines.append(f"base = {_toml(self.base)}")
+        if self.program is not None:
+            lines.append(f"program = {_toml(self.program)}")
+        for a in self.actions:
+            lines += ["", "[[action]]", f"t = {_toml(time_literal(a.t.lo_ns))}", f"verb = {_toml(a.verb)}"]  # type: ignore[union-attr]
+            if a.verb not in _NO_TARGET:
+                lines.append(f"target = {_toml(a.target)}")
+            lines += [f"{key} = {_toml(value)}" for key, value in action_args(a).items()]
+        return "\n".join(lines) + "\n"
+
+    @classmethod
+    def from_toml(
+        cls, text: str, where: str = "<recording>", rig_verbs: Mapping[str, RigVerb] | None = None
+    ) -> Recording:
+        """Read :meth:`to_toml`'s text; a mistake is reported with ``where`` and what to fix. ``rig_verbs``: the
+        verbs the target's rig and controllers bring (:meth:`~plcsim.apps.live.build.Target.verbs`), if it used any."""
+        try:
+            data = tomllib.loads(text)
+            session = data["session"]
+            actions = []
+            for n, item in enumerate(data.get("action", []), 1):
+                args = {k: v for k, v in item.items() if k not in ("t", "verb", "target")}
+                action = make_action(item["verb"], item.get("target", "CPU"), item["t"], args, rig_verbs)
+                action.defined_at = LIVE_ORIGIN.format(n=n)
+                actions.append(action)
+            return cls(
+                target=session["target"],
+                seed=int(session["seed"]),
+                actions=actions,
+                ended_ns=verbs.TimeSpec.parse(session["ended"]).lo_ns,
+                name=session.get("scenario", "live"),
+                base=session.get("base"),
+                program=session.get("program"),
+            )
+        except (tomllib.TOMLDecodeError, KeyError, TypeError, PlcError) as exc:
+            what = f"missing key {exc}" if isinstance(exc, KeyError) else str(exc)
+            raise ScenarioError(
+                f"{where}: not a plcsim live recording ({what}); it needs a [session] with target, seed and ended, "
+                f"and [[action]] tables with t and verb"
+            ) from None
+
+    # -- Python: the shipped format -----------------------------------------------------------------
+
+    def to_python(self) -> str:
+        """The recording as a Python file with ``SCENARIO = Scenario(...)``, as an exercise writes one."""
+        used = sorted({_CALLS[a.verb][0] for a in self.actions if a.rig is None})
+        head = [
+            f"# plcsim live session on {self.target}, seed {self.seed}: replay with  {self.replay_command()}",
+            f"from plcsim.scenario.verbs import {', '.join(['Scenario', *used])}",
+        ]
+        body = ["", f"SEED = {self.seed}"]
+        if any(a.rig is not None for a in self.actions):  # the rig's and the controller's own verbs, by name
+            head.append("from plcsim.apps.live.build import Target")
+            body.append(f"VERBS = Target.find({_py(self.target)}).verbs()")
+        items = [f"    {_py(self.name)},"]
+        if self.base is not None:
+            head.append("from plcsim.exercise.catalog import get")
+            body.append(f"BASE = get({_py(self.target)}).scenario({_py(self.base)})")
+            items.append("    *BASE.actions,")
+        items += [f"    {_call(a)}," for a in self.actions]
+        duration = f"    duration={_py(time_literal(self.ended_ns))},"
+        body += ["SCENARIO = Scenario(", *items, duration, ")"]
+        if self.base is not None:
+            body[-2] = "    duration=max(BASE.duration_ns, " + str(self.ended_ns + 1) + "),"
+            ended = time_literal(self.ended_ns)
+            body.append(f"SCENARIO.duration_ns = {self.ended_ns}  # the live session ended at {ended}")
+        return "\n".join(head + body) + "\n"
+
+    # -- files ---------------------------------------------------------------------------------------
+
+    def save(self, path: str | Path) -> Path:
+        """Write the recording: ``.toml`` or ``.py`` by the suffix."""
+        path = Path(path)
+        if path.suffix not in (".toml", ".py"):
+            raise PlcError(f"{path}: save a live session as .toml (exact replay) or .py (a scenario to paste)")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(self.to_toml() if path.suffix == ".toml" else self.to_python(), encoding="utf-8")
+        return path
+
+
+def load_scenario_file(
+    path: str | Path,
+    base: Callable[[str], Scenario] | None = None,
+    rig_verbs: Mapping[str, RigVerb] | None = None,
+) -> tuple[Scenario, int | None]:
+    """A scenario from a file, and the seed it was recorded with (None if it names none).
+
+    ``.toml``: a live recording (:meth:`Recording.to_toml`); ``base(name)`` gives its base scenario, ``rig_verbs``
+    the verbs its rig and controllers bring.
+    ``.py``: a file defining ``SCENARIO`` (and optionally ``SEED``), as :meth:`Recording.to_python` writes.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise PlcError(f"{path}: no such scenario file")
+    if path.suffix == ".toml":
+        rec = Recording.from_toml(path.read_text(encoding="utf-8"), str(path), rig_verbs)
+        if rec.base is not None and base is None:
+            raise PlcError(f"{path}: the recording builds on scenario {rec.base!r} of {rec.target}; replay it there")
+        return rec.scenario(base(rec.base) if rec.base is not None and base is not None else None), rec.seed
+    if path.suffix == ".py":
+        names = runpy.run_path(str(path))
+        made = names.get("SCENARIO")
+        if not isinstance(made, Scenario):
+            raise PlcError(f"{path}: defines no SCENARIO = Scenario(...)")
+        seed = names.get("SEED")
+        return made, seed if isinstance(seed, int) else None
+    raise PlcError(f"{path}: a scenario file is .toml (a live recording) or .py (SCENARIO = Scenario(...))")
+
+
+def _call(action: Action) -> str:
+    if action.rig is not None:
+        args = [f"{k}={_py(v)}" for k, v in action_args(action).items()]
+        when = f"t={_py(time_literal(action.t.lo_ns))}"  # type: ignore[union-attr]
+        return f"VERBS[{_py(action.verb)}]({', '.join([_py(action.target), when, *args])})"
+    name, positional, keywords = _CALLS[action.verb]
+    parts = [] if action.verb in _NO_TARGET else [_py(action.target)]
+    parts += [_py(action.args[key]) for _, key in positional]
+    parts.append(f"t={_py(time_literal(action.t.lo_ns))}")  # type: ignore[union-attr]
+    parts += [f"{arg}={_py(action.args[key])}" for arg, key in keywords if action.args.get(key) is not None]
+    if action.verb == "place":
+        parts += [f"{k}={_py(v)}" for k, v in (action.args.get("properties") or {}).items()]
+    return f"{name}({', '.join(parts)})"
+
+
+def _py(value: Any) -> str:
+    if isinstance(value, str):
+        return json.dumps(value)  # a JSON string is a Python string literal, in double quotes as ruff writes them
+    if isinstance(value, (list, tuple)):
+        return "(" + ", ".join(_py(v) for v in value) + ("," if len(value) == 1 else "") + ")"
+    return repr(value)
+
+
+def _toml(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(value)
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml(v) for v in value) + "]"
+    raise PlcError(f"a live recording cannot hold {value!r} ({type(value).__name__})")

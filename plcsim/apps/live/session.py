@@ -1,0 +1,369 @@
+"""The core of a live session, without a server: the student's actions applied at simulated instants and recorded.
+
+A live session runs one :class:`~plcsim.sim.simulation.Simulation` in chunks. Between chunks the simulation stands at a step
+boundary ``t``; an action the student takes there is recorded at ``t`` and queued as a scenario action due at ``t``:
+the step starting at ``t`` applies it (after the scenario's own actions due then, in the order they were taken).
+The recording (:class:`~plcsim.apps.live.recording.Recording`) therefore replays to the same trace, bit for bit. Nothing
+here reads the wall clock: the server says how far to advance (see :mod:`plcsim.apps.live.server`).
+
+>>> session = LiveSession("PANEL", PANEL_DEMO, seed=1)
+>>> session.advance(20_000_000); _ = session.do("press", "TL"); session.advance(30_000_000)
+>>> session.sim.cpu.read("LED"), session.now
+(True, 50000000)
+>>> _ = session.release("TL"); session.advance(50_000_000)
+>>> session.sim.cpu.read("LED"), [a.describe() for a in session.recording().actions]
+(False, ['press TL at 20 ms', 'release TL at 50 ms'])
+>>> session.replay().trace.digest() == session.sim.trace.digest()
+True
+"""
+
+from __future__ import annotations
+
+import string
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from plcsim.apps.live.build import LIVE, Target, open_ended
+from plcsim.apps.live.recording import LIVE_ORIGIN, Recording, make_action
+from plcsim.controllers.loaded import SourceProgram
+from plcsim.controllers.s7.cpu import RUN
+from plcsim.core.clock import NEVER
+from plcsim.core.errors import ExerciseError, PlcError
+from plcsim.core.literals import format_ns
+from plcsim.frontends import read_program
+from plcsim.frontends.python.program import Program
+from plcsim.plant.protocol import Drawable, rig_verbs
+from plcsim.scenario.verbs import Action, RigVerb, Scenario
+from plcsim.sim.simulation import Simulation
+
+PANEL_DEMO = "def OB1(t):\n    t.LED = t.TL\n"
+"""A one-line program for the PANEL rig: the lamp follows the button TL."""
+
+FAULTS = {
+    "stick": "stuck at",
+    "break_wire": "wire break",
+    "chatter": "contact bounce",
+    "clear": "clear the fault",
+    "shift": "shift the sensor",
+    "jam_motor": "jam the motor",
+    "free_motor": "free the motor",
+}
+"""The fault verbs the page's menu offers, with their captions."""
+PART_VERBS = ("remove", "jam", "unjam", "knock_off")
+
+
+class LiveSession:
+    """A simulation the student drives: actions at the current instant, advancing on request, a recording.
+
+    Args:
+        target: an exercise (``4.3.7``, a slug or an exercise file) or a rig (``PANEL``, ``CONV1``), or a
+            :class:`~plcsim.apps.live.build.Target`.
+        program: the PLC program: a file, or its text (a Python-subset program).
+        scenario: the exercise's scenario to start from (its actions happen as in a graded run); None: none.
+        seed: the simulation's seed (placement noise, random times).
+    """
+
+    def __init__(self, target: str | Target, program: str | Path, *, scenario: str | None = None, seed: int = 1):
+        self.target = target if isinstance(target, Target) else Target.find(target)
+        self.base = self.target.base(scenario)
+        self.name = self.base.name if self.base is not None else LIVE
+        self.seed = seed
+        self.program_file = str(program) if _is_file(program) else None
+        self.program: SourceProgram = (
+            read_program(program) if _is_file(program) else Program(str(program), "<live program>")
+        )
+        self.sim = self.target.simulation(self.program, open_ended(self.name, self.base), seed=seed)
+        self.sim.run(until=self.sim.now)  # the outputs as the run starts, as a replay's first step sees them
+        self.recorded: list[Action] = []
+        self.error: str | None = None
+        self.refused: list[str] = []
+        plant = self.sim.plant
+        self._switches = set(getattr(getattr(plant, "panel", None), "switches", ()))
+        self._base_count = len(self.sim.scenario.actions)  # type: ignore[union-attr]
+        self.verbs: dict[str, RigVerb] = {**getattr(self.sim.cpu, "VERBS", {}), **rig_verbs(plant)}
+        """The verbs this run's rig and controller bring (``set_ambient``, ``interrupt``), besides the scenario's."""
+
+    # -- time ------------------------------------------------------------------------------------------
+
+    @property
+    def now(self) -> int:
+        """The simulated time, ns (always a step boundary)."""
+        return self.sim.now
+
+    def advance(self, ns: int, stop: Callable[[], bool] | None = None) -> None:
+        """Run ``ns`` of simulated time (whole steps), or until ``stop()`` says so (checked after each step).
+
+        A plant failure ends the session's simulation: :attr:`error` says why, and nothing advances any more.
+        """
+        if self.error is not None:
+            return
+        condition = (lambda _sim: stop()) if stop is not None else None
+        try:
+            self.sim.run(until=self.sim.now + max(ns, 0), condition=condition)
+        except ExerciseError as exc:  # the run refused an action at the top of a step: drop it, go on
+            if not self._refuse(exc):
+                raise
+        except PlcError as exc:
+            self.error = str(exc)
+
+    def _refuse(self, exc: ExerciseError) -> bool:
+        refused = next((a for a in self.recorded if str(exc).startswith(f"{a.defined_at}:")), None)
+        if refused is not None:
+            self.recorded.remove(refused)
+            self.refused.append(str(exc))
+        return refused is not None
+
+    def scan(self) -> None:
+        """Run until the next OB1 scan has ended (in STOP: one step)."""
+        if self.error is None:
+            try:
+                self.sim.scan(1) if self.sim.cpu.mode == RUN else self.sim.step()
+            except ExerciseError as exc:
+                if not self._refuse(exc):
+                    raise
+            except PlcError as exc:
+                self.error = str(exc)
+
+    # -- actions -----------------------------------------------------------------------------------------
+
+    def do(self, verb: str, target: str = "", **args: Any) -> Action:
+        """Take an action now (``do("press", "TL")``, ``do("place", "p1", station="S1")``, ``do("stick", "S2",
+        value=True)``): recorded at :attr:`now`, applied at the start of the step there (the next one to run).
+
+        Raises:
+            PlcError: the action names something the run lacks, or a value its tag cannot hold; nothing is
+                recorded then. One the run refuses when it is applied is dropped and listed in :attr:`refused`.
+        """
+        return self._take(verb, target, args, self.now)
+
+    def release(self, button: str, min_hold_ns: int | None = None) -> Action:
+        """Let go of a push button; a press lasts at least ``min_hold_ns`` (default two scan cycles) so that the
+        program sees it even when the click was quicker than a scan (the release then happens later)."""
+        hold = self.min_hold_ns if min_hold_ns is None else min_hold_ns
+        pressed = next((a.t.lo_ns for a in reversed(self.recorded) if a.verb == "press" and a.target == button), 0)  # type: ignore[union-attr]
+        return self._take("release", button, {}, max(self.now, pressed + hold))
+
+    @property
+    def min_hold_ns(self) -> int:
+        """Two scan cycles (two steps where the scan is free-running): the shortest press the page sends."""
+        return 2 * max(self.sim.cpu.config.cycle_ns, self.sim.dt_ns)
+
+    def toggle(self, switch: str) -> Action:
+        """Flip a switch (or latch a push button: pressed stays pressed until toggled again)."""
+        return self._take("switch", switch, {"on": not self.sim.plant.sensors.get(switch)}, self.now)  # type: ignore[union-attr]
+
+    def write_text(self, tag: str, text: str, *, forced: bool = False) -> Action:
+        """Write (or force) a tag from the watch table's text, read as the tag's current type (``1``/``true``)."""
+        current = self.sim.cpu.read(tag)
+        value = parse_value(text, current, tag)
+        return self._take("force" if forced else "write", tag, {"value": value}, self.now)
+
+    def _take(self, verb: str, target: str, args: dict[str, Any], at_ns: int) -> Action:
+        if self.error is not None:
+            raise PlcError(f"the simulation stopped: {self.error}")
+        if verb == "place":
+            target = target or self.next_part_name()
+            args = {"noise": True, **args}
+        action = make_action(verb, target, at_ns, args, self.verbs)
+        action.defined_at = LIVE_ORIGIN.format(n=len(self.recorded) + 1)
+        everything = (*self.sim.scenario.actions, *self.recorded, action)  # type: ignore[union-attr]
+        self.sim._check_scenario(Scenario(self.name, *everything, duration=NEVER))
+        if verb == "unforce" and target not in self.sim.cpu.forces:
+            raise PlcError(f"{target} is not forced; forced: {', '.join(self.sim.cpu.forces) or 'nothing'}")
+        if verb in ("write", "force"):
+            _check_value(self.sim.cpu.read(target), args["value"], target)
+        self.sim.actions.schedule(action, at_ns, self._base_count + len(self.recorded))
+        self.recorded.append(action)
+        return action
+
+    def next_part_name(self) -> str:
+        """``p1``, ``p2`` ...: the first name no part of the scenario or the session has."""
+        taken = {a.target for a in (*self.sim.scenario.actions, *self.recorded) if a.verb == "place"}  # type: ignore[union-attr]
+        return next(f"p{n}" for n in range(1, len(taken) + 2) if f"p{n}" not in taken)
+
+    # -- the record -------------------------------------------------------------------------------------
+
+    def recording(self) -> Recording:
+        """What the session did up to now: the actions applied before :attr:`now` (one taken at :attr:`now`, or a
+        release still to come, is left out: it has not acted yet)."""
+        done = [a for a in self.recorded if a.t.lo_ns < self.now]  # type: ignore[union-attr]
+        return Recording(
+            self.target.name,
+            self.seed,
+            done,
+            ended_ns=self.now,
+            name=self.name,
+            base=self.base.name if self.base is not None else None,
+            program=self.program_file,
+        )
+
+    def save(self, path: str | Path) -> Path:
+        """Write :meth:`recording` to ``path`` (``.toml``: exact; ``.py``: the shipped scenario format)."""
+        return self.recording().save(path)
+
+    def replay(self, recording: Recording | None = None) -> Simulation:
+        """Run ``recording`` (default: this session's, up to now) afresh and return the finished simulation."""
+        rec = recording or self.recording()
+        sim = self.target.simulation(self.program, rec.scenario(self.base), seed=rec.seed)
+        sim.run()
+        return sim
+
+    def grade(self) -> list[tuple[Any, Any]]:
+        """The exercise's checks that apply to this session's scenario, evaluated on the trace so far
+        (``[(check, verdict)]``; a rig has none)."""
+        from plcsim.check import evaluate_all
+
+        exercise = self.target.exercise
+        if exercise is None:
+            return []
+        checks = [g.check for g in exercise.checks_for(self.name)]
+        analysis = self.sim.cpu.compiled.analysis if self.sim.cpu.compiled else None
+        return evaluate_all(checks, self.sim.trace, analysis)
+
+    def write_rrd(self, path: str | Path) -> Path:
+        """Write the session's recording so far as a rerun ``.rrd``."""
+        self.sim.trace.meta["end_ns"] = self.now
+        return self.sim.trace.to_rrd(path)
+
+    # -- what the page shows -----------------------------------------------------------------------------
+
+    def layout(self) -> dict[str, Any]:
+        """What never changes during the session: the machine's fixed shapes and what can be clicked."""
+        sim, plant = self.sim, self.sim.plant
+        signals = plant.signals if plant is not None else {}
+        controls = [
+            {"name": n, "kind": "switch" if n in self._switches else "button", "doc": s.doc}
+            for n, s in signals.items()
+            if s.operator
+        ]
+        wired = list(sim.wiring.by_tag) if sim.wiring is not None else []
+        motors = [n for n, s in signals.items() if s.direction == "actuator"] if hasattr(plant, "jam_motor") else []
+        faults = {k: v for k, v in FAULTS.items() if k not in ("shift", "jam_motor", "free_motor")}
+        if hasattr(plant, "shift_sensor"):
+            faults["shift"] = FAULTS["shift"]
+        if motors:
+            faults.update({k: FAULTS[k] for k in ("jam_motor", "free_motor")})
+        exercise = self.target.exercise
+        return {
+            "target": self.target.name,
+            "title": f"{exercise.number} {exercise.title}" if exercise is not None else f"rig {self.target.name}",
+            "graded": exercise is not None,
+            "scenario": self.name,
+            "seed": self.seed,
+            "program": self.program_file or "<program text>",
+            "view": getattr(plant, "view", "none"),
+            "bounds": list(plant.bounds()) if plant is not None else [0, 0, 1, 1],
+            "static": [drawable_json(d) for d in (plant.static_drawables() if plant is not None else [])],
+            "controls": controls,
+            "stations": [
+                {"name": s.name, "x": s.x, "y": s.y, "doc": s.doc} for s in getattr(plant, "stations", {}).values()
+            ],
+            "wired": wired,
+            "sensors": [n for n, s in signals.items() if s.direction == "sensor" and not s.operator],
+            "motors": motors,
+            "faults": faults,
+            "rig_verbs": [self._verb_json(v) for v in self.verbs.values()],
+            "watch": list(sim.trace.names),
+            "inputs": list(sim.cpu.inputs),
+            "outputs": list(sim.cpu.outputs),
+            "min_hold_ns": self.min_hold_ns,
+            "dt_ns": sim.dt_ns,
+        }
+
+    def _verb_json(self, verb: RigVerb) -> dict[str, Any]:
+        """A rig's or a controller's verb as the page offers it: its caption, what its target may be (empty:
+        typed, e.g. a time of day; ``parts``: a part on the machine) and the arguments its phrase names."""
+        owner = self.sim.cpu if verb.controller else self.sim.plant
+        targets = "parts" if verb.on_parts else sorted(getattr(owner, verb.targets, ())) if verb.targets else []
+        args = [f for _, f, _, _ in string.Formatter().parse(verb.phrase) if f and f != "target"]
+        caption = verb.name.replace("_", " ")
+        return {
+            "verb": verb.name,
+            "caption": caption,
+            "role": verb.role,
+            "targets": targets,
+            "args": args,
+            "doc": verb.doc,
+        }
+
+    def state(self) -> dict[str, Any]:
+        """The state now: time, CPU, the machine's moving shapes, the watch table, faults, logs."""
+        sim, cpu = self.sim, self.sim.cpu
+        plant = sim.plant
+        parts = {pid: name for name, pid in sim.actions.parts.items()}
+        return {
+            "t_ns": self.now,
+            "time": format_ns(self.now),
+            "mode": cpu.mode,
+            "scans": cpu.scan_count,
+            "error": self.error,
+            "dynamic": [drawable_json(d) for d in (plant.dynamic_drawables() if plant is not None else [])],
+            "sensors": {k: _jsonable(v) for k, v in (plant.sensors.items() if plant is not None else ())},
+            "watch": {name: _jsonable(_read(cpu, name)) for name in sim.trace.names},
+            "io": {k: _jsonable(v) for k, v in (*cpu.inputs.items(), *cpu.outputs.items())},
+            "forces": {k: _jsonable(v) for k, v in cpu.forces.items()},
+            "faults": sorted(sim.wiring.faults) if sim.wiring is not None else [],
+            "parts": parts,
+            "diagnostics": [f"{format_ns(e.time_ns)}  {e.event}: {e.message}" for e in list(cpu.diagnostics)[-40:]],
+            "events": [str(e) for e in sim.trace.events[-40:]],
+            "actions": [a.describe() for a in self.recorded[-40:]],
+        }
+
+
+def drawable_json(d: Drawable) -> list[Any]:
+    """A shape as the page draws it: ``[path, kind, [[x, y], ...], [r, g, b], radius, text]`` (mm, y up)."""
+    points = np.round(np.asarray(d.points, dtype=float), 2).tolist()
+    return [d.path, d.kind, points, list(d.color), round(float(d.radius), 2), d.text]
+
+
+def parse_value(text: str, current: Any, tag: str) -> Any:
+    """The watch table's text as a value of ``current``'s type: ``1``/``true``/``TRUE`` for a Bool, an int, a float.
+
+    >>> parse_value("true", False, "ACK"), parse_value("12", 0, "N"), parse_value("2.5", 0.0, "X")
+    (True, 12, 2.5)
+    """
+    text = text.strip()
+    try:
+        if isinstance(current, bool):
+            lowered = text.lower()
+            if lowered not in ("1", "0", "true", "false"):
+                raise ValueError
+            return lowered in ("1", "true")
+        if isinstance(current, int):
+            return int(text, 0)
+        if isinstance(current, float):
+            return float(text)
+    except ValueError:
+        raise PlcError(f"{tag} is a {type(current).__name__}: {text!r} is not one (e.g. {current!r})") from None
+    return text
+
+
+def _check_value(current: Any, value: Any, tag: str) -> None:
+    """Refuse, before it is recorded, a value of another type than the tag's (a watch table's typo)."""
+    fits = isinstance(value, bool) if isinstance(current, bool) else isinstance(value, type(current))
+    if isinstance(current, float) and isinstance(value, int) and not isinstance(value, bool):
+        fits = True
+    if not fits:
+        raise PlcError(f"{tag} holds a {type(current).__name__}: {value!r} is not one (e.g. {current!r})")
+
+
+def _read(cpu: Any, name: str) -> Any:
+    try:
+        return cpu.read(name)
+    except PlcError:
+        return None
+
+
+def _jsonable(value: Any) -> Any:
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return value
+    if isinstance(value, np.generic):
+        return value.item()
+    return str(value)
+
+
+def _is_file(program: str | Path) -> bool:
+    return isinstance(program, Path) or "\n" not in program

@@ -1,0 +1,116 @@
+"""What a front end hands the runtime: a loaded program, whatever language its source was in.
+
+``source file --front end--> LoadedProgram --runtime--> trace``. The runtime never sees source text:
+it runs the networks' callables, numbers the trace's rows by the tasks' numbers, partitions the process
+image by the tags each task uses, and names a fault's place by the network's source span. A front end
+never reaches into the runtime: it receives a :class:`LinkTarget` (the tag table, the runtime's bound
+instructions, the configuration) and returns a :class:`LoadedProgram`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+from plcsim.controllers.s7.config import CPUConfig
+from plcsim.tags.table import TagTable
+
+
+@dataclass(frozen=True)
+class NetworkSpec:
+    """One network: its name, title, jump label and first source line."""
+
+    name: str
+    title: str
+    label: str | None
+    lineno: int
+
+
+@dataclass
+class TaskSpec:
+    """One task: trigger kind (``cyclic``, ``interrupt``, ``startup``), networks, timing and trace number."""
+
+    name: str
+    kind: str
+    networks: list[NetworkSpec]
+    period_ns: int | None = None
+    """None: the program gives none (the CPU takes the hardware configuration's, or the default)."""
+    phase_ns: int = 0
+    priority: int = 1
+    duration_ns: int | None = None
+    number: int = 0
+    """The task's number in the trace's task column (the OB number on an S7)."""
+
+
+@dataclass(frozen=True)
+class LoadedNetwork:
+    """A network ready to run: ``run(t)`` and the lines it spans in the student's file."""
+
+    run: Callable[[Any], None]
+    span: tuple[int, int]
+
+
+@dataclass
+class LoadedTask:
+    """A task ready to run: its spec, its networks, optionally one callable running all of them in
+    order (a fast path a front end may plan once per download), and the tags its networks use."""
+
+    spec: TaskSpec
+    networks: list[LoadedNetwork]
+    whole: Callable[[Any], None] | None = None
+    tags_used: frozenset[str] = frozenset()
+
+
+@dataclass
+class ProgramFacts:
+    """Neutral static facts: what the program reads, writes and calls (for the trace and the checks)."""
+
+    tags_read: frozenset[str] = frozenset()
+    tags_written: frozenset[str] = frozenset()
+    instructions: frozenset[str] = frozenset()
+
+
+@dataclass
+class LoadedProgram:
+    """A program linked against one CPU's tags: tasks with callables, facts and the front end's notes."""
+
+    filename: str
+    tasks: list[LoadedTask]
+    facts: ProgramFacts = field(default_factory=ProgramFacts)
+    warnings: list[str] = field(default_factory=list)
+    inert_timers: set[str] = field(default_factory=set)
+    """Paths of timer instances that must not start (the S7 rule for a timer whose Q and ET go unread)."""
+    compiled: Any = None
+    """The front end's own compiled form (the Python front end's CompiledProgram: its analysis feeds the
+    static checks); None for a front end without one."""
+
+
+@dataclass(frozen=True)
+class LinkTarget:
+    """What a front end may know of the CPU it links against."""
+
+    table: TagTable
+    aliased: frozenset[str]
+    config: CPUConfig
+    instructions: Mapping[str, Any]
+    """The runtime's instructions bound to this CPU (edges, MOVE, the watchdog tick, the store guards)."""
+
+
+class SourceProgram(Protocol):
+    """A program as a front end read it: it declares tags and links into a :class:`LoadedProgram`."""
+
+    @property
+    def filename(self) -> str: ...
+
+    def declare_into(self, table: TagTable) -> TagTable:
+        """A copy of ``table`` with the program's own declarations added."""
+        ...
+
+    def absolute_addresses(self) -> list[str]:
+        """The absolute addresses (``"%M10.0"``) the program uses without declaring them."""
+        ...
+
+    def link(self, target: LinkTarget) -> LoadedProgram:
+        """Compile against the CPU's table and instructions."""
+        ...

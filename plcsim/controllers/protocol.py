@@ -1,0 +1,93 @@
+"""What the simulation drives: a controller, whichever family (the S7-1200 CPU, the Tecomat NS950).
+
+:class:`plcsim.sim.simulation.Simulation`, the recorder, the wiring and the scenario actions use only this surface:
+inputs and outputs by tag name, ``run_until`` on the one clock, the scan hooks the recorder subscribes
+to, a tag table (names, %I/%Q areas, elementary types) and a namespace ``t`` of the values traced. A
+front end whose programs run on a controller of their own offers ``controller(tags, **options)``;
+:func:`controller_for` picks it, and the S7 CPU otherwise. Why the Tecomat is a controller of its own
+rather than a profile inside the S7 runtime, and what the two share: ``docs/architecture.md``.
+
+>>> from plcsim.tags.table import Tag
+>>> cpu = controller_for(program_text("LD TL\\nWR LED\\n"), {"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")})
+>>> cpu.family, str(cpu.table["LED"].address), cpu.program.filename
+('Tecomat NS950', '%Q0.0', '<il>')
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Mapping
+from typing import Any, Protocol
+
+from plcsim.core.clock import Clock
+from plcsim.core.observers import Subscribers
+from plcsim.tags.table import TagTable
+
+
+class Controller(Protocol):
+    """The surface of a CPU the simulation, the recorder, the wiring and the scenario actions use."""
+
+    clock: Clock
+    config: Any
+    """``cycle_ns``, ``timer_dialect`` and ``rtc_start`` are read for the trace's notes."""
+    mode: str
+    table: TagTable
+    t: Any
+    """The traced values as attributes (``t.__dict__[name]``)."""
+    inputs: dict[str, Any]
+    """The input terminals by tag name; the wiring writes them before each step."""
+    outputs: dict[str, Any]
+    """What the output modules drive, by tag name (all off in STOP)."""
+    image_in: dict[str, Any]
+    """Each input as the last sample of the process image read it (what the trace records)."""
+    output_version: int
+    scan_count: int
+    scan_start_ns: int
+    scan_end_ns: int
+    scan_task_number: int
+    task_numbers: dict[str, int]
+    scan_end: Subscribers
+    task_end: Subscribers
+    cut: Subscribers
+    diagnostics: deque
+    warnings: list[str]
+    program: Any
+    loaded: Any
+    compiled: Any
+    """The Python front end's compiled program (its static analysis); None for another front end."""
+
+    @property
+    def error(self) -> Any: ...
+
+    def run_until(self, until_ns: int) -> None: ...
+
+    def next_event_ns(self) -> int: ...
+
+    def set_input(self, name: str, value: Any) -> None: ...
+
+    def write(self, name: str, value: Any) -> None: ...
+
+    def start(self) -> None: ...
+
+    def stop(self, reason: str = "requested") -> None: ...
+
+    def power_cycle(self) -> None: ...
+
+
+def controller_for(program: Any, tags: TagTable | Mapping[str, Any] | None = None, **options: Any) -> Controller:
+    """The controller ``program`` runs on, with the I/O table ``tags``: its front end's own controller
+    (``program.controller(tags, **options)``), or the S7-1200 CPU with ``CPUConfig(**options)``."""
+    own = getattr(program, "controller", None)
+    if callable(own):
+        return own(tags, **options)
+    from plcsim.controllers.s7.config import CPUConfig
+    from plcsim.controllers.s7.cpu import CPU
+
+    return CPU(tags, program, CPUConfig(**options))
+
+
+def program_text(text: str, filename: str = "<il>") -> Any:
+    """A Tecomat ``.il`` program from text (as :func:`plcsim.frontends.read_program` reads a file)."""
+    from plcsim.frontends.il import IlProgram
+
+    return IlProgram(text, filename)

@@ -1,0 +1,363 @@
+"""Straight-line runs of instructions compiled into one generated function each (the fast path).
+
+A process runs as ``while pc >= 0: pc = code[pc]()``. Between two places execution can arrive at (a
+process start, a label, the instruction after a jump, call, return, end or breakpoint), the instructions
+run one after the other, so such a run becomes one function, generated once per download from the
+decoded operands (numbers only, never program text). A process without jumps is one run, so one call.
+The function returns the index where the run ends, whose own code (a jump's closure, the next run) goes on.
+
+Inside a run the stack lives in locals: while the code is generated, each level is known to hold a value
+of the stack as the run found it (``s[k]``), a local computed by an earlier instruction, or the fill a
+pop brings in; the real stack is written once, as a whole, before a closure that reads it and at the
+run's end. A level that holds a boolean (a bit LD, a comparison, LET, logic between booleans) is kept as
+a Python truth value and turned into the machine's mask 0000H/FFFFH only where a number is needed. The
+registers of X, Y, R, D and U the run touches are read into locals once and written back once.
+Function blocks call their cores (:mod:`plcsim.controllers.tecomat.blocks`) with the levels as arguments; the rest
+(tables, CHG ...) call their closures. The S0 flags a comparison sets are written only if something can
+read them before the next instruction that sets all three again. Pushes past A7 drop it and pops fill
+A7 exactly as the machine does, so the stack after a run is the same level for level.
+
+Instructions that can fail at run time (a table in R reaching past its end) stay out of the runs, so an
+error still names its own line. ``TecomatConfig.fuse = False`` runs every instruction's closure instead
+(the tests run the examples both ways, and compare the two on random programs).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING, NamedTuple
+
+from plcsim.controllers.tecomat.blocks import BLOCKS
+from plcsim.controllers.tecomat.machine import END
+from plcsim.controllers.tecomat.memory import Operand
+
+if TYPE_CHECKING:
+    from plcsim.controllers.tecomat.assembler import Instruction
+    from plcsim.controllers.tecomat.machine import Machine
+
+Code = Callable[[], int]
+ENDS = frozenset({"JMP", "JMD", "JMC", "JMI", "CAL", "CAD", "CAC", "CAI", "RET", "RED", "REC"}) | frozenset(
+    {"E", "ED", "EC", "EOC", "BP", "P"}
+)
+"""The instructions that decide where execution goes on: each ends a run."""
+SWITCHES = frozenset({"CHG", "NXT", "PRV"})
+SETS_S0 = frozenset({"CTU", "CTD", "CNT", "TON", "RTO"})
+"""Blocks that always write all of S0 and never read it (so flags pending before them are dead)."""
+AREAS = "XYSRDU"
+_OPS = {"AND": "&", "OR": "|", "XOR": "^"}
+_RELATIONS = {"EQ": "==", "LT": "<", "GT": ">"}
+_NEGATED = {"ANC": "AND", "ORC": "OR", "XOC": "XOR"}
+
+
+class Level(NamedTuple):
+    """One stack level as the generated code holds it: an expression, and whether it is a boolean
+    (a truth value standing for the mask FFFFH or 0000H) rather than the 16-bit number itself."""
+
+    expr: str
+    boolean: bool = False
+
+
+IDENTITY = tuple(Level(f"s[{k}]") for k in range(8))
+
+
+def fuse(m: Machine, closures: list[Code]) -> list[Code]:
+    """``closures`` with each run's first entry replaced by the run's generated function."""
+    code = m.asm.code
+    alone = [_ends(instr) or not _fusible(instr) for instr in code]
+    entries = set(m.asm.processes.values()) | set(m.asm.labels.values())
+    entries |= {i + 1 for i, a in enumerate(alone) if a}
+    out = list(closures)
+    for start in sorted(e for e in entries if e < len(code) and not alone[e]):
+        end = start
+        run = _Run(m.config.pop_fill_keeps_a7, m.config.ci_in_compare)
+        while end < len(code) and not alone[end] and (end == start or end not in entries):
+            run.add(code[end], end, closures[end])
+            end += 1
+        if end - start < 2:
+            continue
+        run.finish()
+        if end < len(code) and code[end].mnemonic == "E" and code[end].process != 60:
+            end = END  # outside P60 nothing is called when a process ends (E checks that), so end it here
+        names = ["m", *(f"a{area}" for area in AREAS), *run.bound]
+        source = f"def make({', '.join(names)}):\n    def run():\n        s = m.st\n"
+        source += "".join(f"        {line}\n" for line in run.lines) + f"        return {end}\n    return run\n"
+        namespace: dict = {}
+        exec(source, {"__builtins__": {}}, namespace)  # generated from decoded operands, not program text
+        out[start] = namespace["make"](m, *(m.pad.areas[a] for a in AREAS), *run.bound.values())
+    return out
+
+
+def _ends(instr: Instruction) -> bool:
+    return instr.mnemonic in ENDS
+
+
+def _fusible(instr: Instruction) -> bool:
+    """Whether a closure may run inside a run: it never fails (an R table may reach past R's end)."""
+    return not (instr.mnemonic in ("LTB", "FTB") and isinstance(instr.arg, Operand))
+
+
+def _reads_s(op: object) -> bool:
+    return isinstance(op, Operand) and op.area == "S"
+
+
+class _Run:
+    """The code of one run, the stack as the generated code will hold it, and the registers it holds.
+
+    Every register of X, Y, R, D, U the run touches is read into a local once (``mY0``) and written back
+    once at the run's end (or before a closure that may read it, or a block core that works on it). S
+    stays in memory: the system flags are read and written by the cores, the closures and the pending
+    S0 write."""
+
+    def __init__(self, keep_a7: bool, ci: bool):
+        self.keep_a7, self.ci = keep_a7, ci
+        self.levels: list[Level] = list(IDENTITY)
+        self.lines: list[str] = []
+        self.bound: dict[str, Callable] = {}
+        """Names the generated code calls (closures ``c<i>``, block cores ``k<i>``) and what they are."""
+        self.count = 0
+        self.pending_flags: str | None = None
+        """The S0 write of the last comparison, not emitted yet (a later one may make it dead)."""
+        self.ci_zero = False
+        """S0.3 (the carry-in) is known to be 0: a counter or timer cleared it, and nothing set it since."""
+        self.held_registers: dict[tuple[str, int], str] = {}
+        self.changed: dict[tuple[str, int], str] = {}
+        """The held registers written since they were read (to write back), in the order first written."""
+
+    # -- registers ------------------------------------------------------------------------------------
+
+    def reg(self, area: str, index: int) -> str:
+        """The register as the code names it: a local holding it (read now if not held yet), ``aS[i]`` for S."""
+        if area == "S":
+            return f"aS[{index}]"
+        key = (area, index)
+        name = self.held_registers.get(key)
+        if name is None:
+            name = self.held_registers[key] = f"m{area}{index}"
+            self.lines.append(f"{name} = a{area}[{index}]")
+        return name
+
+    def wrote(self, area: str, index: int) -> None:
+        if area != "S":
+            self.changed[(area, index)] = self.held_registers[(area, index)]
+
+    def write_back(self, keys: list[tuple[str, int]] | None = None, forget: bool = False) -> None:
+        """Store the changed held registers (only ``keys`` if given) into memory; ``forget``: stop holding them."""
+        for key in list(self.changed) if keys is None else [k for k in keys if k in self.changed]:
+            self.lines.append(f"a{key[0]}[{key[1]}] = {self.changed.pop(key)}")
+        if forget:
+            for key in list(self.held_registers) if keys is None else keys:
+                self.held_registers.pop(key, None)
+
+    def bit(self, op: Operand) -> str:
+        """An expression true iff the bit operand is 1."""
+        return f"{self.reg(op.area, op.index)} & {1 << op.bit}"
+
+    def number(self, op: Operand, negate: bool) -> str:
+        """A byte, word or immediate operand as a number (a byte negated in 8 bits, the rest in 16)."""
+        if op.is_immediate:
+            return str(~op.value & 0xFFFF if negate else op.value)
+        low = self.reg(op.area, op.index)
+        if op.width == "byte":
+            return f"({low} ^ 255)" if negate else low
+        word = f"({low} | {self.reg(op.area, op.index + 1)} << 8)"
+        return f"({word} ^ 65535)" if negate else word
+
+    # -- levels ---------------------------------------------------------------------------------------
+
+    def local(self, expr: str, boolean: bool = False) -> Level:
+        """A new local holding ``expr`` now (so later writes to registers do not change it)."""
+        name = f"t{self.count}"
+        self.count += 1
+        self.lines.append(f"{name} = {expr}")
+        return Level(name, boolean)
+
+    def held(self, expr: str) -> str:
+        """``expr`` if it is a level's local or a number (nothing can change it), else a new local holding it."""
+        return expr if expr.isdigit() or (expr[0] == "t" and expr[1:].isdigit()) else self.local(expr).expr
+
+    @staticmethod
+    def num(level: Level) -> str:
+        """The level as the machine's 16-bit number."""
+        return f"(65535 if {level.expr} else 0)" if level.boolean else level.expr
+
+    def push(self, level: Level) -> None:
+        self.levels.insert(0, level)
+        del self.levels[8]
+
+    def pop(self) -> Level:
+        top = self.levels.pop(0)
+        self.levels.append(self.levels[-1] if self.keep_a7 else Level("0"))
+        return top
+
+    def sync(self) -> None:
+        """Write the held stack into the real one (before a closure reads it, at the run's end)."""
+        if tuple(self.levels) != IDENTITY:
+            self.lines.append(f"s[:] = [{', '.join(self.num(level) for level in self.levels)}]")
+            self.levels = list(IDENTITY)
+
+    def flush(self) -> None:
+        """Emit the pending S0 write (something may read S0 next)."""
+        if self.pending_flags is not None:
+            self.lines.append(self.pending_flags)
+            self.pending_flags = None
+
+    def finish(self) -> None:
+        self.flush()
+        self.sync()
+        self.write_back()
+
+    # -- instructions ---------------------------------------------------------------------------------
+
+    def add(self, instr: Instruction, index: int, closure: Code) -> None:
+        m, op = instr.mnemonic, instr.arg
+        if m == "L":
+            return
+        if _reads_s(op):
+            self.flush()
+            self.ci_zero = False
+        top = self.levels[0]
+        if m == "NEG":
+            self.levels[0] = self.local(f"not {top.expr}", True) if top.boolean else self.local(f"{top.expr} ^ 65535")
+        elif m in ("LD", "LDC") and _plain(op):
+            negate = m == "LDC"
+            if op.width == "bit":
+                self.push(self.local(f"{'not ' if negate else ''}{self.bit(op)}", True))
+            elif op.is_immediate:
+                self.push(Level(self.number(op, negate)))
+            else:
+                self.push(self.local(self.number(op, negate)))
+        elif m in ("WR", "WRC", "PUT") and _plain(op) and not op.is_immediate:
+            self._write(op, m == "WRC", m == "PUT", top)
+        elif m in ("AND", "OR", "XOR", "ANC", "ORC", "XOC"):
+            self._logic(_NEGATED.get(m, m), m in _NEGATED, op, top)
+        elif m in ("SET", "RES"):
+            self._set_res(op, m == "SET", top)
+        elif m == "LET" and op.width == "bit":
+            a, mask = self.reg(op.area, op.index), 1 << op.bit
+            edge = f"t{self.count}"
+            self.count += 1
+            self.lines += [
+                f"if {top.expr}: {edge} = not {a} & {mask}; {a} |= {mask}",
+                f"else: {edge} = False; {a} &= {~mask & 0xFF}",
+            ]
+            self.wrote(op.area, op.index)
+            self.levels[0] = Level(edge, True)
+        elif m in _RELATIONS:
+            self._compare(_RELATIONS[m], op)
+        elif m in BLOCKS:
+            self._block(m, index, instr, closure)
+        else:
+            self._closure(m, index, closure)
+
+    def _write(self, op: Operand, negate: bool, conditional: bool, top: Level) -> None:
+        a = self.reg(op.area, op.index)
+        if op.width == "bit":
+            mask = 1 << op.bit
+            on, off = f"{a} |= {mask}", f"{a} &= {~mask & 0xFF}"
+            if negate:
+                on, off = off, on
+            lines = [f"if {top.expr}: {on}", f"else: {off}"]
+        else:
+            flip = " ^ 65535" if negate else ""
+            lines = [f"v = {self.num(top)}{flip}", f"{a} = v & 255"]
+            if op.width == "word":
+                lines.append(f"{self.reg(op.area, op.index + 1)} = v >> 8")
+                self.wrote(op.area, op.index + 1)
+        self.wrote(op.area, op.index)
+        if conditional:  # PUT: only if S1.0
+            lines = ["if aS[1] & 1:", *(f"    {line}" for line in lines)]
+        self.lines += lines
+
+    def _logic(self, base: str, negate: bool, op: Operand | None, top: Level) -> None:
+        sign = _OPS[base]
+        if op is None:  # A1 op A0, the stack drops
+            a0 = self.pop()
+            a1 = self.levels[0]
+            if a0.boolean and a1.boolean:
+                self.levels[0] = self._boolean(base, a1.expr, a0.expr)
+            else:
+                self.levels[0] = self.local(f"{self.num(a1)} {sign} {self.num(a0)}")
+        elif op.width == "bit" and not op.is_immediate:
+            bit = f"{'not ' if negate else ''}{self.bit(op)}"
+            if top.boolean:
+                self.levels[0] = self._boolean(base, top.expr, bit)
+            elif base == "AND":
+                self.levels[0] = self.local(f"{top.expr} if {bit} else 0")
+            elif base == "OR":
+                self.levels[0] = self.local(f"65535 if {bit} else {top.expr}")
+            else:
+                self.levels[0] = self.local(f"{top.expr} ^ 65535 if {bit} else {top.expr}")
+        elif op.width == "byte" and not op.is_immediate:
+            a0 = self.local(self.num(top))
+            value = self.number(op, negate)
+            self.levels[0] = self.local(f"{a0.expr} & 65280 | ({a0.expr} & 255 {sign} {value}) & 255")
+        else:
+            self.levels[0] = self.local(f"{self.num(top)} {sign} {self.number(op, negate)}")
+
+    def _boolean(self, base: str, left: str, right: str) -> Level:
+        if base == "XOR":
+            return self.local(f"(not {left}) != (not ({right}))", True)
+        return self.local(f"{left} {base.lower()} ({right})", True)
+
+    def _set_res(self, op: Operand, setting: bool, top: Level) -> None:
+        a = self.reg(op.area, op.index)
+        if op.width == "bit":
+            change = f"{a} |= {1 << op.bit}" if setting else f"{a} &= {~(1 << op.bit) & 0xFF}"
+            self.lines.append(f"if {top.expr}: {change}")
+        else:
+            value = self.num(top)
+            self.lines.append(f"{a} |= {value} & 255" if setting else f"{a} &= ~{value} & 255")
+        self.wrote(op.area, op.index)
+
+    def _compare(self, relation: str, op: Operand | None) -> None:
+        if op is None:  # A1 is the left side; A0 is replaced
+            a, b = self.held(self.num(self.levels[1])), self.held(self.num(self.levels[0]))
+        else:
+            a, b = self.held(self.num(self.levels[0])), self.held(self.number(op, False))
+        if self.ci and not self.ci_zero:
+            b = self.local(f"{b} + (aS[0] >> 3 & 1)").expr
+        self.pending_flags = f"aS[0] = aS[0] & 248 | ({a} == {b}) | ({a} < {b}) << 1 | ({a} <= {b}) << 2"
+        self.levels[0] = self.local(f"{a} {relation} {b}", True)
+
+    def _block(self, mnemonic: str, index: int, instr: Instruction, closure: Code) -> None:
+        shape = BLOCKS[mnemonic][1]
+        if mnemonic in SETS_S0:
+            self.pending_flags = None
+            self.ci_zero = True
+        else:  # TOF, IMP write S0.3 = 0 or leave S0 alone, the shift registers leave it
+            self.flush()
+        word = getattr(instr.arg, "word", instr.arg).index
+        self.write_back([("R", word), ("R", word + 1)], forget=True)  # the core works on its word in R
+        name = f"k{index}"
+        self.bound[name] = closure.core  # type: ignore[attr-defined]
+        inputs = self.levels[shape.inputs - 1 :: -1]
+        args = [level.expr for level in inputs[:-1]]
+        args.append(self.num(inputs[-1]) if shape.preset else inputs[-1].expr)
+        outputs = [f"t{self.count + k}" for k in range(len(shape.places))]
+        self.count += len(outputs)
+        self.lines.append(f"{', '.join(outputs)} = {name}({', '.join(args)})")
+        if shape.push:
+            self.push(Level(outputs[0]))
+        else:
+            self.levels[0] = Level(outputs[0])
+        for level, out in zip(shape.places[1:], outputs[1:], strict=True):
+            self.levels[level] = Level(out)
+
+    def _closure(self, mnemonic: str, index: int, closure: Code) -> None:
+        if mnemonic == "ADD":
+            self.pending_flags = None  # ADD writes S0.0..S0.2 and reads only S0.3, which a comparison keeps
+        else:
+            self.flush()
+            self.ci_zero = False
+        self.sync()
+        self.write_back(forget=True)  # the closure may read or write any register
+        name = f"c{index}"
+        self.bound[name] = closure
+        self.lines.append(f"{name}()")
+        if mnemonic in SWITCHES:
+            self.lines.append("s = m.st")
+
+
+def _plain(op: object) -> bool:
+    """An operand the generated code reads and writes itself (not a long one: those run as closures)."""
+    return isinstance(op, Operand) and op.width != "long"

@@ -1,0 +1,1 @@
+"""What every other package stands on: errors, the clock, literals, observers, the registry, safe output."""

@@ -1,0 +1,160 @@
+"""Terminal output: grade reports, run summaries and exercise descriptions, with rich."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from rich.console import Console
+from rich.panel import Panel
+from rich.table import Table
+from rich.text import Text
+
+from plcsim.core.literals import format_ns
+
+
+def print_report(report: Any, console: Console | None = None, *, verbose: bool = False) -> None:
+    """A grade report: one line per scenario and check, the reasons of the failures, the score.
+
+    Every text that may come from a submission (its file name, error messages, check messages,
+    CPU diagnostics, warnings) is printed as plain text, never read as Rich markup."""
+    console = console or Console()
+    title = f"{report.exercise} {report.title} — {report.submission}"
+    if report.error:
+        heading = Text.assemble((report.error_kind or "error", "bold red"), ": ", title)
+        console.print(Panel(Text(report.error), title=heading, border_style="red"))
+        console.print(Text.assemble("score ", ("0", "bold"), f" / {report.max_score:g}"))
+        if report.grader_failed:
+            console.print(Text("this is a fault of the grader or the exercise, not of the submission", "yellow"))
+        return
+    table = Table(title=Text(title), show_lines=False, expand=False)
+    table.add_column("scenario")
+    table.add_column("check")
+    table.add_column("", justify="center")
+    table.add_column("points", justify="right")
+    for c in report.checks:
+        table.add_row(Text(c.scenario), Text(c.check), _mark(c.status), f"{c.points:g}/{c.max_points:g}")
+    console.print(table)
+    for c in report.failed():
+        console.print(Text.assemble(_mark(c.status), " ", (f"{c.scenario}: {c.check}", "bold"), f"\n    {c.message}"))
+        if c.diagram:
+            console.print(Text(f"    timing diagram: {c.diagram}"))
+    if verbose:
+        for c in report.checks:
+            if c.passed:
+                console.print(Text.assemble(("✓", "green"), f" {c.scenario}: {c.check}: {c.message}", style="dim"))
+    for run in report.runs:
+        if run.cpu_error:
+            console.print(Text.assemble(("!", "yellow"), f" {run.scenario}: the CPU stopped: {run.cpu_error}"))
+        if run.rrd:
+            console.print(Text(f"  trace of {run.scenario}: {run.rrd} (open with: rerun {run.rrd})", "dim"))
+    for w in report.warnings:
+        console.print(Text.assemble(("warning:", "yellow"), f" {w}"))
+    verdict = Text("PASSED", "bold green") if report.passed else Text("FAILED", "bold red")
+    idle = len(report.not_exercised())
+    console.print(
+        Text.assemble(
+            verdict,
+            "  score ",
+            (f"{report.score:g}", "bold"),
+            f" / {report.max_score:g}",
+            (f"  ({idle} not exercised)", "yellow") if idle else "",
+            f"  ({report.elapsed_s:.2f} s)",
+        )
+    )
+
+
+_MARKS = {"passed": ("✓", "green"), "failed": ("✗", "red"), "not exercised": ("–", "yellow")}
+"""The mark of each check status; a check that was not exercised earned nothing but did not fail."""
+
+
+def _mark(status: str) -> Text:
+    return Text(*_MARKS[status])
+
+
+def print_batch_line(report: Any, console: Console) -> None:
+    """One line of a batch: the mark, the file name, the score and the first line of the error."""
+    from pathlib import Path
+
+    mark = Text("✓", "green") if report.passed else Text("✗", "red")
+    first = (report.error or "").strip().splitlines()[:1]
+    why = f"  {report.error_kind}: {first[0] if first else ''}" if report.error else ""
+    console.print(Text.assemble(mark, f" {Path(report.submission).name}: {report.score:g}/{report.max_score:g}{why}"))
+
+
+LIST_TITLE = "plcsim exercises (STU textbook, chapter 4.3)"
+
+
+def print_exercise_list(exercises: Sequence[Any], console: Console | None = None, *, title: str = LIST_TITLE) -> None:
+    console = console or Console()
+    table = Table(title=Text(title))
+    for col in ("number", "slug", "title", "rig", "scenarios", "solutions"):
+        table.add_column(col)
+    for ex in exercises:
+        rig = ex.plant_name or (ex.rig().name if ex.rig is not None else "-")
+        sols = ", ".join(s.name for s in ex.solutions)
+        table.add_row(ex.number, ex.slug, ex.title, rig, str(len(ex.scenarios)), sols)
+    console.print(table)
+
+
+def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool = True) -> None:
+    """An exercise's task, I/O table, data blocks, scenarios, checks and (unless ``solutions`` is False:
+    a handout for students) the programs shipped with it."""
+    console = console or Console()
+    console.print(
+        Panel(
+            ex.task,
+            title=f"[bold]{ex.number} {ex.title}[/]" + (f" ({ex.title_sk})" if ex.title_sk else ""),
+            expand=False,
+        )
+    )
+    table = Table(title="I/O table")
+    for col in ("tag", "gloss", "type", "address", "direction", "wiring", "comment"):
+        table.add_column(col)
+    for row in ex.describe_io():
+        table.add_row(*(row[c] for c in ("tag", "gloss", "type", "address", "direction", "wiring", "comment")))
+    console.print(table)
+    for name, db in ex.dbs.items():
+        dbt = Table(title=f"data block {name}")
+        for col in ("member", "type", "start", "retain"):
+            dbt.add_column(col)
+        for key, member in db.members.items():
+            dbt.add_row(
+                key,
+                member.type.name,
+                "" if member.start is None else str(member.start),
+                "yes" if member.retain or db.retain else "",
+            )
+        console.print(dbt)
+    console.print("[bold]Scenarios[/]")
+    for s in ex.scenarios:
+        console.print(f"  • {s.name} ({format_ns(s.duration_ns)}): {s.description or ''}")
+    console.print("[bold]Checks[/]")
+    for c in ex.checks:
+        where = f"  [dim]({', '.join(c.scenarios)})[/]" if c.scenarios else ""
+        console.print(f"  • {c.name}{where}")
+    if solutions:
+        console.print(f"[bold]Shipped programs[/] (grade one with: plcsim grade {ex.number} --solution NAME)")
+        for s in ex.solutions:
+            console.print(Text(f"  • {s.name} [{s.kind}]: {s.explanation}"))
+    if ex.notes:
+        console.print(Panel(ex.notes, title="notes", expand=False, border_style="dim"))
+
+
+def print_run_summary(sim: Any, wall_s: float, console: Console | None = None, *, events: int = 12) -> None:
+    console = console or Console()
+    cpu = sim.cpu
+    rtf = (sim.now / 1e9) / wall_s if wall_s > 0 else float("inf")
+    console.print(
+        f"simulated {format_ns(sim.now)} in {wall_s:.2f} s wall ({rtf:,.0f}× real time), "
+        f"{cpu.scan_count} scans, CPU {cpu.mode}"
+    )
+    shown = [e for e in sim.trace.events if e.source in ("plant", "cpu", "scenario")]
+    if shown:
+        console.print(f"[bold]events[/] ({len(shown)}; first {min(events, len(shown))}):")
+        for e in shown[:events]:
+            console.print(f"  {e}", highlight=False)
+    if cpu.error:
+        console.print(Text.assemble(("the CPU stopped:", "red"), f" {cpu.error}"))
+    for w in cpu.warnings:
+        console.print(Text.assemble(("warning:", "yellow"), f" {w}"))

@@ -1,0 +1,639 @@
+"""Scenarios: what the operator does and what goes wrong, on a timeline an instructor can read.
+
+>>> jam_run = Scenario(
+...     "jam",
+...     place("part", at="S1", t="0.5s"),
+...     jam("part", t="2s"),
+...     write("ACK", True, t="15s"),
+...     duration="20s",
+... )
+>>> [a.describe() for a in jam_run.actions][:2]
+["place 'part' at S1 at 500 ms", "jam 'part' at 2 s"]
+
+Times are literals (``"2s"``) or seeded ranges (``"2s..3s"``); an action may instead wait for the
+plant (``when=held("S2", "1s")``: after S2 has been interrupted for 1 s). Parts are placed with the
+pose noise of the textbook rigs (±5 mm, ±5°) unless ``noise=False``. Each action remembers the
+file and line that created it, so a bad name is reported where the instructor wrote it.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from plcsim.core.errors import ConfigurationError, ExerciseError, PlcError, defined_at, did_you_mean
+from plcsim.core.literals import format_ns, to_ns
+from plcsim.plant.protocol import MOTOR_JAM, OPERATOR, PART_FAULTS, PARTS, SENSOR_SHIFT
+
+
+class ScenarioError(ExerciseError):
+    """An action naming a station, signal, button or tag that does not exist, or a bad time: the instructor's
+    mistake, never the student's."""
+
+
+@dataclass(frozen=True)
+class TimeSpec:
+    """A time on the timeline: fixed, or drawn uniformly from ``lo..hi`` with the scenario's seed."""
+
+    lo_ns: int
+    hi_ns: int
+
+    @classmethod
+    def parse(cls, value: str | int | TimeSpec) -> TimeSpec:
+        if isinstance(value, TimeSpec):
+            return value
+        if isinstance(value, str) and ".." in value:
+            lo, hi = value.split("..", 1)
+            spec = cls(to_ns(lo.strip()), to_ns(hi.strip()))
+            if spec.hi_ns < spec.lo_ns:
+                raise ScenarioError(f"time range {value!r} runs backwards")
+        else:
+            ns = to_ns(value, "time")
+            spec = cls(ns, ns)
+        if spec.lo_ns < 0:
+            raise ScenarioError(f"time {value!r} is negative; times count from the start of the run (0 s)")
+        return spec
+
+    def draw(self, rng: random.Random) -> int:
+        return self.lo_ns if self.lo_ns == self.hi_ns else rng.randint(self.lo_ns, self.hi_ns)
+
+    def __str__(self) -> str:
+        if self.lo_ns == self.hi_ns:
+            return format_ns(self.lo_ns)
+        return f"{format_ns(self.lo_ns)}..{format_ns(self.hi_ns)}"
+
+
+@dataclass(frozen=True)
+class Trigger:
+    """Wait for the plant: a sensor held at a value for a time, or a plant event."""
+
+    signal: str | None = None
+    value: Any = True
+    for_ns: int = 0
+    event: str | None = None
+    subject: str | None = None
+
+    def describe(self) -> str:
+        if self.event:
+            return f"after '{self.event}'" + (f" of {self.subject}" if self.subject else "")
+        state = "interrupted/actuated" if self.value is True else f"= {self.value}"
+        return f"when {self.signal} has been {state} for {format_ns(self.for_ns)}"
+
+
+def held(signal: str, duration: str | int = 0, value: Any = True) -> Trigger:
+    """Trigger when a plant sensor has had ``value`` (default: actuated) for ``duration``."""
+    return Trigger(signal=signal, value=value, for_ns=_parse(TimeSpec.parse, duration, f"held({signal!r})").lo_ns)
+
+
+def after_event(kind: str, subject: str | None = None) -> Trigger:
+    """Trigger when the plant reports an event (``part entered``, ``part fell off`` ...)."""
+    return Trigger(event=kind, subject=subject)
+
+
+@dataclass
+class Action:
+    """One step of a scenario. ``verb`` says what, ``target`` on what, ``t`` or ``when`` says when."""
+
+    verb: str
+    target: str = ""
+    t: TimeSpec | None = None
+    when: Trigger | None = None
+    delay: TimeSpec = field(default_factory=lambda: TimeSpec(0, 0))
+    args: dict[str, Any] = field(default_factory=dict)
+    defined_at: str = "?"
+    rig: RigVerb | None = None  # a verb the rig brings (None: one of plcsim's own)
+
+    def describe(self) -> str:
+        what = self._core_phrase() if self.rig is None else self.rig.phrase.format(target=self.target, **self.args)
+        if self.when is not None:
+            when = self.when.describe() + (f" + {self.delay}" if self.delay.hi_ns else "")
+        elif "hold" in self.args:  # the release of press(..., hold=...)
+            when = f"{self.args['hold']} after the press"
+        else:
+            when = f"at {self.t}"
+        return f"{what} {when}"
+
+    def _core_phrase(self) -> str:
+        return {
+            "place": f"place {self.target!r} at {self.args.get('station')}",
+            "press": f"press {self.target}",
+            "release": f"release {self.target}",
+            "switch": f"switch {self.target} {'on' if self.args.get('on') else 'off'}",
+            "write": f"write {self.target} = {self.args.get('value')!r}",
+            "force": f"force {self.target} = {self.args.get('value')!r}",
+            "unforce": f"remove the force on {self.target}",
+            "remove": f"remove {self.target!r}",
+            "jam": f"jam {self.target!r}",
+            "unjam": f"free {self.target!r}",
+            "knock_off": f"knock {self.target!r} off",
+            "stick": f"stick {self.target} at {self.args.get('value')!r}",
+            "break_wire": f"break the wire of {self.target}",
+            "chatter": f"make {self.target} chatter",
+            "clear": f"clear the fault on {self.target}",
+            "shift": f"shift sensor {self.target} by {self.args.get('mm')} mm",
+            "jam_motor": f"jam motor {self.target}",
+            "free_motor": f"free motor {self.target}",
+            "stop_cpu": "switch the CPU to STOP",
+            "start_cpu": "switch the CPU to RUN",
+            "power_cycle": "power the CPU off and on",
+        }.get(self.verb, self.verb)
+
+    def names(self) -> list[tuple[str, str]]:
+        """The names this action relies on, by role: ``[("station", "S1"), ("signal to wait for", "S2")]``."""
+        out = [("station", self.args["station"])] if self.verb == "place" else []
+        role = self.rig.role if self.rig is not None else TARGET_ROLES.get(self.verb)
+        if role is not None:
+            out.append((role, self.target))
+        if self.when is not None and self.when.signal is not None:
+            out.append(("signal to wait for", self.when.signal))
+        if self.when is not None and self.when.event is not None:
+            out.append(("plant event to wait for", self.when.event))
+        if self.when is not None and self.when.subject is not None:
+            out.append(("event subject (a part or plant name)", self.when.subject))
+        return out
+
+
+TARGET_ROLES = {
+    "press": "button or switch",
+    "release": "button or switch",
+    "switch": "button or switch",
+    "write": "tag",
+    "force": "tag",
+    "unforce": "tag",
+    "remove": "part or station",
+    "jam": "part",
+    "unjam": "part",
+    "knock_off": "part",
+    "stick": "wired signal",
+    "break_wire": "wired signal",
+    "chatter": "wired signal",
+    "clear": "wired signal",
+    "shift": "sensor",
+    "jam_motor": "motor",
+    "free_motor": "motor",
+}
+"""What the target of each verb names (the verbs on the CPU have none)."""
+VERBS = (*TARGET_ROLES, "place", "stop_cpu", "start_cpu", "power_cycle")
+"""Every verb of plcsim's own (the kinds of the scenario's trace events, with ``action failed`` and the rig's verbs)."""
+
+VERB_CAPABILITY = {
+    "place": PARTS,
+    "remove": PARTS,
+    "jam": PART_FAULTS,
+    "unjam": PART_FAULTS,
+    "knock_off": PART_FAULTS,
+    "press": OPERATOR,
+    "release": OPERATOR,
+    "switch": OPERATOR,
+    "shift": SENSOR_SHIFT,
+    "jam_motor": MOTOR_JAM,
+    "free_motor": MOTOR_JAM,
+}
+"""The plant capability each of plcsim's verbs needs (a verb on a rig that lacks it is refused at load time)."""
+
+
+@dataclass(frozen=True)
+class RigVerb:
+    """A scenario verb a rig brings (``set_colour``, ``jam_piston``), so that adding one needs no edit in plcsim.
+
+    The rig lists it in its ``VERBS``; the exercise calls it to build an action, like any other verb::
+
+        JAM_PISTON = RigVerb("jam_piston", "jam_piston", "piston", "jam piston {target}", targets="pistons")
+        Scenario("jammed", place("p1", at="table", t="0.5s"), JAM_PISTON("P1", t="1s"), duration="5s")
+
+    Attributes:
+        name: the verb (the kind of its trace event, what ``action(name)`` in a check counts).
+        method: the plant method that carries it out, called as ``method(target, **args)``.
+        role: what the target names (``piston``, ``part``), for messages.
+        phrase: how the action is worded, formatted with ``target`` and the action's keyword arguments.
+        targets: the plant attribute holding the names a target may be (a mapping or a set); empty with
+            ``role="part"``: the target is a part of the scenario (its plant id is passed to the method).
+        state: True if whether it can be done depends on the run (a part that is gone): a failure is then
+            recorded as ``action failed``; otherwise it is the instructor's mistake and raises.
+        doc: what it does, for the rig's documentation.
+        controller: True for a verb the controller brings rather than the rig (the Tecomat's ``interrupt``):
+            it lists it in its own ``VERBS``, ``method`` and ``targets`` are the controller's, and a run on a
+            controller without it is refused before it starts (:func:`controller_verb_problems`).
+    """
+
+    name: str
+    method: str
+    role: str
+    phrase: str
+    targets: str = ""
+    state: bool = False
+    doc: str = ""
+    controller: bool = False
+
+    def __call__(
+        self, target: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0, **args: Any
+    ) -> Action:
+        action = _action(self.name, target, t, when, delay, **args)
+        action.rig = self
+        return action
+
+    @property
+    def on_parts(self) -> bool:
+        return self.role == "part" and not self.targets
+
+    def valid_targets(self, plant: Any) -> list[str]:
+        """The names its target may be on ``plant`` (parts aside)."""
+        return [] if self.on_parts else list(getattr(plant, self.targets))
+
+
+def _parse(parse: Any, value: Any, what: str) -> Any:
+    """``parse(value)``, an error in it reported at the instructor's line."""
+    try:
+        return parse(value)
+    except PlcError as exc:
+        raise ScenarioError(f"{defined_at()}: {what}: {exc}") from None
+
+
+def _action(verb: str, target: str, t: Any, when: Trigger | None, delay: Any = 0, **args: Any) -> Action:
+    if (t is None) == (when is None):
+        raise ScenarioError(f"{defined_at()}: {verb} {target}: give exactly one of t='2s' or when=held(...)")
+    spec = None if t is None else _parse(TimeSpec.parse, t, f"{verb} {target}")
+    delay_spec = _parse(TimeSpec.parse, delay, f"{verb} {target}: delay")
+    return Action(verb, target, spec, when, delay_spec, args, defined_at())
+
+
+def press(button: str, t: Any = None, *, hold: Any = None, when: Trigger | None = None, delay: Any = 0) -> list[Action]:
+    """Press a push button at ``t``; with ``hold="200ms"`` release it again after that long."""
+    actions = [_action("press", button, t, when, delay)]
+    if hold is not None:
+        if t is None:
+            raise ScenarioError(f"{defined_at()}: press {button}: hold= needs a fixed t=")
+        actions.append(
+            Action(
+                "release",
+                button,
+                None,
+                None,
+                TimeSpec(0, 0),
+                {"after": actions[0], "hold": _parse(TimeSpec.parse, hold, f"press {button}: hold")},
+                defined_at(),
+            )
+        )
+    return actions
+
+
+def release(button: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Release a push button."""
+    return _action("release", button, t, when, delay)
+
+
+def switch(name: str, on: bool, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Turn a switch on or off."""
+    return _action("switch", name, t, when, delay, on=on)
+
+
+def write(tag: str, value: Any, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Write a tag once, as an HMI button or a watch table does (``ACK``, ``DATA.x``, ``NULUJ``)."""
+    return _action("write", tag, t, when, delay, value=value)
+
+
+def force(tag: str, value: Any, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Force a tag, as a force table does: the value holds at every image update, whatever the program writes."""
+    return _action("force", tag, t, when, delay, value=value)
+
+
+def unforce(tag: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Remove the force on a tag (it keeps the forced value until something writes it)."""
+    return _action("unforce", tag, t, when, delay)
+
+
+def place(
+    part: str,
+    *,
+    at: str,
+    t: Any = None,
+    when: Trigger | None = None,
+    delay: Any = 0,
+    noise: bool = True,
+    offset_mm: float | tuple[float, float] | None = None,
+    angle_deg: float | tuple[float, float] | None = None,
+    **properties: Any,
+) -> Action:
+    """Put a new part named ``part`` at station ``at`` (with ±5 mm / ±5° pose noise unless noise=False).
+
+    ``offset_mm`` and ``angle_deg`` fix the pose error, or draw it from a range with the scenario's seed:
+    ``place("p1", at="table", offset_mm=(0, 15), angle_deg=(-15, 15))`` (what the offset means is the rig's:
+    along the belt, or away from a fence).
+    """
+    for what, v in (("offset_mm", offset_mm), ("angle_deg", angle_deg)):
+        if isinstance(v, tuple) and not (len(v) == 2 and v[0] <= v[1]):
+            raise ScenarioError(f"{defined_at()}: place {part}: {what}={v!r} must be a number or a (lo, hi) range")
+    return _action(
+        "place",
+        part,
+        t,
+        when,
+        delay,
+        station=at,
+        noise=noise,
+        offset_mm=offset_mm,
+        angle_deg=angle_deg,
+        properties=properties,
+    )
+
+
+def remove(target: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Take a part away (by its name, or the station it is at)."""
+    return _action("remove", target, t, when, delay)
+
+
+def jam(part: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Hold a part where it is: the belt slips under it."""
+    return _action("jam", part, t, when, delay)
+
+
+def unjam(part: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Free a jammed part."""
+    return _action("unjam", part, t, when, delay)
+
+
+def knock_off(part: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Push a part off the machine."""
+    return _action("knock_off", part, t, when, delay)
+
+
+def stuck(signal: str, value: Any, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Stuck-at fault on a wired signal (by signal or tag name)."""
+    return _action("stick", signal, t, when, delay, value=value)
+
+
+def wire_break(signal: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Broken wire: the input reads FALSE (an NC sensor then reads 'object present')."""
+    return _action("break_wire", signal, t, when, delay)
+
+
+def chatter(
+    signal: str,
+    t: Any = None,
+    *,
+    when: Trigger | None = None,
+    delay: Any = 0,
+    transitions: tuple[int, int] = (3, 5),
+    width: tuple[str, str] = ("2ms", "10ms"),
+) -> Action:
+    """Contact bounce on a sensor from ``t`` on: every change comes with a few short extra toggles."""
+    return _action("chatter", signal, t, when, delay, transitions=transitions, width=width)
+
+
+def clear(signal: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Remove a wiring fault."""
+    return _action("clear", signal, t, when, delay)
+
+
+def shift_sensor(sensor: str, mm: float, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Misalign a sensor by ``mm`` along the belt."""
+    return _action("shift", sensor, t, when, delay, mm=mm)
+
+
+def jam_motor(actuator: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Block a motor: commanded, it does not move."""
+    return _action("jam_motor", actuator, t, when, delay)
+
+
+def free_motor(actuator: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Unblock a jammed motor."""
+    return _action("free_motor", actuator, t, when, delay)
+
+
+def stop_cpu(t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Switch the CPU to STOP (the mode switch)."""
+    return _action("stop_cpu", "CPU", t, when, delay)
+
+
+def start_cpu(t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Switch the CPU to RUN."""
+    return _action("start_cpu", "CPU", t, when, delay)
+
+
+def power_cycle(t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Power the CPU off and on (retain tags survive)."""
+    return _action("power_cycle", "CPU", t, when, delay)
+
+
+def _flatten(items: Iterable[Any]) -> list[Action]:
+    out: list[Action] = []
+    for item in items:
+        if isinstance(item, Action):
+            out.append(item)
+        elif isinstance(item, (list, tuple)):
+            out.extend(_flatten(item))
+        else:
+            raise ScenarioError(f"a scenario holds actions such as press(...) or place(...), not {item!r}")
+    return out
+
+
+class Scenario:
+    """A named timeline of actions with a duration and a short description."""
+
+    def __init__(self, name: str, *actions: Action | list[Action], duration: str | int = "10s", description: str = ""):
+        self.name = name
+        self.actions = _flatten(actions)
+        self.defined_at = defined_at()
+        self.duration_ns = _parse(lambda d: to_ns(d, "duration"), duration, f"scenario {name!r}")
+        self.description = description
+        if self.duration_ns <= 0:
+            raise ScenarioError(
+                f"{self.defined_at}: scenario {name!r}: duration {duration!r} is not positive; "
+                f"a run needs a duration such as duration='10s'"
+            )
+        for a in self.actions:
+            if a.t is not None and a.t.hi_ns >= self.duration_ns:
+                raise ScenarioError(
+                    f"{a.defined_at}: scenario {name!r}: {a.describe()}: the run ends at "
+                    f"{format_ns(self.duration_ns)}, so this action may never happen; "
+                    f"make it earlier or the duration longer"
+                )
+
+    def __repr__(self) -> str:
+        return f"<Scenario {self.name}: {len(self.actions)} actions, {format_ns(self.duration_ns)}>"
+
+
+@dataclass
+class Planned:
+    """An action with its drawn time (or its trigger still pending)."""
+
+    action: Action
+    at_ns: int | None
+    order: int
+    done: bool = False
+    armed_since: int | None = None
+
+
+def plan(scenario: Scenario, rng: random.Random) -> list[Planned]:
+    """Draw the random times of a scenario (in the order the actions were written)."""
+    planned: list[Planned] = []
+    starts: dict[int, int] = {}
+    for order, action in enumerate(scenario.actions):
+        if action.verb == "release" and "after" in action.args:
+            start = starts[id(action.args["after"])]
+            at = start + action.args["hold"].draw(rng)
+        elif action.t is not None:
+            at = action.t.draw(rng)
+        else:
+            at = None
+        if at is not None:
+            starts[id(action)] = at
+        planned.append(Planned(action, at, order))
+    return planned
+
+
+def check_names(
+    scenario: Scenario,
+    *,
+    stations: Iterable[str],
+    buttons: Iterable[str],
+    signals: Iterable[str],
+    tags: Iterable[str],
+    actuators: Iterable[str],
+    sensors: Iterable[str] | None = None,
+    events: Iterable[str] | None = None,
+    subjects: Iterable[str] | None = None,
+    capabilities: Iterable[str] | None = None,
+    verbs: Mapping[str, Iterable[str]] | None = None,
+) -> None:
+    """Check every name in the scenario before the run, naming the line and the valid choices."""
+    for problem in name_problems(
+        scenario,
+        stations=stations,
+        buttons=buttons,
+        signals=signals,
+        tags=tags,
+        actuators=actuators,
+        sensors=sensors,
+        events=events,
+        subjects=subjects,
+        capabilities=capabilities,
+        verbs=verbs,
+    ):
+        raise ScenarioError(": ".join(problem))
+
+
+def name_problems(
+    scenario: Scenario,
+    *,
+    stations: Iterable[str],
+    buttons: Iterable[str],
+    signals: Iterable[str],
+    tags: Iterable[str],
+    actuators: Iterable[str],
+    sensors: Iterable[str] | None = None,
+    events: Iterable[str] | None = None,
+    subjects: Iterable[str] | None = None,
+    capabilities: Iterable[str] | None = None,
+    verbs: Mapping[str, Iterable[str]] | None = None,
+) -> list[tuple[str, str]]:
+    """Every name of the scenario that does not exist: ``(file:line, "scenario ...: no ...; valid: ...")``.
+
+    ``signals`` are what a fault can be put on (plant signals and wired tags), ``sensors`` what a trigger
+    waits for (the plant's sensors: nothing else is polled); ``events`` the plant's event vocabulary and
+    ``subjects`` the names its events are about, besides the scenario's parts; ``capabilities`` what the
+    plant declares (a verb needing another one is refused) and ``verbs`` its rig verbs with their valid
+    targets (None: no plant, not checked).
+    """
+    signal_list = list(signals)
+    sensor_list = list(sensors) if sensors is not None else signal_list
+    station_list = list(stations)
+    parts = sorted({a.target for a in scenario.actions if a.verb == "place"})
+    choices: dict[str, list[str]] = {
+        "station": station_list,
+        "button or switch": list(buttons),
+        "tag": list(tags),
+        "part or station": parts + station_list,
+        "part": parts,
+        "wired signal": signal_list,
+        "sensor": sensor_list,
+        "motor": list(actuators),
+        "signal to wait for": sensor_list,
+    }
+    if events is not None:
+        choices["plant event to wait for"] = sorted(events)
+    if subjects is not None:
+        choices["event subject (a part or plant name)"] = parts + sorted(set(subjects) - set(parts))
+    problems = []
+    caps = None if capabilities is None else set(capabilities)
+    for a in scenario.actions:
+        if a.rig is not None and a.rig.controller:
+            continue  # the controller's verb: checked against the controller a run has (controller_verb_problems)
+        rig_problem = _rig_verb_problem(a, verbs)
+        if rig_problem:
+            problems.append((a.defined_at, f"scenario {scenario.name!r}: {a.describe()}: {rig_problem}"))
+            continue
+        targets = None
+        if a.rig is not None and verbs is not None:
+            targets = parts if a.rig.on_parts else list(verbs[a.verb])
+        found = len(problems)
+        for k, (role, name) in enumerate(a.names()):
+            is_target = a.rig is not None and k == 0  # a rig verb's first name is its target
+            valid = targets if is_target else choices.get(role)
+            key = name.split(".")[0].split("[")[0] if role == "tag" else name
+            if valid is None or key in valid:
+                continue
+            listed = ", ".join(valid) if valid else "none"
+            problems.append(
+                (
+                    a.defined_at,
+                    f"scenario {scenario.name!r}: {a.describe()}: no {role} {name!r}"
+                    f"{did_you_mean(name, valid)}; valid: {listed}",
+                )
+            )
+        need = VERB_CAPABILITY.get(a.verb) if a.rig is None else None
+        if len(problems) == found and caps is not None and need is not None and need not in caps:
+            problems.append(
+                (
+                    a.defined_at,
+                    f"scenario {scenario.name!r}: {a.describe()}: the rig cannot do this "
+                    f"(it does not declare the capability {need!r})",
+                )
+            )
+    return problems
+
+
+def controller_verb_problems(scenario: Scenario, controller: Any) -> list[tuple[str, str]]:
+    """Every action of the scenario that needs a verb ``controller`` does not bring, or names a target it
+    lacks (an interrupt source the Tecomat does not have): ``(file:line, "scenario ...: ...")``."""
+    own = getattr(controller, "VERBS", {})
+    family = getattr(controller, "family", None) or getattr(controller.config, "family", "controller")
+    problems = []
+    for a in scenario.actions:
+        if a.rig is None or not a.rig.controller:
+            continue
+        where, what = a.defined_at, f"scenario {scenario.name!r}: {a.describe()}"
+        if own.get(a.verb) is not a.rig:
+            problems.append((where, f"{what}: the {family} cannot do this ({a.rig.doc or 'another controller'})"))
+        elif a.rig.targets and a.target not in (valid := list(getattr(controller, a.rig.targets))):
+            listed = f"{did_you_mean(a.target, valid)}; valid: {', '.join(valid)}"
+            problems.append((where, f"{what}: no {a.rig.role} {a.target!r}{listed}"))
+    return problems
+
+
+def _rig_verb_problem(a: Action, verbs: Mapping[str, Iterable[str]] | None) -> str:
+    """Why the rig cannot carry out this rig verb at all ("" if it can, or for one of plcsim's verbs)."""
+    if a.rig is None or verbs is None or a.verb in verbs:
+        return ""
+    return f"the rig has no verb {a.verb!r}{did_you_mean(a.verb, verbs)}; its verbs: {', '.join(verbs) or 'none'}"
+
+
+def plant_vocabulary(plant: Any) -> dict[str, Any]:
+    """What a scenario may ask of ``plant`` beyond its names: the ``events``, ``subjects``, ``capabilities`` and
+    ``verbs`` (with their valid targets) arguments of :func:`name_problems` (all None for no plant)."""
+    if plant is None:
+        return {"events": None, "subjects": None, "capabilities": None, "verbs": None}
+    missing = [m for m in ("EVENTS", "CAPABILITIES", "VERBS", "event_subjects") if not hasattr(plant, m)]
+    if missing:
+        raise ConfigurationError(
+            f"the plant {getattr(plant, 'name', plant)!r} does not declare {missing}: a plant declares its event "
+            "kinds, capabilities and rig verbs (see plcsim.plant.protocol.Plant)"
+        )
+    return {
+        "events": sorted(plant.EVENTS),
+        "subjects": sorted(plant.event_subjects()),
+        "capabilities": sorted(plant.CAPABILITIES),
+        "verbs": {name: verb.valid_targets(plant) for name, verb in plant.VERBS.items()},
+    }
