@@ -221,7 +221,7 @@ def test_a_project_installed_under_the_temporary_folder_grades_an_il_program_in_
     import shutil
     import subprocess
 
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[2]
     temp = tmp_path / "tmp"
     clone = temp / "clone"
     for package in ("plcsim", "plants", "exercises"):

@@ -14,7 +14,7 @@ from plcsim.core.errors import PlcTypeError, ProgramError, UnknownTagError
 from plcsim.frontends.python.reference import instruction_reference
 from plcsim.sim.recorder import Recorder, default_signals
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[3]
 
 PROGRAM = """
 T1 = IEC_TIMER()

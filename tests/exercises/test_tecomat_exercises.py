@@ -22,7 +22,7 @@ from plcsim.grading.report import Report
 from plcsim.scenario.verbs import Scenario, ScenarioError, switch
 from plcsim.tags.types import Byte
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 EVENTS = ROOT / "examples" / "tecomat" / "p41_event_counter.il"
 
 

@@ -21,7 +21,7 @@ from plcsim.apps.cli import EXIT_FAILED, main
 from plcsim.grading.grader import grade, grade_batch, grade_sandboxed, write_gradebook
 from plcsim.grading.report import gradescope_results
 
-SCHEMA = json.loads((Path(__file__).parents[1] / "docs" / "report.schema.json").read_text(encoding="utf-8"))
+SCHEMA = json.loads((Path(__file__).parents[2] / "docs" / "report.schema.json").read_text(encoding="utf-8"))
 STOPS_AT_ONCE = "def spin(t):\n    while True:\n        pass\n\n\nOB1 = [spin]\n"
 BROKEN = "def OB1(t):\n    t.LED = (\n"
 

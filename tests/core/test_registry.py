@@ -26,7 +26,7 @@ from plcsim.core import registry
 from plcsim.core.errors import ConfigurationError, ProgramError
 from plcsim.frontends import read_program, suffixes
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 EXERCISE = """
 from plants import Panel

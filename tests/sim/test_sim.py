@@ -25,7 +25,7 @@ from plcsim.sim.simulation import SimulationError
 from plcsim.sim.wiring import NO
 
 MS = 1_000_000
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 LED_PROGRAM = "def OB1(t):\n    t.LED = t.TL\n"
 

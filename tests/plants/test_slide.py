@@ -13,7 +13,7 @@ from plcsim.frontends import read_program
 from plcsim.plant.protocol import Plant, check_plant
 from plcsim.scenario.verbs import Scenario, jam_motor, press
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 MS = 1_000_000
 
 

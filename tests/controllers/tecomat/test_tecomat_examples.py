@@ -14,7 +14,7 @@ from plcsim.controllers.tecomat import instructions
 from plcsim.controllers.tecomat.assembler import assemble
 from plcsim.controllers.tecomat.cpu import TecomatCPU, load_file
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples" / "tecomat"
+EXAMPLES = Path(__file__).resolve().parents[3] / "examples" / "tecomat"
 
 
 @pytest.fixture(autouse=True, params=["fused", "closures"])

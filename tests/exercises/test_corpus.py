@@ -13,7 +13,7 @@ from seeded import SEEDS, assert_fails, assert_passes
 
 from exercises import get
 
-CORPUS = Path(__file__).parent / "corpus"
+CORPUS = Path(__file__).parents[1] / "corpus"
 MANIFEST = tomllib.loads((CORPUS / "manifest.toml").read_text(encoding="utf-8"))
 
 

@@ -14,7 +14,7 @@ from plcsim.frontends.python.compiler import ALLOWED_BUILTINS
 from plcsim.frontends.python.program import DECLARATION_NAMES, PROGRAM_NAMES, Program
 from plcsim.frontends.python.reference import PAGE, instruction_reference, network_instructions
 
-ROOT = Path(__file__).parents[1]
+ROOT = Path(__file__).parents[2]
 
 
 def test_the_page_in_docs_is_the_generated_one():

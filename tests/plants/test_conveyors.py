@@ -18,7 +18,7 @@ import pytest
 from plants import Conv1, Conv2x2, Conv3, StationOccupiedError
 
 MS = 1_000_000
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def run(plant, until_s: float, edges: list | None = None) -> list:

@@ -20,7 +20,7 @@ from plcsim.grading.report import Report
 from plcsim.scenario.verbs import Scenario, press
 from plcsim.sim.wiring import NO
 
-SOLUTIONS = Path(__file__).resolve().parent.parent / "examples" / "tecomat" / "exercises"
+SOLUTIONS = Path(__file__).resolve().parents[3] / "examples" / "tecomat" / "exercises"
 
 
 def graded(number: str, name: str, seed: int = 1) -> Report:
@@ -126,7 +126,7 @@ def test_markers_of_the_io_table_live_in_r_and_an_hmi_write_reaches_them():
 
 
 def test_the_manual_s_pulse_filter_on_the_panel_rig_wired_by_its_own_names():
-    program = read_program(Path(__file__).resolve().parent.parent / "examples" / "tecomat" / "ex18_pulse_filter.il")
+    program = read_program(Path(__file__).resolve().parents[3] / "examples" / "tecomat" / "ex18_pulse_filter.il")
     plant = Panel(buttons=("signal",), switches=(), lamps=("vystup",))
     scenario = Scenario(
         "pulses", *press("signal", t="100ms", hold="200ms"), *press("signal", t="1s", hold="1s"), duration="2.5s"

@@ -104,7 +104,7 @@ def test_the_server_ends_with_its_grader_and_leaves_no_child(tmp_path):
         "r = grade_sandboxed(ex, ex.reference.path)\n"
         "print(r.score, list(forkserver._SERVERS.values())[0].process.pid, flush=True)\n"
     )
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[2]
     out = subprocess.run([sys.executable, "-c", script], cwd=root, capture_output=True, text=True, check=True)
     score, pid = out.stdout.split()
     assert score == "3.0"

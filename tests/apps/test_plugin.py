@@ -159,7 +159,7 @@ def test_mistakes_are_reported_with_the_fix(pytester):
 
 
 def test_the_example_of_the_documentation_passes_the_reference_of_4_3_6(pytester):
-    page = (Path(__file__).resolve().parent.parent / "docs" / "pytest-plugin.md").read_text(encoding="utf-8")
+    page = (Path(__file__).resolve().parents[2] / "docs" / "pytest-plugin.md").read_text(encoding="utf-8")
     example = page.split("```python\n", 1)[1].split("```", 1)[0]
     (pytester.path / "submissions").mkdir()
     shutil.copy(get("4.3.6").reference.path, pytester.path / "submissions" / "alice.py")
