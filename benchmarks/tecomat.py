@@ -26,7 +26,8 @@ SOURCE = (Path(__file__).parent / "workload.il").read_text(encoding="utf-8")
 
 
 def new_controller():
-    from plcsim.controllers.protocol import controller_for, program_text
+    from plcsim.controllers.choice import controller_for
+    from plcsim.frontends.il import program_text
 
     return controller_for(program_text(SOURCE, "workload.il"), workload.tags())
 

@@ -4,19 +4,14 @@
 inputs and outputs by tag name, ``run_until`` on the one clock, the scan hooks the recorder subscribes
 to, a tag table (names, %I/%Q areas, elementary types) and a namespace ``t`` of the values traced. A
 front end whose programs run on a controller of their own offers ``controller(tags, **options)``;
-:func:`controller_for` picks it, and the S7 CPU otherwise. Why the Tecomat is a controller of its own
-rather than a profile inside the S7 runtime, and what the two share: ``docs/architecture.md``.
-
->>> from plcsim.tags.table import Tag
->>> cpu = controller_for(program_text("LD TL\\nWR LED\\n"), {"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")})
->>> cpu.family, str(cpu.table["LED"].address), cpu.program.filename
-('Tecomat NS950', '%Q0.0', '<il>')
+:func:`plcsim.controllers.choice.controller_for` picks it, and the S7 CPU otherwise. Why the Tecomat is a
+controller of its own rather than a profile inside the S7 runtime, and what the two share:
+``docs/architecture.md``.
 """
 
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Mapping
 from typing import Any, Protocol
 
 from plcsim.core.clock import Clock
@@ -72,22 +67,3 @@ class Controller(Protocol):
     def stop(self, reason: str = "requested") -> None: ...
 
     def power_cycle(self) -> None: ...
-
-
-def controller_for(program: Any, tags: TagTable | Mapping[str, Any] | None = None, **options: Any) -> Controller:
-    """The controller ``program`` runs on, with the I/O table ``tags``: its front end's own controller
-    (``program.controller(tags, **options)``), or the S7-1200 CPU with ``CPUConfig(**options)``."""
-    own = getattr(program, "controller", None)
-    if callable(own):
-        return own(tags, **options)
-    from plcsim.controllers.s7.config import CPUConfig
-    from plcsim.controllers.s7.cpu import CPU
-
-    return CPU(tags, program, CPUConfig(**options))
-
-
-def program_text(text: str, filename: str = "<il>") -> Any:
-    """A Tecomat ``.il`` program from text (as :func:`plcsim.frontends.read_program` reads a file)."""
-    from plcsim.frontends.il import IlProgram
-
-    return IlProgram(text, filename)

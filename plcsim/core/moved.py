@@ -36,7 +36,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "plcsim.trace_plot": ("plcsim.trace.plot",),
     "plcsim.trace_rerun": ("plcsim.trace.rerun",),
     "plcsim.actions": ("plcsim.scenario.runner",),
-    "plcsim.controller": ("plcsim.controllers.protocol",),
+    "plcsim.controller": ("plcsim.controllers.protocol", "plcsim.controllers.choice", "plcsim.frontends.il"),
     "plcsim.loaded": ("plcsim.controllers.loaded",),
     "plcsim.cpu": ("plcsim.controllers.s7.cpu",),
     "plcsim.execution": ("plcsim.controllers.s7.execution",),

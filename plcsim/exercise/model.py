@@ -14,7 +14,7 @@ from typing import Any
 
 from plcsim.check import Check
 from plcsim.controllers.loaded import SourceProgram
-from plcsim.controllers.protocol import controller_for
+from plcsim.controllers.choice import controller_for
 from plcsim.core.errors import ConfigurationError, ExerciseError, defined_at
 from plcsim.exercise.validation import validate
 from plcsim.frontends import read_program

@@ -71,7 +71,7 @@ class IlProgram:
     def declare_into(self, table: TagTable) -> TagTable:
         raise ProgramError(
             f"{self.filename} is a Tecomat instruction-list program: it runs on the Tecomat controller "
-            f"(plcsim.controllers.protocol.controller_for picks it), not on the S7-1200 CPU"
+            f"(plcsim.controllers.choice.controller_for picks it), not on the S7-1200 CPU"
         )
 
     def absolute_addresses(self) -> list[str]:
@@ -82,6 +82,11 @@ class IlProgram:
 
 
 AREAS = {"I": "X", "Q": "Y", "M": "R"}
+
+
+def program_text(text: str, filename: str = "<il>") -> IlProgram:
+    """A Tecomat ``.il`` program from text (as :func:`plcsim.frontends.read_program` reads a file)."""
+    return IlProgram(text, filename)
 
 
 def io_symbols(tags: TagTable | Mapping[str, Any] | None) -> dict[str, Operand]:

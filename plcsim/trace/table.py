@@ -42,6 +42,7 @@ start, or an interrupt's that read it since), never what the program wrote into 
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Iterable, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -49,7 +50,6 @@ from typing import Any
 
 import numpy as np
 
-from plcsim.controllers.s7.profile import trace_task_number
 from plcsim.core.errors import UnknownTagError, did_you_mean
 from plcsim.plant.protocol import Drawable, PlantEvent
 from plcsim.trace.rows import BLOCK, HEAD, RunLengthRows
@@ -205,7 +205,7 @@ class TraceTable:
         if isinstance(task, int):
             return task
         number = self.task_numbers.get(task)
-        return number if number is not None else trace_task_number(task)
+        return number if number is not None else _ob_number(task)
 
     def of_task(self, task: str | int) -> TraceTable:
         """A trace of one task's rows only (names, meta and events shared): its times are in order."""
@@ -358,3 +358,15 @@ def _scalar(value: Any) -> float | int | str | bool:
 
 def _short(value: Any) -> str:
     return f"{value:.2f}" if isinstance(value, float) else str(value)
+
+
+_OB_NAME = re.compile(r"^OB(\d+)$")
+
+
+def _ob_number(task: str) -> int:
+    """The task column of an OB named in any case (``"ob30"`` -> 30): how the traces of plcsim 0.1, all
+    of them from the S7, numbered their tasks before the task names were stored with the trace."""
+    text = task.strip().upper()
+    if _OB_NAME.match(text) is None:
+        raise ValueError(f"the trace has no task named {task!r}; an S7 task is named like 'OB1' or 'OB30'")
+    return int(text[2:])

@@ -15,8 +15,8 @@ from plants import Panel
 from plcsim import Simulation, Tag, frontends
 from plcsim.apps.cli import main
 from plcsim.controllers import profiles
+from plcsim.controllers.choice import controller_for
 from plcsim.controllers.profiles import Profile
-from plcsim.controllers.protocol import controller_for
 from plcsim.controllers.s7.profile import task_kind
 from plcsim.frontends import CONTRACT_TAGS, FrontEnd
 from plcsim.scenario.verbs import Scenario, press

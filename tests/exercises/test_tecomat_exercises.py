@@ -12,7 +12,7 @@ import exercises
 from plants import Panel
 from plcsim import CPU, Program, Simulation, Tag
 from plcsim.check import action, count, final
-from plcsim.controllers.protocol import program_text
+from plcsim.frontends.il import program_text
 from plcsim.controllers.tecomat.verbs import INTERRUPT, interrupt, set_clock
 from plcsim.core.errors import ExerciseError
 from plcsim.exercise.model import IO, Exercise, Solution

@@ -1,11 +1,11 @@
 """The S7-1200 profile: organization blocks named ``OB<n>``, their kinds and numbers, and :data:`PROFILE`.
 
-This is the only place that reads an OB name: the Python front end asks it which task a name is (from
-the profile's triggers), and a trace recorded without task names (a hand-made one, an old file) numbers
-``"OB30"`` as 30.
+This is where the runtime reads an OB name: the Python front end asks it which task a name is (from the
+profile's triggers). (A trace recorded without task names numbers ``"OB30"`` as 30 by a rule of the
+trace file's own, :meth:`plcsim.trace.table.TraceTable.task_number`.)
 
->>> task_kind("OB30"), ob_number("OB100"), trace_task_number("ob1")
-(('interrupt', 8), 100, 1)
+>>> task_kind("OB30"), ob_number("OB100")
+(('interrupt', 8), 100)
 """
 
 from __future__ import annotations
@@ -50,14 +50,6 @@ def task_kind(name: str) -> tuple[str, int]:
             return trigger.kind, trigger.priority
     choices = [f"{t.tasks} ({t.meaning})" for t in TRIGGERS]
     raise ProgramError(f"{name} is not supported: use {', '.join(choices[:-1])} or {choices[-1]}")
-
-
-def trace_task_number(task: str) -> int:
-    """The task column of an OB named in any case (``"ob30"`` -> 30), for traces without task names."""
-    text = task.strip().upper()
-    if not is_ob_name(text):
-        raise ValueError(f"the trace has no task named {task!r}; an S7 task is named like 'OB1' or 'OB30'")
-    return int(text[2:])
 
 
 def _instructions() -> frozenset[str]:

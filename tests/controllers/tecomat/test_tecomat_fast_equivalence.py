@@ -89,7 +89,8 @@ def test_the_benchmark_workload_runs_the_same_on_both_paths():
     """benchmarks/workload.il (what the tecomat benchmark times) on its input schedule, 3000 cycles."""
     from benchmarks import workload
     from benchmarks.tecomat import SOURCE
-    from plcsim.controllers.protocol import controller_for, program_text
+    from plcsim.controllers.choice import controller_for
+    from plcsim.frontends.il import program_text
 
     fast, plain = (controller_for(program_text(SOURCE, "workload.il"), workload.tags(), fuse=f) for f in (True, False))
     outputs = set()

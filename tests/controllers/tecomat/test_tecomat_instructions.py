@@ -5,12 +5,13 @@ from __future__ import annotations
 
 import pytest
 
-from plcsim.controllers.protocol import controller_for, program_text
+from plcsim.controllers.choice import controller_for
 from plcsim.controllers.tecomat import instructions
 from plcsim.controllers.tecomat.assembler import AssemblyError, assemble
 from plcsim.controllers.tecomat.cpu import TecomatCPU
 from plcsim.controllers.tecomat.mnemonics import DEFINED, NAMED_ONLY
 from plcsim.core.errors import ConfigurationError
+from plcsim.frontends.il import program_text
 from plcsim.tags.table import Tag
 from plcsim.tags.types import DWord
 

@@ -10,11 +10,11 @@ import pytest
 import exercises
 from plants import Panel
 from plcsim import CPU, Program, Simulation, Tag
-from plcsim.controllers.protocol import controller_for, program_text
+from plcsim.controllers.choice import controller_for
 from plcsim.controllers.tecomat.assembler import AssemblyError
 from plcsim.core.errors import ConfigurationError, ProgramError
 from plcsim.frontends import read_program
-from plcsim.frontends.il import IlProgram
+from plcsim.frontends.il import IlProgram, program_text
 from plcsim.grading.grader import evaluate, grade, run_scenarios
 from plcsim.grading.report import Report
 from plcsim.scenario.verbs import Scenario, press
