@@ -11,7 +11,7 @@ Groups (``[project.entry-points."plcsim.rigs"]`` in a package's ``pyproject.toml
 * ``plcsim.frontends``: a front end of another package, named by the file suffix it reads (``st =
   "my_st:read_st"`` reads ``.st``; a :class:`plcsim.frontends.FrontEnd` names its profile too);
   plcsim's own front ends register in :mod:`plcsim.frontends`.
-* ``plcsim.controllers.profiles``: a CPU profile (:class:`plcsim.controllers.profiles.Profile`) by name, ``s7-1200 =
+* ``plcsim.profiles``: a CPU profile (:class:`plcsim.controllers.profiles.Profile`) by name, ``s7-1200 =
   "plcsim.controllers.s7.profile:PROFILE"`` (:mod:`plcsim.controllers.profiles` reads them).
 
 A module is imported only when what it registers is asked for (``plcsim --help`` lists the rigs from the

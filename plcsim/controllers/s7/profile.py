@@ -101,4 +101,4 @@ PROFILE = Profile(
     instructions=_instructions,
     controller="plcsim.controllers.s7.cpu:CPU",
 )
-"""The S7-1200 as the course's programs see it (entry point ``s7-1200`` of ``plcsim.controllers.profiles``)."""
+"""The S7-1200 as the course's programs see it (entry point ``s7-1200`` of ``plcsim.profiles``)."""

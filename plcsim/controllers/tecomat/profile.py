@@ -66,4 +66,4 @@ PROFILE = Profile(
     instructions=_instructions,
     controller="plcsim.controllers.tecomat.cpu:TecomatCPU",
 )
-"""The Tecomat as its ``.il`` programs see it (entry point ``tecomat-ns950`` of ``plcsim.controllers.profiles``)."""
+"""The Tecomat as its ``.il`` programs see it (entry point ``tecomat-ns950`` of ``plcsim.profiles``)."""
