@@ -67,7 +67,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "plcsim.pytest_plugin": ("plcsim.apps.pytest_plugin",),
     "plcsim.profiles": ("plcsim.controllers.profiles",),
     "plcsim.profiles.listing": ("plcsim.apps.listing",),
-    "plcsim.profiles.s7": ("plcsim.controllers.s7.profile",),
+    "plcsim.profiles.s7": ("plcsim.controllers.s7.profile", "plcsim.trace.table"),
     "plcsim.profiles.tecomat": ("plcsim.controllers.tecomat.profile",),
 }
 """An old module -> the module(s) its names are in now (several where it was split)."""

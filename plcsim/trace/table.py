@@ -205,7 +205,7 @@ class TraceTable:
         if isinstance(task, int):
             return task
         number = self.task_numbers.get(task)
-        return number if number is not None else _ob_number(task)
+        return number if number is not None else trace_task_number(task)
 
     def of_task(self, task: str | int) -> TraceTable:
         """A trace of one task's rows only (names, meta and events shared): its times are in order."""
@@ -363,7 +363,7 @@ def _short(value: Any) -> str:
 _OB_NAME = re.compile(r"^OB(\d+)$")
 
 
-def _ob_number(task: str) -> int:
+def trace_task_number(task: str) -> int:
     """The task column of an OB named in any case (``"ob30"`` -> 30): how the traces of plcsim 0.1, all
     of them from the S7, numbered their tasks before the task names were stored with the trace."""
     text = task.strip().upper()

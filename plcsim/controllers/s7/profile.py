@@ -2,7 +2,7 @@
 
 This is where the runtime reads an OB name: the Python front end asks it which task a name is (from the
 profile's triggers). (A trace recorded without task names numbers ``"OB30"`` as 30 by a rule of the
-trace file's own, :meth:`plcsim.trace.table.TraceTable.task_number`.)
+trace file's own, :func:`plcsim.trace.table.trace_task_number`.)
 
 >>> task_kind("OB30"), ob_number("OB100")
 (('interrupt', 8), 100)
