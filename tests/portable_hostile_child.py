@@ -1,4 +1,4 @@
-"""More hostile grading children for the portable path (``tests/test_portable_sandbox.py``), on top of
+"""More hostile grading children for the portable path (``tests/grading/test_portable_sandbox.py``), on top of
 those of ``tests/sandbox_hostile_child.py``: what a child the grader cannot confine may do to it.
 
 The "submission" is a JSON file ``{"do": BEHAVIOUR, ...}``.

@@ -7,7 +7,7 @@ the S7-1200) and ``.il`` (the Tecomat instruction list, on the Tecomat NS950) ar
 registers with :func:`register` (``register(".st", read_st, profile="s7-1200", contract=MOTOR_ST)``), or
 from another package through the entry-point group ``plcsim.frontends`` (:mod:`plcsim.core.registry`), and
 every tool that reads a program file through :func:`read_program` accepts it. The contract test
-(``tests/test_seam_contract.py``) runs every registered front end's contract program and asks for the
+(``tests/controllers/test_seam_contract.py``) runs every registered front end's contract program and asks for the
 Python one's trace digest, bit for bit.
 
 >>> sorted(suffixes()), frontend_for(".il").profile

@@ -2,7 +2,7 @@
 alternatives) pass every check; each wrong solution fails on the check that explains its flaw.
 
 The runs are the same as ``plcsim grade EXERCISE FILE`` in-process (the sandbox is tested in
-tests/test_grading.py), with the default seed and a second seed for the reference, so that a
+tests/grading/test_grading.py), with the default seed and a second seed for the reference, so that a
 solution cannot pass by chance of one timing.
 """
 

@@ -4,7 +4,7 @@ grader watches the child from outside (plcsim.grading.sandbox.watchdog). The hos
 still be contained: the forged results refused, the CPU hog, the wall-clock hog, the memory hog and
 the huge output stopped and named, nothing left behind.
 
-The tests of tests/test_sandbox_child.py and tests/test_grading.py imported below run here a second
+The tests of tests/grading/test_sandbox_child.py and tests/grading/test_grading.py imported below run here a second
 time, on the portable path (the autouse fixture); those that prove a POSIX-only guard (a grandchild
 leaving the group, Landlock) are not imported: docs/grading-sandbox.md says what this path lacks.
 """

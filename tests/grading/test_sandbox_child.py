@@ -184,7 +184,7 @@ def test_limits_cannot_be_switched_off(options, word):
 
 def test_the_portable_path_without_process_groups_grades_and_stops_at_the_wall_limit(ex1, tmp_path, monkeypatch):
     """Windows' path (a result file, the grader's outside watch), forced here on a POSIX system; the
-    hostile programs on this path are in tests/test_portable_sandbox.py."""
+    hostile programs on this path are in tests/grading/test_portable_sandbox.py."""
     import plcsim.grading.sandbox.parent
 
     monkeypatch.setattr(plcsim.grading.sandbox.parent, "POSIX", False)
