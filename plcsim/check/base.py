@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -151,6 +151,10 @@ class Check:
     weight: float = 1.0
     extra_signals: tuple[str, ...] = ()
     exercise_conditions: tuple[Any, ...] = ()
+    as_exercise_condition: ClassVar[Callable[[Any], Any]]
+    """How :meth:`exercised_by` reads each thing it is given: an occurrence as it is, anything else as a
+    condition. :mod:`plcsim.check.occurrences` sets it: it knows both kinds and sits above this module, which
+    therefore imports neither (the package imports it before any check can be built)."""
 
     def __post_init__(self) -> None:
         self.defined_at = defined_at()  # where the instructor wrote it, for the errors of load-time validation
@@ -179,10 +183,7 @@ class Check:
         """Count the check only in scenarios in which one of ``whats`` happened: an occurrence
         (``rises("D3")``) or a condition (a tag name, ``value("N") > 1``) true in some scan. Without
         it the generic rule of :mod:`plcsim.check.exercised` applies alone."""
-        from plcsim.check.conditions import as_condition
-        from plcsim.check.occurrences import Occurrences
-
-        self.exercise_conditions = tuple(w if isinstance(w, Occurrences) else as_condition(w) for w in whats)
+        self.exercise_conditions = tuple(self.as_exercise_condition(w) for w in whats)
         return self
 
     def points(self, weight: float) -> Check:

@@ -38,9 +38,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from plcsim.check import StaticCheck
 from plcsim.check.base import Check, Context
 from plcsim.check.occurrences import Occurrences
+from plcsim.check.static import StaticCheck
 from plcsim.trace.facade import Trace
 
 SCENARIO_WRITES = frozenset({"press", "release", "switch", "write"})

@@ -212,6 +212,15 @@ def action(verb: str, target: str | None = None) -> EventOccurrences:
     return EventOccurrences(verb, target, "scenario")
 
 
+def occurrence_or_condition(item: str | Condition | Occurrences) -> Condition | Occurrences:
+    """An occurrence as it is, anything else as a condition (a tag name: that tag is TRUE): what
+    ``never``, ``eventually`` and ``exercised_by`` accept."""
+    return item if isinstance(item, Occurrences) else as_condition(item)
+
+
+Check.as_exercise_condition = staticmethod(occurrence_or_condition)
+
+
 @dataclass
 class ResponseBuilder:
     response: Occurrences

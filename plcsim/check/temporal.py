@@ -19,7 +19,7 @@ from plcsim.check.base import (
     window_ns,
 )
 from plcsim.check.conditions import Condition, as_condition
-from plcsim.check.occurrences import EventOccurrences, Occurrences
+from plcsim.check.occurrences import EventOccurrences, Occurrences, occurrence_or_condition
 
 
 @dataclass
@@ -87,7 +87,7 @@ class Never(Check):
 
 def never(what: str | Condition | Occurrences) -> Never:
     """The condition holds in no scan, or the event never happens."""
-    return Never(what if isinstance(what, Occurrences) else as_condition(what))
+    return Never(occurrence_or_condition(what))
 
 
 @dataclass
@@ -266,4 +266,4 @@ class Eventually(Check):
 
 def eventually(what: str | Condition | Occurrences) -> Eventually:
     """The condition holds in some scan (or the event happens)."""
-    return Eventually(what if isinstance(what, Occurrences) else as_condition(what))
+    return Eventually(occurrence_or_condition(what))
