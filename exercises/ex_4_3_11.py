@@ -99,7 +99,7 @@ EXERCISE = Exercise(
         "Solution 3 ('not quite correct' in the textbook) is shipped as a wrong solution: it passes at a 1 ms "
         "cycle and fails only the 100 ms scenario, where its period is 1.2 s against solution 2's 1.1 s (the "
         "textbook's 'up to 10 %'). Solution 4 fails because the CPU runs the s7_1200 timer dialect (Q/ET refresh "
-        "when read); under the 'iec' dialect it would pulse like solution 2 (tests/exercises/test_takt.py shows both). "
+        "when read); under the 'iec' dialect it would pulse like solution 2 (tests/course/test_takt.py shows both). "
         "The exercise has no operator, so its scenarios have no seeded times. The edge memory bit of solution 1 "
         "is not named in the textbook; %M10.3 is proposed."
     ),

@@ -15,7 +15,7 @@ position, ``offset_mm`` moves it downstream), and each belt (the belt's upstream
 the part's centre along the belt; ``remove``/``hold`` on a belt station pick its front-most part). CONV1 calls its
 belt station ``belt``; the multi-belt rigs use the belt names ``D1``, ``D2``, ``D3``.
 
-Nominal times (§5), and what the plant gives (``tests/plants/test_conveyors.py`` measures them at dt = 1 ms). The part is
+Nominal times (§5), and what the plant gives (``tests/rigs/test_conveyors.py`` measures them at dt = 1 ms). The part is
 placed centred on the first barrier at t = 0; a beam sees a new part one step later (t = 1 ms). Times are between
 **rising edges** of the two barriers (for CONV1: S2↑ − S1↑, D1 switched on at S1↑ as the reference program does; for
 the other rigs all belts run from t = 0). A beam is cut when the part's leading face reaches ``beam x − 1 mm`` (the

@@ -35,7 +35,7 @@ all outputs of a scan together, so the order in which one scan's outputs reach t
 The tool tip height is traced in every row as the analog column ``plant:M2.z`` (``TRACED_OBSERVABLES``), so a
 timing diagram draws the ram's strokes as a line under KS1/KS2.
 
-Nominal figures, measured at dt = 1 ms by ``tests/plants/test_punch_plant.py`` (§5.10 in brackets): OS1 → OS2 forward
+Nominal figures, measured at dt = 1 ms by ``tests/rigs/test_punch_plant.py`` (§5.10 in brackets): OS1 → OS2 forward
 with the part placed centred on OS1 ≈ 4.28 s (4.3 s); OS2 → OS1 return ≈ 3.9 s (3.9 s); one stroke KS1 → KS2 → KS1
 ≈ 2.7 s (2.7 s). Changes to §5.10: the returning part is stopped by its *leading* (left) face, so it rests
 spanning ≈ 44–74 mm, not 14–44 mm (§5.10 counted the trailing face); the tip's rest heights are 105.5 / 71.5 mm

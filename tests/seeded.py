@@ -1,4 +1,4 @@
-"""Grading one program on one seed for the 20-seed tests (tests/exercises/test_seeds.py, tests/exercises/test_corpus.py).
+"""Grading one program on one seed for the 20-seed tests (tests/course/test_seeds.py, tests/course/test_corpus.py).
 
 A correct program is graded on every scenario it is meant for; a wrong one only on the scenarios
 where the checks that explain its flaw apply (a static check needs one scenario), one at a time

@@ -2,7 +2,7 @@
 guards. A program that does nothing, whose CPU stops at 0 s, or that has no OB1 earns nothing on the
 conveyor exercises (before, 6/12 on 4.3.6, 7/21 on 4.3.7, 15/25 on 4.3.9, from safety checks that
 held because nothing moved); the shipped solutions still grade as their kinds say
-(tests/exercises/test_exercises.py)."""
+(tests/course/test_exercises.py)."""
 
 from __future__ import annotations
 

@@ -253,7 +253,7 @@ def test_4_3_14_a_meter_counted_in_ob30_passes(tmp_path: Path):
 def test_hours_meters_grade_every_solution_right(number: str, seeds: range | tuple[int, ...]):
     """The references pass (they failed on seeds 8, 9, 11 and 13: the row of the scan the power cut
     interrupted was missing); every wrong solution fails its named check on each seed. 4.3.15 takes
-    seconds a grade: here on the seeds that failed; tests/exercises/test_seeds.py grades it on all 20."""
+    seconds a grade: here on the seeds that failed; tests/course/test_seeds.py grades it on all 20."""
     ex = get(number)
     kinds = {s.kind for s in ex.solutions}
     assert kinds == {"reference", "wrong"} and len(ex.solutions) >= 3

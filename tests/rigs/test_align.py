@@ -1,6 +1,6 @@
 """ALIGN (plants/align.py) and exercise 4.3.12: the physics the grading relies on.
 
-Every shipped solution of 4.3.12 is graded on the seeds 1..20 by tests/exercises/test_seeds.py."""
+Every shipped solution of 4.3.12 is graded on the seeds 1..20 by tests/course/test_seeds.py."""
 
 from __future__ import annotations
 

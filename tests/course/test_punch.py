@@ -1,4 +1,4 @@
-"""The punching-machine exercises 6.3.1–6.3.5 beyond what tests/exercises/test_exercises.py and tests/exercises/test_seeds.py grade:
+"""The punching-machine exercises 6.3.1–6.3.5 beyond what tests/course/test_exercises.py and tests/course/test_seeds.py grade:
 the KS1/KS2 plant option against the textbook's contradiction, determinism of a PUNCH run, and the truth the
 checks read from the plant's events."""
 
@@ -94,7 +94,7 @@ def test_the_object_is_taken_from_under_the_press_while_the_ram_goes_back_up(num
     and before the ram is back at KS1 (a removal on the way down would leave the textbook's stroke nothing to
     punch); the textbook's program then strokes no more and leaves the belt and the ram standing at KS1."""
     ex = get(number)
-    for seed in (1, 2, 3):  # tests/exercises/test_seeds.py grades 1..20: there the premise failing fails the reference
+    for seed in (1, 2, 3):  # tests/course/test_seeds.py grades 1..20: there the premise failing fails the reference
         sim = ex.simulation(ex.reference.program(), TAKEN_FROM_THE_PRESS, seed=seed)
         sim.run()
         trace = sim.trace

@@ -1,6 +1,6 @@
 """SORT (plants/sort.py) and exercise 4.3.17: the rig's timing and ejection.
 
-Every shipped solution of 4.3.17 is graded on the seeds 1..20 by tests/exercises/test_seeds.py."""
+Every shipped solution of 4.3.17 is graded on the seeds 1..20 by tests/course/test_seeds.py."""
 
 from __future__ import annotations
 
