@@ -43,7 +43,14 @@ MODULES: dict[str, tuple[str, ...]] = {
     "plcsim.access": ("plcsim.controllers.s7.access",),
     "plcsim.config": ("plcsim.controllers.s7.config",),
     "plcsim.program": ("plcsim.frontends.python.program",),
-    "plcsim.compiler": ("plcsim.frontends.python.compiler",),
+    "plcsim.compiler": (
+        "plcsim.frontends.python.rewrite",
+        "plcsim.frontends.python.subset",
+        "plcsim.frontends.python.merge",
+        "plcsim.frontends.python.analysis",
+        "plcsim.frontends.python.typecheck",
+        "plcsim.frontends.python.safe_math",
+    ),
     "plcsim.module_level": ("plcsim.frontends.python.module_level",),
     "plcsim.safe_math": ("plcsim.frontends.python.safe_math",),
     "plcsim.reference": ("plcsim.frontends.python.reference",),
@@ -105,7 +112,9 @@ class _Split(types.ModuleType):
             module = importlib.import_module(home)
             if hasattr(module, name):
                 return getattr(module, name)
-        raise AttributeError(f"module {self.__name__!r} has no attribute {name!r} (it moved to {', '.join(self._homes)})")
+        raise AttributeError(
+            f"module {self.__name__!r} has no attribute {name!r} (it moved to {', '.join(self._homes)})"
+        )
 
 
 class _OldPaths(importlib.abc.MetaPathFinder, importlib.abc.Loader):

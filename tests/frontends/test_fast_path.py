@@ -1,7 +1,7 @@
 """OB1's merged networks read their tags from the tag dict: the same rows as network by network.
 
-The merge (one function for all of OB1's networks, :func:`plcsim.frontends.python.compiler.merge_networks`) is the hot path
-of every scan; :func:`plcsim.frontends.python.compiler.read_root_directly` lets it read ``_t_dict["S1"]`` instead of the
+The merge (one function for all of OB1's networks, :func:`plcsim.frontends.python.merge.merge_networks`) is the hot path
+of every scan; :func:`plcsim.frontends.python.merge.read_root_directly` lets it read ``_t_dict["S1"]`` instead of the
 attribute ``_t.S1``. Both must compute what the networks compute one by one.
 """
 

@@ -30,7 +30,7 @@ from plcsim.controllers.loaded import (
 from plcsim.controllers.s7.instructions import FB_TYPES
 from plcsim.core.errors import ConfigurationError, ProgramError, UnknownTagError
 from plcsim.frontends import read_program, register, suffixes, unregister
-from plcsim.frontends.python.compiler import STORE
+from plcsim.frontends.python.rewrite import STORE
 from plcsim.grading.grader import evaluate, run_scenarios
 from plcsim.grading.report import Report
 from plcsim.scenario.verbs import Scenario, press

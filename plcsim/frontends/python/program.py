@@ -52,25 +52,13 @@ from plcsim.controllers.s7.instructions import BOOL_RESULTS, CPU_BOUND, FB_TYPES
 from plcsim.controllers.s7.profile import DEFAULT_INTERRUPT_PRIORITY, is_ob_name, ob_number, task_kind
 from plcsim.core.errors import DeclarationError, NoOB1Error, PlcError, ProgramError, SubsetError
 from plcsim.core.literals import time_ms, to_ns
-from plcsim.frontends.python.compiler import (
-    ALLOWED_BUILTINS,
-    FB_STORE,
-    MERGED_ROOT,
-    ROOT_GUARD,
-    STORE,
-    TICK,
-    Analysis,
-    StoreRewriter,
-    Typing,
-    analyse,
-    check_subset,
-    coerce_name,
-    merge_networks,
-    parse,
-    read_root_directly,
-)
+from plcsim.frontends.python.analysis import Analysis, analyse
+from plcsim.frontends.python.merge import MERGED_ROOT, merge_networks, read_root_directly
 from plcsim.frontends.python.module_level import NetworkRef, evaluate_module
+from plcsim.frontends.python.rewrite import FB_STORE, ROOT_GUARD, STORE, TICK, StoreRewriter, coerce_name
 from plcsim.frontends.python.safe_math import SAFE_FUNCTIONS, bounded_range
+from plcsim.frontends.python.subset import ALLOWED_BUILTINS, check_subset, parse
+from plcsim.frontends.python.typecheck import Typing
 from plcsim.frontends.text import read_program_text
 from plcsim.tags import types as plc_types
 from plcsim.tags.memory import parse_address
@@ -630,7 +618,8 @@ def runtime_namespace(compiled: CompiledProgram, bound: Mapping[str, Any]) -> di
     """The names a compiled program runs with: types, instructions, conversions, constants and ``bound``.
 
     Nothing in it lets a network change what another program sees: the types' members are read-only,
-    attribute stores go through :data:`~plcsim.frontends.python.compiler.STORE`, and declaration-only names are absent."""
+    attribute stores go through :data:`~plcsim.frontends.python.rewrite.STORE`, and declaration-only names
+    are absent."""
     namespace: dict[str, Any] = {"__builtins__": safe_builtins(), **TYPE_NAMES, "TIME": TIME, **PURE_INSTRUCTIONS}
     for dtype in plc_types.ELEMENTARY.values():
         namespace[coerce_name(dtype)] = dtype.coerce

@@ -16,8 +16,8 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 from plcsim.controllers.s7.instructions import BLOCKS, FB_TYPES, PURE_INSTRUCTIONS, Block, bind_instructions
-from plcsim.frontends.python.compiler import ALLOWED_BUILTINS
 from plcsim.frontends.python.program import DECLARATION_NAMES, DECLARATION_ONLY, TYPE_NAMES
+from plcsim.frontends.python.subset import ALLOWED_BUILTINS
 
 PAGE = "docs/instructions.md"
 """Where the generated page lives in the repository."""
