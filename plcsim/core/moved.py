@@ -42,7 +42,13 @@ MODULES: dict[str, tuple[str, ...]] = {
     "plcsim.execution": ("plcsim.controllers.s7.execution",),
     "plcsim.access": ("plcsim.controllers.s7.access",),
     "plcsim.config": ("plcsim.controllers.s7.config",),
-    "plcsim.program": ("plcsim.frontends.python.program",),
+    "plcsim.program": (
+        "plcsim.frontends.python.names",
+        "plcsim.frontends.python.program",
+        "plcsim.frontends.python.pipeline",
+        "plcsim.frontends.python.link",
+        "plcsim.controllers.s7.instructions",
+    ),
     "plcsim.compiler": (
         "plcsim.frontends.python.rewrite",
         "plcsim.frontends.python.subset",

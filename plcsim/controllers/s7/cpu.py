@@ -54,7 +54,8 @@ from plcsim.core.clock import Clock
 from plcsim.core.errors import ConfigurationError, PlcTypeError
 from plcsim.core.literals import datetime_literal, format_ns, to_ns
 from plcsim.core.observers import Subscribers, assigned_hook
-from plcsim.frontends.python.program import CompiledProgram, Program
+from plcsim.frontends.python.pipeline import CompiledProgram
+from plcsim.frontends.python.program import Program
 from plcsim.frontends.python.rewrite import FB_STORE, ROOT_GUARD, STORE, TICK
 from plcsim.tags.memory import Address, ByteMemory, parse_address
 from plcsim.tags.table import (
