@@ -2,10 +2,10 @@
 
 A profile says what a student's program may address and what makes its tasks run: the memory areas
 and their address grammar, the system bits the controller keeps, the restart kinds, the task triggers
-and the instruction set. Two are registered (entry-point group ``plcsim.controllers.profiles``, :mod:`plcsim.core.registry`):
-``s7-1200`` (:mod:`plcsim.controllers.s7.profile`) and ``tecomat-ns950`` (:mod:`plcsim.controllers.tecomat.profile`); a front
-end names the one its programs are written for (:func:`plcsim.frontends.frontend_for`), and
-``plcsim list --profiles`` shows them.
+and the instruction set. Two are registered (entry-point group ``plcsim.controllers.profiles``,
+:mod:`plcsim.core.registry`): ``s7-1200`` (:mod:`plcsim.controllers.s7.profile`) and ``tecomat-ns950``
+(:mod:`plcsim.controllers.tecomat.profile`); a front end names the one its programs are written for
+(:func:`plcsim.frontends.frontend_for`), and ``plcsim list --profiles`` shows them.
 
 >>> s7 = profile("S7-1200")
 >>> s7.family, [a.name for a in s7.areas], s7.parse_address("%MW10").bits
@@ -87,6 +87,10 @@ class Profile:
     instructions: Callable[[], frozenset[str]]
     controller: str
     """Where its controller lives (``plcsim.controllers.s7.cpu:CPU``): the runtime that schedules its tasks."""
+    source_reader: str = ""
+    """Where the reader of program text in its default language lives
+    (``plcsim.frontends.python.program:Program.from_source``), for a controller given text instead of a
+    read program; found by name when called, so that no controller imports a front end. Empty: none."""
 
     def trigger_of(self, number: int) -> Trigger | None:
         """The trigger of the task numbered ``number``, or None if the family has no such task."""

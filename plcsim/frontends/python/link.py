@@ -1,9 +1,10 @@
 """Linking a compiled program into one CPU: the namespace its code runs in, and the loaded program.
 
 The front end's half of a download. The namespace holds the data types, the instructions, the type
-conversions, the bounded operators, the program's constants and what the CPU bound to itself: its
-instructions and the hooks the rewrite writes into the code (:data:`~plcsim.frontends.python.rewrite.TICK`
-...), which the code calls directly.
+conversions, the bounded operators, the program's constants and the instructions the CPU bound to
+itself; the runtime's hooks (:class:`~plcsim.controllers.loaded.RuntimeHooks`, named by the runtime) are
+bound here to the names the rewrite writes into the code (:data:`~plcsim.frontends.python.rewrite.TICK`
+...), so that the code calls them directly, with nothing in between.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ import builtins
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
-from plcsim.controllers.loaded import LinkTarget, LoadedNetwork, LoadedProgram, LoadedTask, ProgramFacts
+from plcsim.controllers.loaded import LinkTarget, LoadedNetwork, LoadedProgram, LoadedTask, ProgramFacts, RuntimeHooks
 from plcsim.controllers.s7.instructions import CPU_BOUND, PURE_INSTRUCTIONS
 from plcsim.core.errors import ProgramError
 from plcsim.frontends.python.names import TIME, TYPE_NAMES
@@ -37,7 +38,7 @@ def link_program(program: Program, target: LinkTarget) -> LoadedProgram:
         family=cfg.family,
         input_writes=cfg.input_writes,
     )
-    namespace = runtime_namespace(compiled, target.instructions)
+    namespace = runtime_namespace(compiled, target.instructions, target.hooks)
     exec(compiled.code, namespace)
     analysis = compiled.analysis
     tasks = []
@@ -72,8 +73,11 @@ def safe_builtins() -> dict[str, Any]:
     return allowed
 
 
-def runtime_namespace(compiled: CompiledProgram, bound: Mapping[str, Any]) -> dict[str, Any]:
-    """The names a compiled program runs with: types, instructions, conversions, constants and ``bound``.
+def runtime_namespace(
+    compiled: CompiledProgram, instructions: Mapping[str, Any], hooks: RuntimeHooks
+) -> dict[str, Any]:
+    """The names a compiled program runs with: types, instructions, conversions, constants, the CPU's
+    ``instructions`` and its ``hooks`` under the names the rewrite calls them by.
 
     Nothing in it lets a network change what another program sees: the types' members are read-only,
     attribute stores go through :data:`~plcsim.frontends.python.rewrite.STORE`, and declaration-only names
@@ -83,8 +87,12 @@ def runtime_namespace(compiled: CompiledProgram, bound: Mapping[str, Any]) -> di
         namespace[coerce_name(dtype)] = dtype.coerce
     namespace.update(SAFE_FUNCTIONS)
     namespace.update(compiled.program.constants)
-    namespace.update(bound)
-    missing = (CPU_BOUND | {TICK, STORE, FB_STORE, ROOT_GUARD}) - set(namespace)
+    namespace.update(instructions)
+    namespace[TICK] = hooks.tick
+    namespace[ROOT_GUARD] = hooks.tags_of
+    namespace[STORE] = hooks.store
+    namespace[FB_STORE] = hooks.store_member
+    missing = CPU_BOUND - set(namespace)
     if missing:
         raise ProgramError(f"internal: the CPU did not provide {sorted(missing)}")
     return namespace
