@@ -11,7 +11,8 @@ from plcsim.core import moved
 from plcsim.core.errors import PlcError
 from plcsim.core.version import __version__
 from plcsim.exercise.model import Exercise
-from plcsim.frontends.python.program import CyclicInterrupt, Program
+from plcsim.frontends.python.names import CyclicInterrupt
+from plcsim.frontends.python.program import Program
 from plcsim.grading.grader import grade
 from plcsim.scenario.verbs import Scenario
 from plcsim.sim.simulation import RealtimeSimulation, Simulation

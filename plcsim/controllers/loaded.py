@@ -4,7 +4,8 @@
 it runs the networks' callables, numbers the trace's rows by the tasks' numbers, partitions the process
 image by the tags each task uses, and names a fault's place by the network's source span. A front end
 never reaches into the runtime: it receives a :class:`LinkTarget` (the tag table, the runtime's bound
-instructions, the configuration) and returns a :class:`LoadedProgram`.
+instructions and hooks, the configuration) and returns a :class:`LoadedProgram`. The hooks carry the
+runtime's names (:class:`RuntimeHooks`); a front end binds them to whatever names its code calls.
 """
 
 from __future__ import annotations
@@ -87,6 +88,20 @@ class LoadedProgram:
 
 
 @dataclass(frozen=True)
+class RuntimeHooks:
+    """The runtime's checks a program's code calls while it runs, bound to one CPU."""
+
+    tick: Callable[[], None]
+    """The cycle watchdog: called once per loop pass; raises when one execution loops past the budget."""
+    tags_of: Callable[[Any], dict[str, Any]]
+    """The tags guard: ``tags_of(t)`` is the tags' member dict, after checking that ``t`` is this CPU's tags."""
+    store: Callable[[Any, str, Any], None]
+    """``store(container, name, value)``: a store into a tag or a data-block member, converted to its type."""
+    store_member: Callable[[Any, str, Any], None]
+    """``store_member(instance, name, value)``: a store into a writable member of an instance (a timer's PT)."""
+
+
+@dataclass(frozen=True)
 class LinkTarget:
     """What a front end may know of the CPU it links against."""
 
@@ -94,7 +109,9 @@ class LinkTarget:
     aliased: frozenset[str]
     config: CPUConfig
     instructions: Mapping[str, Any]
-    """The runtime's instructions bound to this CPU (edges, MOVE, the watchdog tick, the store guards)."""
+    """The instructions that need this CPU (the edge instructions, MOVE, RD_LOC_T), by instruction name."""
+    hooks: RuntimeHooks
+    """The watchdog tick and the store guards, for the code a front end generates."""
 
 
 class SourceProgram(Protocol):

@@ -87,6 +87,10 @@ class Profile:
     instructions: Callable[[], frozenset[str]]
     controller: str
     """Where its controller lives (``plcsim.controllers.s7.cpu:CPU``): the runtime that schedules its tasks."""
+    source_reader: str = ""
+    """Where the reader of program text in its default language lives
+    (``plcsim.frontends.python.program:Program.from_source``), for a controller given text instead of a
+    read program; found by name when called, so that no controller imports a front end. Empty: none."""
 
     def trigger_of(self, number: int) -> Trigger | None:
         """The trigger of the task numbered ``number``, or None if the family has no such task."""

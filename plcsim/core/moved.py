@@ -42,8 +42,21 @@ MODULES: dict[str, tuple[str, ...]] = {
     "plcsim.execution": ("plcsim.controllers.s7.execution",),
     "plcsim.access": ("plcsim.controllers.s7.access",),
     "plcsim.config": ("plcsim.controllers.s7.config",),
-    "plcsim.program": ("plcsim.frontends.python.program",),
-    "plcsim.compiler": ("plcsim.frontends.python.compiler",),
+    "plcsim.program": (
+        "plcsim.frontends.python.names",
+        "plcsim.frontends.python.program",
+        "plcsim.frontends.python.pipeline",
+        "plcsim.frontends.python.link",
+        "plcsim.controllers.s7.instructions",
+    ),
+    "plcsim.compiler": (
+        "plcsim.frontends.python.rewrite",
+        "plcsim.frontends.python.subset",
+        "plcsim.frontends.python.merge",
+        "plcsim.frontends.python.analysis",
+        "plcsim.frontends.python.typecheck",
+        "plcsim.frontends.python.safe_math",
+    ),
     "plcsim.module_level": ("plcsim.frontends.python.module_level",),
     "plcsim.safe_math": ("plcsim.frontends.python.safe_math",),
     "plcsim.reference": ("plcsim.frontends.python.reference",),
@@ -105,7 +118,9 @@ class _Split(types.ModuleType):
             module = importlib.import_module(home)
             if hasattr(module, name):
                 return getattr(module, name)
-        raise AttributeError(f"module {self.__name__!r} has no attribute {name!r} (it moved to {', '.join(self._homes)})")
+        raise AttributeError(
+            f"module {self.__name__!r} has no attribute {name!r} (it moved to {', '.join(self._homes)})"
+        )
 
 
 class _OldPaths(importlib.abc.MetaPathFinder, importlib.abc.Loader):

@@ -72,8 +72,8 @@ from plcsim.controllers.s7.cpu import CLOCK_BITS, SYSTEM_BITS
 from plcsim.core.errors import ExerciseError, PlcError, did_you_mean
 from plcsim.core.literals import time_ms
 from plcsim.exercise.model import Exercise
-from plcsim.frontends.python.compiler import Typing
 from plcsim.frontends.python.program import Program
+from plcsim.frontends.python.typecheck import Typing
 from plcsim.grading.grader import Report, grade
 from plcsim.tags.table import TagTable
 from plcsim.tags.types import Bool

@@ -10,9 +10,10 @@ import pytest
 
 from plcsim.apps.cli import main
 from plcsim.core.errors import ProgramError
-from plcsim.frontends.python.compiler import ALLOWED_BUILTINS
-from plcsim.frontends.python.program import DECLARATION_NAMES, PROGRAM_NAMES, Program
+from plcsim.frontends.python.names import DECLARATION_NAMES, PROGRAM_NAMES
+from plcsim.frontends.python.program import Program
 from plcsim.frontends.python.reference import PAGE, instruction_reference, network_instructions
+from plcsim.frontends.python.subset import ALLOWED_BUILTINS
 
 ROOT = Path(__file__).parents[2]
 

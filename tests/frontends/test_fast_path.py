@@ -1,7 +1,7 @@
 """OB1's merged networks read their tags from the tag dict: the same rows as network by network.
 
-The merge (one function for all of OB1's networks, :func:`plcsim.frontends.python.compiler.merge_networks`) is the hot path
-of every scan; :func:`plcsim.frontends.python.compiler.read_root_directly` lets it read ``_t_dict["S1"]`` instead of the
+The merge (one function for all of OB1's networks, :func:`plcsim.frontends.python.merge.merge_networks`) is the hot path
+of every scan; :func:`plcsim.frontends.python.merge.read_root_directly` lets it read ``_t_dict["S1"]`` instead of the
 attribute ``_t.S1``. Both must compute what the networks compute one by one.
 """
 
@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import dis
 
-import plcsim.frontends.python.program
+import plcsim.frontends.python.pipeline
 from benchmarks import workload
 from plcsim import CPU, Int, Tag
 from plcsim.sim.recorder import Recorder
@@ -41,7 +41,8 @@ def test_the_merged_ob1_reads_tags_from_the_dict_and_never_through_the_tag_objec
 
 def test_merged_and_network_by_network_give_the_same_trace(monkeypatch):
     merged = _digest(3000)
-    monkeypatch.setattr(plcsim.frontends.python.program, "MAX_MERGED_STATEMENTS", 0)  # no merge: each network is called
+    # no merge: each network is called
+    monkeypatch.setattr(plcsim.frontends.python.pipeline, "MAX_MERGED_STATEMENTS", 0)
     assert workload.new_cpu()._ob1.merged is None
     assert _digest(3000) == merged
 

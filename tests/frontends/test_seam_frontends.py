@@ -30,7 +30,6 @@ from plcsim.controllers.loaded import (
 from plcsim.controllers.s7.instructions import FB_TYPES
 from plcsim.core.errors import ConfigurationError, ProgramError, UnknownTagError
 from plcsim.frontends import read_program, register, suffixes, unregister
-from plcsim.frontends.python.compiler import STORE
 from plcsim.grading.grader import evaluate, run_scenarios
 from plcsim.grading.report import Report
 from plcsim.scenario.verbs import Scenario, press
@@ -75,7 +74,7 @@ class TinyIL:
         return []
 
     def link(self, target: LinkTarget) -> LoadedProgram:
-        store = target.instructions[STORE]
+        store = target.hooks.store
         known = set(target.table.entries)
         reads: set[str] = set()
         writes: set[str] = set()

@@ -11,7 +11,7 @@ import pytest
 
 from plcsim import CPU, Program, Tag
 from plcsim.core.errors import DeclarationError, ProgramError, SubsetError
-from plcsim.frontends.python.compiler import MAX_NESTING
+from plcsim.frontends.python.subset import MAX_NESTING
 
 PANEL = {"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")}
 

@@ -9,7 +9,7 @@ import pytest
 
 from plcsim import Program
 from plcsim.core.errors import ProgramError, SubsetError
-from plcsim.frontends.python.compiler import ALLOWED_NODES
+from plcsim.frontends.python.subset import ALLOWED_NODES
 
 
 @pytest.mark.parametrize(

@@ -29,13 +29,14 @@ True
 from __future__ import annotations
 
 import datetime as _dt
+import pkgutil
 import random
 from collections import deque
 from collections.abc import Mapping
 from dataclasses import replace
 from typing import Any
 
-from plcsim.controllers.loaded import LinkTarget, LoadedProgram, LoadedTask, SourceProgram, TaskSpec
+from plcsim.controllers.loaded import LinkTarget, LoadedProgram, LoadedTask, RuntimeHooks, SourceProgram, TaskSpec
 from plcsim.controllers.s7.access import HostAccess, store_instance_member, store_into
 from plcsim.controllers.s7.config import CLOCK_BITS, RUN, STOP, SYSTEM_BITS, CPUConfig, DiagnosticEntry
 from plcsim.controllers.s7.execution import (
@@ -49,13 +50,11 @@ from plcsim.controllers.s7.execution import (
 )
 from plcsim.controllers.s7.instructions import bind_instructions
 from plcsim.controllers.s7.instructions.timers import IecTimer
-from plcsim.controllers.s7.profile import DEFAULT_INTERRUPT_PERIOD
+from plcsim.controllers.s7.profile import DEFAULT_INTERRUPT_PERIOD, PROFILE
 from plcsim.core.clock import Clock
 from plcsim.core.errors import ConfigurationError, PlcTypeError
 from plcsim.core.literals import datetime_literal, format_ns, to_ns
 from plcsim.core.observers import Subscribers, assigned_hook
-from plcsim.frontends.python.compiler import FB_STORE, ROOT_GUARD, STORE, TICK
-from plcsim.frontends.python.program import CompiledProgram, Program
 from plcsim.tags.memory import Address, ByteMemory, parse_address
 from plcsim.tags.table import (
     PlcStruct,
@@ -73,7 +72,8 @@ class CPU(TaskRunner, HostAccess):
 
     Args:
         tags: the tag table (an exercise's I/O table); a mapping ``name -> Tag(...)`` is accepted.
-        program: a :class:`Program`, program source text, or None (load later).
+        program: a program a front end read (:func:`plcsim.frontends.read_program`), program text in the
+            profile's default language (the Python subset), or None (load later).
         config: a :class:`CPUConfig`; keyword ``options`` build one instead.
         start: switch to RUN after loading the program (as after a download and a mode switch).
 
@@ -84,7 +84,7 @@ class CPU(TaskRunner, HostAccess):
     def __init__(
         self,
         tags: TagTable | Mapping[str, Any] | None = None,
-        program: Program | str | None = None,
+        program: SourceProgram | str | None = None,
         config: CPUConfig | None = None,
         *,
         start: bool = True,
@@ -119,7 +119,7 @@ class CPU(TaskRunner, HostAccess):
         self.output_version = 0
         self.program: SourceProgram | None = None
         self.loaded: LoadedProgram | None = None
-        self.compiled: CompiledProgram | None = None
+        self.compiled: Any = None
         """The Python front end's compiled form (its analysis feeds the static checks); None for another."""
         self.warnings: list[str] = []
         self._rng = random.Random(self.config.seed)
@@ -214,13 +214,13 @@ class CPU(TaskRunner, HostAccess):
 
         ``program`` is what a front end read (:func:`plcsim.frontends.read_program`), or Python subset text."""
         if isinstance(program, str):
-            program = Program.from_source(program)
+            program = pkgutil.resolve_name(PROFILE.source_reader)(program)
         was_running = self.mode == RUN
         self.stop(reason="download")
         table = program.declare_into(self.base_table)
         self._load_table(table, program.absolute_addresses())
         aliased = frozenset(c.key if c.container is self.t else f"{c.container._path}.{c.key}" for c in self.aliases)
-        loaded = program.link(LinkTarget(self.table, aliased, self.config, self._bound_instructions()))
+        loaded = program.link(LinkTarget(self.table, aliased, self.config, bind_instructions(self), self._hooks()))
         self.program, self.loaded, self.compiled, self.warnings = program, loaded, loaded.compiled, loaded.warnings
         for path in loaded.inert_timers:
             timer = self._resolve_value(path.split(".", 1)[1] if "." in path else path)
@@ -258,10 +258,9 @@ class CPU(TaskRunner, HostAccess):
             task.duration_ns = self.config.interrupt_duration_ns if spec.kind == "interrupt" else 0
         return task
 
-    def _bound_instructions(self) -> dict[str, Any]:
-        """The instructions that need this CPU (built from their descriptions), and the runtime hooks the
-        Python front end's compiled code calls: the watchdog tick and the store guards."""
-        bound: dict[str, Any] = bind_instructions(self)
+    def _hooks(self) -> RuntimeHooks:
+        """The runtime's hooks bound to this CPU, for the code a front end generates: the watchdog tick and
+        the store guards."""
         ticks = self._ticks
         budget = self.config.watchdog_iterations
 
@@ -269,8 +268,6 @@ class CPU(TaskRunner, HostAccess):
             ticks[0] += 1
             if ticks[0] > budget:
                 raise CycleWatchdog()
-
-        bound[TICK] = tick
 
         def tags_of(tags: Any) -> dict[str, Any]:
             if tags is not self.t:
@@ -280,10 +277,7 @@ class CPU(TaskRunner, HostAccess):
                 )
             return tags.__dict__
 
-        bound[ROOT_GUARD] = tags_of
-        bound[STORE] = store_into
-        bound[FB_STORE] = store_instance_member
-        return bound
+        return RuntimeHooks(tick, tags_of, store_into, store_instance_member)
 
     # -- modes --------------------------------------------------------------------------------
 

@@ -100,5 +100,6 @@ PROFILE = Profile(
     triggers=TRIGGERS,
     instructions=_instructions,
     controller="plcsim.controllers.s7.cpu:CPU",
+    source_reader="plcsim.frontends.python.program:Program.from_source",
 )
 """The S7-1200 as the course's programs see it (entry point ``s7-1200`` of ``plcsim.profiles``)."""

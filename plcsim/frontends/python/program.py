@@ -23,6 +23,10 @@ networks to tasks::
 
 ``def OB1(t): ...`` alone is an OB1 with one network. ``@label("lbl10")`` marks a jump target.
 
+:class:`Program` reads a file into its declarations and tasks; the names it may use are
+:mod:`plcsim.frontends.python.names`, compiling it against a tag table is
+:mod:`plcsim.frontends.python.pipeline` and linking it into a CPU :mod:`plcsim.frontends.python.link`.
+
 >>> p = Program.from_source("def OB1(t):\\n    t.LED = t.TLACIDLO\\n")
 >>> [n.name for n in p.tasks["OB1"].networks]
 ['OB1']
@@ -31,149 +35,32 @@ networks to tasks::
 from __future__ import annotations
 
 import ast
-import builtins
 import inspect
 import textwrap
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field, replace
+from collections.abc import Mapping
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from plcsim.controllers.loaded import (
-    LinkTarget,
-    LoadedNetwork,
-    LoadedProgram,
-    LoadedTask,
-    NetworkSpec,
-    ProgramFacts,
-    TaskSpec,
-)
-from plcsim.controllers.s7.instructions import BOOL_RESULTS, CPU_BOUND, FB_TYPES, PURE_INSTRUCTIONS
-from plcsim.controllers.s7.profile import DEFAULT_INTERRUPT_PRIORITY, is_ob_name, ob_number, task_kind
+from plcsim.controllers.loaded import LinkTarget, LoadedProgram, NetworkSpec, TaskSpec
+from plcsim.controllers.s7.profile import is_ob_name, ob_number, task_kind
 from plcsim.core.errors import DeclarationError, NoOB1Error, PlcError, ProgramError, SubsetError
-from plcsim.core.literals import time_ms, to_ns
-from plcsim.frontends.python.compiler import (
-    ALLOWED_BUILTINS,
-    FB_STORE,
-    MERGED_ROOT,
-    ROOT_GUARD,
-    STORE,
-    TICK,
-    Analysis,
-    StoreRewriter,
-    Typing,
-    analyse,
-    check_subset,
-    coerce_name,
-    merge_networks,
-    parse,
-    read_root_directly,
-)
+from plcsim.core.literals import to_ns
+from plcsim.frontends.python.link import link_program
 from plcsim.frontends.python.module_level import NetworkRef, evaluate_module
-from plcsim.frontends.python.safe_math import SAFE_FUNCTIONS, bounded_range
+from plcsim.frontends.python.names import DECLARATION_NAMES, DECLARATION_ONLY, PROGRAM_NAMES, CyclicInterrupt
+from plcsim.frontends.python.pipeline import CompiledProgram, compile_program
+from plcsim.frontends.python.subset import ALLOWED_BUILTINS, check_subset, parse
 from plcsim.frontends.text import read_program_text
-from plcsim.tags import types as plc_types
 from plcsim.tags.memory import parse_address
-from plcsim.tags.table import DB, DataBlock, Tag, TagTable
-from plcsim.tags.types import ArrayType, DataType, ElementaryType, Member, StringType, StructType, value_count
+from plcsim.tags.table import DataBlock, Tag, TagTable
+from plcsim.tags.types import ElementaryType, Member, StringType, StructType, value_count
 
 MAX_LABELS_S7_1200 = 32
 MAX_VALUES = 1_000_000
 """The most values a program may declare (an S7-1200 has 50..150 KB of work memory: far fewer)."""
-MAX_MERGED_STATEMENTS = 5000
-"""Above this many statements an OB's networks are not merged into one function (see merge_networks):
-the merge speeds up scans of ordinary programs and would only slow down loading a huge one."""
 COMPILED_KEPT = 4
 """How many compilations (tag tables and options) a program keeps for its next downloads."""
-
-
-def label(name: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
-    """Mark a network as a jump target: ``@label("lbl10")`` (one label per network, unique per OB)."""
-    if not isinstance(name, str) or not name:
-        raise DeclarationError(f"a label must be a non-empty string, not {name!r}")
-
-    def mark(func: Callable[..., Any]) -> Callable[..., Any]:
-        func.plc_label = name  # type: ignore[attr-defined]
-        return func
-
-    return mark
-
-
-@dataclass(frozen=True)
-class CyclicInterrupt:
-    """A cyclic-interrupt OB (OB30..OB38): its networks, period, phase and priority.
-
-    ``OB30 = CyclicInterrupt([read_button, count], period="1s")``; the first call comes at the
-    STOP->RUN instant plus the phase.
-    """
-
-    networks: Any
-    period: str | int | None = None
-    """None: the hardware configuration's period (``CPUConfig.periods``), else 100 ms."""
-    phase: str | int = "0ms"
-    priority: int = DEFAULT_INTERRUPT_PRIORITY
-    duration: str | int | None = None
-
-
-def Array(lo: int, hi: int, element: DataType | Member) -> ArrayType:
-    """``Array[lo..hi] of element`` for DB members: ``Array(0, 3, Int)``."""
-    return ArrayType(lo, hi, element)
-
-
-def Struct(**members: DataType | Member) -> StructType:
-    """An anonymous STRUCT for a DB member: ``Struct(OBS=Bool, POCET=Int)``."""
-    return StructType("Struct", members)
-
-
-def UDT(**members: DataType | Member) -> StructType:
-    """A PLC data type (named after the variable it is assigned to): ``NASA = UDT(OBS=Bool)``."""
-    return StructType("UDT", members)
-
-
-def TIME(literal: str) -> int:
-    """A TIME literal as milliseconds, for comparisons with ET: ``t.T1.ET > TIME("500ms")``."""
-    return time_ms(literal)
-
-
-TYPE_NAMES: dict[str, Any] = {
-    **{t.name: t for t in plc_types.ELEMENTARY.values()},
-    "TOD": plc_types.TimeOfDay,
-    "String": plc_types.String,
-    "DTL": plc_types.DTL,
-}
-"""Data types: declared at module level, and named in networks (``CONVERT(x, Int)``)."""
-
-DECLARATION_ONLY: dict[str, Any] = {
-    "Array": Array,
-    "Struct": Struct,
-    "UDT": UDT,
-    "Tag": Tag,
-    "DB": DB,
-    "CyclicInterrupt": CyclicInterrupt,
-    "label": label,
-    **FB_TYPES,
-}
-"""Names that declare something; a network cannot use them (it sees the declared tag as t.NAME)."""
-
-DECLARATION_NAMES: dict[str, Any] = {**TYPE_NAMES, **DECLARATION_ONLY, "TIME": TIME}
-"""Names a program may use at module level to declare tags, DBs, instances and tasks."""
-
-PROGRAM_NAMES = set(DECLARATION_NAMES) | set(PURE_INSTRUCTIONS) | CPU_BOUND
-"""Every name a program sees besides its own and the allowed builtins."""
-
-
-@dataclass
-class CompiledProgram:
-    """A program compiled against one tag table: code, facts and the timers the textbook rule stops."""
-
-    program: Program
-    code: Any
-    analysis: Analysis
-    coercers: set[ElementaryType]
-    inert_timers: set[str]
-    warnings: list[str] = field(default_factory=list)
-    merged: dict[str, str] = field(default_factory=dict)
-    """Task name -> the namespace name of its merged networks (see :func:`merge_networks`)."""
 
 
 class Program:
@@ -419,166 +306,17 @@ class Program:
         for known, compiled in self._compiled:
             if known == key:
                 return replace(compiled, warnings=list(compiled.warnings), inert_timers=set(compiled.inert_timers))
-        compiled = self._compile(table, aliased, strict_timers, family, input_writes)
+        compiled = compile_program(self, table, aliased, strict_timers, family, input_writes)
         self._compiled = [*self._compiled[-(COMPILED_KEPT - 1) :], ((dict(table.entries), *key[1:]), compiled)]
         return replace(compiled, warnings=list(compiled.warnings), inert_timers=set(compiled.inert_timers))
 
-    def _compile(
-        self, table: TagTable, aliased: frozenset[str], strict_timers: bool, family: str, input_writes: str
-    ) -> CompiledProgram:
-        root_params = {}
-        for task in self.tasks.values():
-            for net in task.networks:
-                root_params[net.name] = self.functions[net.name].args.args[0].arg
-        typing = Typing(table.schema(), aliased, self.filename, root_params)
-        analysis = analyse(self.tree, typing)
-        tree = runtime_module(self._tree)
-        merged: dict[str, str] = {}
-        for task in self.tasks.values():
-            funcs = [self.functions[n.name] for n in task.networks]
-            if len(funcs) > 1 and sum(len(f.body) for f in funcs) <= MAX_MERGED_STATEMENTS:
-                combined = merge_networks(funcs, task.name, root_params)
-                if combined is not None:
-                    tree.body.append(combined)
-                    typing.root_params[combined.name] = MERGED_ROOT
-                    merged[task.name] = combined.name
-        rewriter = StoreRewriter(typing)
-        tree = ast.fix_missing_locations(rewriter.visit(tree))
-        for stmt in tree.body:
-            if isinstance(stmt, ast.FunctionDef) and stmt.name in merged.values():
-                read_root_directly(stmt, typing.root.members)
-        code = compile(tree, self.filename, "exec")
-        warnings = list(analysis.warnings)
-        for line, name in self._input_stores(table, root_params):
-            message = (
-                f"{self._filename}, line {line}: the program writes the input {name} "
-                f"({table[name].address}); an input is what the sensor delivers, the program should only read it"
-            )
-            if input_writes == "error":
-                raise ProgramError(message)
-            warnings.append(message + " (the write changes only the program's process image, not the plant)")
-        self._check_jumps(analysis)
-        if family == "S7-1200":
-            for node in ast.walk(self.tree):
-                if isinstance(node, ast.Name) and node.id in ("SCALE", "UNSCALE"):
-                    raise ProgramError(
-                        f"{self.filename}, line {node.lineno}: {node.id} is not available on the S7-1200 "
-                        f"(textbook §3.3); use NORM_X and SCALE_X"
-                    )
-        inert: set[str] = set()
-        for path in sorted(analysis.unused_timers()):
-            warnings.append(
-                f"{self.filename}: timer {path} runs but its Q and ET are used nowhere; on an S7-1200 such a "
-                f"timer does not start (textbook §3.6.1, Fig. 3.197)"
-                + ("" if strict_timers else "; the CPU runs it anyway (textbook_strict_timers=False)")
-            )
-            if strict_timers:
-                inert.add(path)
-        return CompiledProgram(self, code, analysis, rewriter.coercers, inert, warnings, merged)
-
     def link(self, target: LinkTarget) -> LoadedProgram:
         """Compile against the CPU's table and run the code once to define the networks (the front end's
-        half of a download): the loaded program the runtime runs."""
-        cfg = target.config
-        compiled = self.compile(
-            target.table,
-            target.aliased,
-            strict_timers=cfg.textbook_strict_timers,
-            family=cfg.family,
-            input_writes=cfg.input_writes,
-        )
-        namespace = runtime_namespace(compiled, target.instructions)
-        exec(compiled.code, namespace)
-        analysis = compiled.analysis
-        tasks = []
-        for spec in self.tasks.values():
-            networks = []
-            used: set[str] = set()
-            for net in spec.networks:
-                node = self.functions[net.name]
-                networks.append(LoadedNetwork(namespace[net.name], (node.lineno, node.end_lineno or 0)))
-                used |= analysis.tags_used(net.name)
-            merged = compiled.merged.get(spec.name)
-            tasks.append(LoadedTask(spec, networks, namespace[merged] if merged else None, frozenset(used)))
-        facts = analysis.functions.values()
-        return LoadedProgram(
-            self.filename,
-            tasks,
-            ProgramFacts(
-                frozenset().union(*(f.reads for f in facts)),
-                frozenset().union(*(f.writes for f in facts)),
-                frozenset().union(*(f.calls for f in facts)),
-            ),
-            compiled.warnings,
-            compiled.inert_timers,
-            compiled,
-        )
-
-    def _input_stores(self, table: TagTable, root_params: Mapping[str, str]) -> list[tuple[int, str]]:
-        """(line, tag) of every store into an input tag: t.IN = ..., t["IN"] = ..., MOVE(x, "IN")."""
-        inputs = {e.name for e in table if e.address is not None and e.address.area == "I"}
-        found: list[tuple[int, str]] = []
-        for func in self.functions.values():
-            root = root_params.get(func.name, "t")
-            for node in ast.walk(func):
-                name = None
-                if isinstance(node, ast.Attribute | ast.Subscript) and isinstance(node.ctx, ast.Store):
-                    if isinstance(node.value, ast.Name) and node.value.id == root:
-                        key = node.attr if isinstance(node, ast.Attribute) else getattr(node.slice, "value", None)
-                        name = key if key in inputs else None
-                elif isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "MOVE":
-                    outs = [_target_text(a, root) for a in node.args[1:]]
-                    name = next((o for o in outs if o in inputs), None)
-                if name is not None:
-                    found.append((node.lineno, name))
-        return sorted(found)
-
-    def _check_jumps(self, analysis: Analysis) -> None:
-        for task in self.tasks.values():
-            labels = {n.label for n in task.networks if n.label}
-            for net in task.networks:
-                for target, line in analysis.functions[net.name].jumps:
-                    if target not in labels:
-                        known = (
-                            f"; labels in {task.name}: {', '.join(sorted(labels))}"
-                            if labels
-                            else f"; {task.name} has no labels (mark a network with @label({target!r}))"
-                        )
-                        raise ProgramError(
-                            f"{self.filename}, line {line}: JMP to {target!r}, but no network of {task.name} "
-                            f"carries that label{known}"
-                        )
+        half of a download): the loaded program the runtime runs (see :func:`link_program`)."""
+        return link_program(self, target)
 
     def __repr__(self) -> str:
         return f"<Program {self.filename}: {', '.join(self.tasks) or 'no tasks'}>"
-
-
-def runtime_module(tree: ast.Module) -> ast.Module:
-    """What runs: a copy of the checked tree's network functions, without decorators (labels are
-    already collected) and without the module-level declarations (evaluated, never executed)."""
-    body = []
-    for stmt in tree.body:
-        if isinstance(stmt, ast.FunctionDef):
-            func = copy_tree(stmt)
-            func.decorator_list = []
-            body.append(func)
-    return ast.Module(body=body, type_ignores=[])
-
-
-def copy_tree(node: Any) -> Any:
-    """A deep copy of a syntax tree (several times faster than copy.deepcopy; depth is bounded by the
-    subset check)."""
-    if isinstance(node, list):
-        return [copy_tree(item) for item in node]
-    if not isinstance(node, ast.AST):
-        return node
-    new = node.__class__()
-    for name in node._fields:
-        setattr(new, name, copy_tree(getattr(node, name, None)))
-    for name in node._attributes:
-        if hasattr(node, name):
-            setattr(new, name, getattr(node, name))
-    return new
 
 
 def no_ob1_message(filename: str, tree: ast.Module, has_tasks: bool) -> str:
@@ -606,53 +344,8 @@ def no_ob1_message(filename: str, tree: ast.Module, has_tasks: bool) -> str:
     )
 
 
-def _target_text(node: ast.expr, root: str) -> str | None:
-    """The tag a MOVE output names: ``"LED"`` or ``t.LED``."""
-    if isinstance(node, ast.Constant) and isinstance(node.value, str):
-        return node.value
-    if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id == root:
-        return node.attr
-    return None
-
-
 def _target_names(stmt: ast.Assign) -> list[str]:
     return [t.id for t in stmt.targets if isinstance(t, ast.Name)]
 
 
-def safe_builtins() -> dict[str, Any]:
-    """The builtins a program may use."""
-    allowed = {name: getattr(builtins, name) for name in ALLOWED_BUILTINS if hasattr(builtins, name)}
-    allowed["range"] = bounded_range
-    return allowed
-
-
-def runtime_namespace(compiled: CompiledProgram, bound: Mapping[str, Any]) -> dict[str, Any]:
-    """The names a compiled program runs with: types, instructions, conversions, constants and ``bound``.
-
-    Nothing in it lets a network change what another program sees: the types' members are read-only,
-    attribute stores go through :data:`~plcsim.frontends.python.compiler.STORE`, and declaration-only names are absent."""
-    namespace: dict[str, Any] = {"__builtins__": safe_builtins(), **TYPE_NAMES, "TIME": TIME, **PURE_INSTRUCTIONS}
-    for dtype in plc_types.ELEMENTARY.values():
-        namespace[coerce_name(dtype)] = dtype.coerce
-    namespace.update(SAFE_FUNCTIONS)
-    namespace.update(compiled.program.constants)
-    namespace.update(bound)
-    missing = (CPU_BOUND | {TICK, STORE, FB_STORE, ROOT_GUARD}) - set(namespace)
-    if missing:
-        raise ProgramError(f"internal: the CPU did not provide {sorted(missing)}")
-    return namespace
-
-
-__all__ = [
-    "Program",
-    "CyclicInterrupt",
-    "label",
-    "TaskSpec",
-    "NetworkSpec",
-    "CompiledProgram",
-    "Array",
-    "Struct",
-    "UDT",
-    "TIME",
-    "BOOL_RESULTS",
-]
+__all__ = ["Program", "no_ob1_message"]

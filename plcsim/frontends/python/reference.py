@@ -2,7 +2,7 @@
 
 ``plcsim reference`` prints it as Markdown; ``docs/instructions.md`` is this page, and a test keeps
 the two equal, so the page cannot drift from the instructions a program really gets (the names of
-:data:`plcsim.frontends.python.program.PROGRAM_NAMES` and the allowed builtins).
+:data:`plcsim.frontends.python.names.PROGRAM_NAMES` and the allowed builtins).
 
 >>> page = instruction_reference()
 >>> "`P(operand, memory)`" in page and "`t.NAME.CTUD(" in page and "`Bool`" in page
@@ -16,8 +16,8 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 from plcsim.controllers.s7.instructions import BLOCKS, FB_TYPES, PURE_INSTRUCTIONS, Block, bind_instructions
-from plcsim.frontends.python.compiler import ALLOWED_BUILTINS
-from plcsim.frontends.python.program import DECLARATION_NAMES, DECLARATION_ONLY, TYPE_NAMES
+from plcsim.frontends.python.names import DECLARATION_NAMES, DECLARATION_ONLY, TYPE_NAMES
+from plcsim.frontends.python.subset import ALLOWED_BUILTINS
 
 PAGE = "docs/instructions.md"
 """Where the generated page lives in the repository."""

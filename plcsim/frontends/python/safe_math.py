@@ -2,9 +2,9 @@
 
 No S7 type is wider than 64 bits, so a program never needs an integer of thousands of digits or a
 text of a million characters; computing one (``9**9**9``, ``"x" * 10**9``) would only stall the
-CPU. The compiler rewrites these operators into the functions below; a result beyond the bounds is
-a :class:`ProgramError` that stops the CPU with the network named, and a constant expression beyond
-them is refused when the program is loaded.
+CPU. The rewrite (:mod:`plcsim.frontends.python.rewrite`) turns these operators into the functions
+below; a result beyond the bounds is a :class:`ProgramError` that stops the CPU with the network
+named, and a constant expression beyond them is refused when the program is loaded.
 
 >>> _pow(2, 10), _mul("ab", 2), _lshift(1, 4)
 (1024, 'abab', 16)
@@ -16,6 +16,7 @@ plcsim.core.errors.ProgramError: 9 ** 387420489 is far beyond any PLC number (at
 
 from __future__ import annotations
 
+import ast
 from typing import Any
 
 from plcsim.core.errors import ProgramError
@@ -78,5 +79,7 @@ def bounded_range(*args: Any) -> range:
     return result
 
 
+SAFE_OPS = {ast.Pow: "_pow", ast.Mult: "_mul", ast.LShift: "_lshift", ast.Mod: "_mod"}
+"""Operators whose result can grow without bound; the CPU supplies bounded versions (see safe_math)."""
 SAFE_FUNCTIONS = {"_pow": _pow, "_mul": _mul, "_lshift": _lshift, "_mod": _mod}
-"""Namespace name -> bounded operator (the names the compiler writes, see ``compiler.SAFE_OPS``)."""
+"""Namespace name -> bounded operator (the names the rewrite writes, see :data:`SAFE_OPS`)."""
