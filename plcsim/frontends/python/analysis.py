@@ -11,7 +11,7 @@ import ast
 from dataclasses import dataclass, field
 from typing import Any
 
-from plcsim.controllers.s7.instructions import block_named
+from plcsim.controllers.s7.instructions import FUNCTIONS, block_named
 from plcsim.frontends.python.typecheck import Typing, instance_boxes, safe_type
 from plcsim.tags.table import FBType
 from plcsim.tags.types import Bool
@@ -75,7 +75,8 @@ class Analysis:
         return any(box == instruction for _, box, _ in self.box_calls)
 
 
-_EDGE_FUNCS = {"P", "N", "P_TRIG", "N_TRIG", "P_COIL", "N_COIL"}
+_EDGE_FUNCS = frozenset(f.name for f in FUNCTIONS.values() if f.named)
+"""The instructions with an edge memory bit."""
 
 
 def analyse(tree: ast.Module, typing: Typing) -> Analysis:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import ast
 from typing import Any
 
-from plcsim.controllers.s7.instructions import block_named
+from plcsim.controllers.s7.instructions import BLOCKS, FUNCTIONS, block_named
 from plcsim.core.errors import ProgramError, SubsetError, UnknownTagError, did_you_mean
 from plcsim.core.literals import time_ms
 from plcsim.frontends.python.safe_math import SAFE_FUNCTIONS, SAFE_OPS
@@ -28,19 +28,10 @@ ROOT_GUARD = "_tags_of"
 TICK = "_tick"
 STORE = "_store"
 FB_STORE = "_fb_store"
-_NAMED_OPERANDS = {"P": (1,), "N": (1,), "P_TRIG": (1,), "N_TRIG": (1,), "P_COIL": (1, 2), "N_COIL": (1, 2)}
+_NAMED_OPERANDS = {f.name: f.named for f in FUNCTIONS.values() if f.named}
 """Arguments of edge instructions that name a memory bit; ``t.SB1`` there means the tag's name."""
-_BOX_TYPES = {
-    "TON": "IEC_TIMER",
-    "TOF": "IEC_TIMER",
-    "TP": "IEC_TIMER",
-    "TONR": "IEC_TIMER",
-    "CTU": "IEC_COUNTER",
-    "CTD": "IEC_COUNTER",
-    "CTUD": "IEC_COUNTER",
-    "R_TRIG": "R_TRIG",
-    "F_TRIG": "F_TRIG",
-}
+_BOX_TYPES = {box: block.name for block in BLOCKS.values() for box in block.boxes}
+"""The instance type each box belongs to (``TON`` -> ``IEC_TIMER``), from the instructions' descriptions."""
 
 
 def coerce_name(dtype: ElementaryType) -> str:

@@ -15,7 +15,7 @@ from typing import Any, Protocol
 
 from plcsim.controllers.s7.instructions.arithmetic import MATH_FUNCTIONS
 from plcsim.controllers.s7.instructions.counters import IecCounter
-from plcsim.controllers.s7.instructions.edges import EDGE_INSTRUCTIONS, EdgeTrigger, bind_edge
+from plcsim.controllers.s7.instructions.edges import EDGE_INSTRUCTIONS, EDGE_OPERANDS, EdgeTrigger, bind_edge
 from plcsim.controllers.s7.instructions.system import JMP, RET, make_move, make_rd_loc_t
 from plcsim.controllers.s7.instructions.timers import PT, RT, IecTimer, TimerDialect
 from plcsim.core.clock import Clock
@@ -226,6 +226,9 @@ class Function:
     returns_bool: bool = False
     """Its result is a Bool (the compiler's static typing: storing it into a BOOL needs no check)."""
     bind: Callable[[Host], Callable[..., Any]] | None = None
+    named: tuple[int, ...] = ()
+    """Positions of the arguments that name a memory bit rather than pass its value (the edge memory of
+    ``P(t.S1, t.SB1)``): the compiler passes the tag's name there."""
 
     @property
     def needs_cpu(self) -> bool:
@@ -238,7 +241,7 @@ def _functions() -> dict[str, Function]:
     pure = {**MATH_FUNCTIONS, "RT": RT, "PT": PT, "JMP": JMP, "RET": RET}
     found = {name: Function(name, run, returns_bool=name in boolean) for name, run in pure.items()}
     for name in EDGE_INSTRUCTIONS:
-        found[name] = Function(name, returns_bool=True, bind=bind_edge(name))
+        found[name] = Function(name, returns_bool=True, bind=bind_edge(name), named=EDGE_OPERANDS[name])
     found["MOVE"] = Function("MOVE", bind=lambda host: make_move(host.resolve_path))
     found["RD_LOC_T"] = Function("RD_LOC_T", bind=lambda host: make_rd_loc_t(host.local_time))
     return found

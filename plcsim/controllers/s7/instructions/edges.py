@@ -160,8 +160,10 @@ def make_edge_instructions(lookup: Callable[[str], BitRef]) -> dict[str, Callabl
     return {"P": P, "N": N, "P_TRIG": P, "N_TRIG": N, "P_COIL": P_COIL, "N_COIL": N_COIL}
 
 
-EDGE_INSTRUCTIONS = ("P", "N", "P_TRIG", "N_TRIG", "P_COIL", "N_COIL")
-"""The edge instructions with an edge memory bit (each bound to one CPU's memory)."""
+EDGE_OPERANDS = {"P": (1,), "N": (1,), "P_TRIG": (1,), "N_TRIG": (1,), "P_COIL": (1, 2), "N_COIL": (1, 2)}
+"""The edge instructions with an edge memory bit (each bound to one CPU's memory) -> the positions of
+their arguments that name a bit (``P(t.S1, t.SB1)``: ``t.SB1`` is the memory bit, not its value)."""
+EDGE_INSTRUCTIONS = tuple(EDGE_OPERANDS)
 
 
 def bind_edge(name: str) -> Callable[[Any], Callable[..., bool]]:
