@@ -1,5 +1,6 @@
 """The Plant protocol and ``check_plant``: all that ``plants/`` depends on."""
 
+from plcsim.plant.check import check_plant
 from plcsim.plant.protocol import (
     CAPABILITY_MEMBERS,
     MOTOR_JAM,
@@ -18,7 +19,6 @@ from plcsim.plant.protocol import (
     SignalSpec,
     Station,
     capable,
-    check_plant,
     rig_verbs,
     stations_of,
     traced_observables,

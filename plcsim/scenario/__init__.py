@@ -1,12 +1,12 @@
 """Scenarios: the operator's actions and the faults on a timeline, their names, and the runner that applies them."""
 
+from plcsim.plant.verbs import RigVerb
 from plcsim.scenario.verbs import (
     TARGET_ROLES,
     VERB_CAPABILITY,
     VERBS,
     Action,
     Planned,
-    RigVerb,
     Scenario,
     ScenarioError,
     TimeSpec,

@@ -14,6 +14,8 @@ Times are literals (``"2s"``) or seeded ranges (``"2s..3s"``); an action may ins
 plant (``when=held("S2", "1s")``: after S2 has been interrupted for 1 s). Parts are placed with the
 pose noise of the textbook rigs (±5 mm, ±5°) unless ``noise=False``. Each action remembers the
 file and line that created it, so a bad name is reported where the instructor wrote it.
+
+A rig's own verbs (:class:`~plcsim.plant.verbs.RigVerb`, part of the rig protocol) build their actions here too.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ from typing import Any
 from plcsim.core.errors import ConfigurationError, ExerciseError, PlcError, defined_at, did_you_mean
 from plcsim.core.literals import format_ns, to_ns
 from plcsim.plant.protocol import MOTOR_JAM, OPERATOR, PART_FAULTS, PARTS, SENSOR_SHIFT
+from plcsim.plant.verbs import RigVerb, build_actions_with
 
 
 class ScenarioError(ExerciseError):
@@ -194,55 +197,6 @@ VERB_CAPABILITY = {
 """The plant capability each of plcsim's verbs needs (a verb on a rig that lacks it is refused at load time)."""
 
 
-@dataclass(frozen=True)
-class RigVerb:
-    """A scenario verb a rig brings (``set_colour``, ``jam_piston``), so that adding one needs no edit in plcsim.
-
-    The rig lists it in its ``VERBS``; the exercise calls it to build an action, like any other verb::
-
-        JAM_PISTON = RigVerb("jam_piston", "jam_piston", "piston", "jam piston {target}", targets="pistons")
-        Scenario("jammed", place("p1", at="table", t="0.5s"), JAM_PISTON("P1", t="1s"), duration="5s")
-
-    Attributes:
-        name: the verb (the kind of its trace event, what ``action(name)`` in a check counts).
-        method: the plant method that carries it out, called as ``method(target, **args)``.
-        role: what the target names (``piston``, ``part``), for messages.
-        phrase: how the action is worded, formatted with ``target`` and the action's keyword arguments.
-        targets: the plant attribute holding the names a target may be (a mapping or a set); empty with
-            ``role="part"``: the target is a part of the scenario (its plant id is passed to the method).
-        state: True if whether it can be done depends on the run (a part that is gone): a failure is then
-            recorded as ``action failed``; otherwise it is the instructor's mistake and raises.
-        doc: what it does, for the rig's documentation.
-        controller: True for a verb the controller brings rather than the rig (the Tecomat's ``interrupt``):
-            it lists it in its own ``VERBS``, ``method`` and ``targets`` are the controller's, and a run on a
-            controller without it is refused before it starts (:func:`controller_verb_problems`).
-    """
-
-    name: str
-    method: str
-    role: str
-    phrase: str
-    targets: str = ""
-    state: bool = False
-    doc: str = ""
-    controller: bool = False
-
-    def __call__(
-        self, target: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0, **args: Any
-    ) -> Action:
-        action = _action(self.name, target, t, when, delay, **args)
-        action.rig = self
-        return action
-
-    @property
-    def on_parts(self) -> bool:
-        return self.role == "part" and not self.targets
-
-    def valid_targets(self, plant: Any) -> list[str]:
-        """The names its target may be on ``plant`` (parts aside)."""
-        return [] if self.on_parts else list(getattr(plant, self.targets))
-
-
 def _parse(parse: Any, value: Any, what: str) -> Any:
     """``parse(value)``, an error in it reported at the instructor's line."""
     try:
@@ -257,6 +211,16 @@ def _action(verb: str, target: str, t: Any, when: Trigger | None, delay: Any = 0
     spec = None if t is None else _parse(TimeSpec.parse, t, f"{verb} {target}")
     delay_spec = _parse(TimeSpec.parse, delay, f"{verb} {target}: delay")
     return Action(verb, target, spec, when, delay_spec, args, defined_at())
+
+
+def _rig_action(verb: RigVerb, target: str, t: Any, when: Trigger | None, delay: Any, **args: Any) -> Action:
+    """The action of a call of the rig verb ``verb`` (:class:`~plcsim.plant.verbs.RigVerb` builds it here)."""
+    action = _action(verb.name, target, t, when, delay, **args)
+    action.rig = verb
+    return action
+
+
+build_actions_with(_rig_action)
 
 
 def press(button: str, t: Any = None, *, hold: Any = None, when: Trigger | None = None, delay: Any = 0) -> list[Action]:

@@ -10,8 +10,10 @@ from plants.conveyors import BarrierLayout, BeltLayout, ConveyorLine
 from plcsim import CPU, Tag
 from plcsim.check import action, count, event
 from plcsim.core.errors import ExerciseError
-from plcsim.plant.protocol import OPERATOR, Station, check_plant
-from plcsim.scenario.verbs import RigVerb, Scenario, place
+from plcsim.plant.check import check_plant
+from plcsim.plant.protocol import OPERATOR, Station
+from plcsim.plant.verbs import RigVerb
+from plcsim.scenario.verbs import Scenario, place
 from plcsim.sim.simulation import Simulation
 from plcsim.sim.wiring import Wire
 

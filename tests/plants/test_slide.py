@@ -10,7 +10,8 @@ from pathlib import Path
 from plants.slide import Slide
 from plcsim.apps.live.build import rig_simulation
 from plcsim.frontends import read_program
-from plcsim.plant.protocol import Plant, check_plant
+from plcsim.plant.check import check_plant
+from plcsim.plant.protocol import Plant
 from plcsim.scenario.verbs import Scenario, jam_motor, press
 
 ROOT = Path(__file__).resolve().parents[2]

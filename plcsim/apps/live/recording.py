@@ -32,9 +32,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from plcsim.scenario import verbs
 from plcsim.core.errors import PlcError
-from plcsim.scenario.verbs import Action, RigVerb, Scenario, ScenarioError
+from plcsim.plant.verbs import RigVerb
+from plcsim.scenario import verbs
+from plcsim.scenario.verbs import Action, Scenario, ScenarioError
 
 # verb -> (constructor in plcsim.scenario.verbs, positional arguments after the target, keyword arguments);
 # an argument is (name in the call, key in Action.args)
