@@ -11,7 +11,7 @@ from plants.components.component import Bench
 from plants.components.press import Press
 from plcsim import CPU, Tag
 from plcsim.plant.check import check_plant
-from plcsim.scenario.verbs import Scenario
+from plcsim.scenario.planning import Scenario
 from plcsim.sim.simulation import Simulation
 from plcsim.sim.wiring import Wire
 from plcsim.trace.plot import default_signals, timing_diagram

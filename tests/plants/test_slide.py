@@ -12,7 +12,8 @@ from plcsim.apps.live.build import rig_simulation
 from plcsim.frontends import read_program
 from plcsim.plant.check import check_plant
 from plcsim.plant.protocol import Plant
-from plcsim.scenario.verbs import Scenario, jam_motor, press
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import jam_motor, press
 
 ROOT = Path(__file__).resolve().parents[2]
 MS = 1_000_000

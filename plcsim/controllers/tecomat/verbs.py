@@ -3,7 +3,7 @@ real-time clock (S5..S12).
 
 They are :class:`~plcsim.plant.verbs.RigVerb` s with ``controller=True``: the Tecomat lists them in its
 ``VERBS``, and a scenario that uses one on another controller (an S7 program) is refused before the run
-starts, naming the line (:func:`plcsim.scenario.verbs.controller_verb_problems`).
+starts, naming the line (:func:`plcsim.scenario.names.controller_verb_problems`).
 
 >>> interrupt(1, t="2s").describe(), set_clock("07:59:30", t="1s").describe()
 ('raise interrupt source 1 (P41) at 2 s', 'set the real-time clock to 07:59:30 at 1 s')
