@@ -45,13 +45,14 @@ WORKLOADS = (
 
 def _scenario(seconds: int) -> Any:
     from exercises._conveyor import shuttle
-    from plcsim.scenario.verbs import Scenario
+    from plcsim.scenario.planning import Scenario
 
     return Scenario("shuttle", *shuttle(seconds // 7 + 1), duration=f"{seconds}s")
 
 
 def _aligner(seconds: int) -> Any:
-    from plcsim.scenario.verbs import Scenario, place, remove
+    from plcsim.scenario.planning import Scenario
+    from plcsim.scenario.verbs import place, remove
 
     actions = []
     for k in range(seconds // 4):
@@ -63,7 +64,7 @@ def _aligner(seconds: int) -> Any:
 
 def _punch(seconds: int) -> Any:
     from exercises._punch import cycles
-    from plcsim.scenario.verbs import Scenario
+    from plcsim.scenario.planning import Scenario
 
     writes = {1: {"M1_ZIADANY_POCET": 2, "M2_ZIADANY_POCET": 3}}
     return Scenario("punch", *cycles(3, writes=writes), duration=f"{seconds}s")

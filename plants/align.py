@@ -45,8 +45,7 @@ from plants.components.limit_switch import LimitSwitch
 from plants.components.piston import Piston
 from plants.components.top_view import Fence, SpotSensor, TopPart, TopViewPlant
 from plants.components.workpiece import WorkpieceSpec
-from plcsim.plant import Station
-from plcsim.scenario import RigVerb
+from plcsim.plant import RigVerb, Station
 
 BLOCK = WorkpieceSpec(length=60.0, depth=40.0, height=20.0, mass_g=30.0)
 STROKE = 40.0  # full stroke: the part flat on the fence

@@ -18,8 +18,7 @@ import math
 from typing import Any
 
 from plants.components import draw
-from plcsim.plant import OBSERVABLES, QUIESCENCE, Drawable, PlantEvent, SignalSpec
-from plcsim.scenario import RigVerb
+from plcsim.plant import OBSERVABLES, QUIESCENCE, Drawable, PlantEvent, RigVerb, SignalSpec
 
 SPINDLE_RPM = 120.0  # drawn rotation while on (one turn per 0.5 s)
 

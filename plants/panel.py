@@ -15,8 +15,7 @@ from collections.abc import Iterable
 from typing import Any
 
 from plants.components.panel import OperatorPanel
-from plcsim.plant import OBSERVABLES, OPERATOR, QUIESCENCE, Drawable, PlantEvent, SignalSpec
-from plcsim.scenario import RigVerb
+from plcsim.plant import OBSERVABLES, OPERATOR, QUIESCENCE, Drawable, PlantEvent, RigVerb, SignalSpec
 
 DEFAULT_BUTTONS = ("TLACIDLO", "TL", "TLACIDLO_ZAP", "TLACIDLO_VYP")
 DEFAULT_SWITCHES = ("PREPINAC",)

@@ -40,8 +40,17 @@ from plants.components.axis import Axis
 from plants.components.component import Assembly, Host
 from plants.components.limit_switch import LimitSwitch
 from plants.components.panel import OperatorPanel
-from plcsim.plant import MOTOR_JAM, OBSERVABLES, OPERATOR, QUIESCENCE, SENSOR_SHIFT, Drawable, PlantEvent, SignalSpec
-from plcsim.scenario import RigVerb
+from plcsim.plant import (
+    MOTOR_JAM,
+    OBSERVABLES,
+    OPERATOR,
+    QUIESCENCE,
+    SENSOR_SHIFT,
+    Drawable,
+    PlantEvent,
+    RigVerb,
+    SignalSpec,
+)
 
 STROKE = 200.0
 FEED, RAPID = 40.0, 120.0  # mm/s

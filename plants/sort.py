@@ -42,8 +42,7 @@ from plants.components.piston import Piston
 from plants.components.top_belt import TopBelt
 from plants.components.top_view import Beam, TopViewPlant
 from plants.components.workpiece import WorkpieceSpec
-from plcsim.plant import Station
-from plcsim.scenario import RigVerb
+from plcsim.plant import RigVerb, Station
 
 PIECE = WorkpieceSpec(length=25.0, depth=25.0, height=25.0, mass_g=10.0)
 BELT_LENGTH, HALF_WIDTH = 500.0, 30.0

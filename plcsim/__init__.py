@@ -14,7 +14,7 @@ from plcsim.exercise.model import Exercise
 from plcsim.frontends.python.names import CyclicInterrupt
 from plcsim.frontends.python.program import Program
 from plcsim.grading.grader import grade
-from plcsim.scenario.verbs import Scenario
+from plcsim.scenario.planning import Scenario
 from plcsim.sim.simulation import RealtimeSimulation, Simulation
 from plcsim.sim.wiring import NC, NO, Wire
 from plcsim.tags.table import DB, Tag, TagTable

@@ -65,10 +65,10 @@ from plcsim.plant import (
     SENSOR_SHIFT,
     Drawable,
     PlantEvent,
+    RigVerb,
     SignalSpec,
     Station,
 )
-from plcsim.scenario import RigVerb
 
 GRAVITY = 9810.0  # mm/s²
 

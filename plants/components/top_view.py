@@ -32,8 +32,17 @@ from plants.components.collide import BEAM_CAT, CT_BEAM, CT_PART, PART_CAT, STOP
 from plants.components.component import Assembly, Component
 from plants.components.sketch import Sketch
 from plants.components.workpiece import WorkpieceSpec
-from plcsim.plant import OBSERVABLES, PARTS, QUIESCENCE, SENSOR_SHIFT, Drawable, PlantEvent, SignalSpec, Station
-from plcsim.scenario import RigVerb
+from plcsim.plant import (
+    OBSERVABLES,
+    PARTS,
+    QUIESCENCE,
+    SENSOR_SHIFT,
+    Drawable,
+    PlantEvent,
+    RigVerb,
+    SignalSpec,
+    Station,
+)
 
 G = 9810.0  # mm/s²
 STILL_MM_S = 1e-3

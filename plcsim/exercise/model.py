@@ -19,7 +19,7 @@ from plcsim.core.errors import ConfigurationError, ExerciseError, defined_at
 from plcsim.exercise.validation import validate
 from plcsim.frontends import read_program
 from plcsim.plant.protocol import Plant
-from plcsim.scenario.verbs import Scenario
+from plcsim.scenario.planning import Scenario
 from plcsim.sim.simulation import Pacing, Simulation
 from plcsim.sim.wiring import Wire
 from plcsim.tags.table import DataBlock, Tag, TagTable

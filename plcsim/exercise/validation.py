@@ -23,7 +23,9 @@ from plcsim.controllers.s7.cpu import CPU, CPUConfig
 from plcsim.core.errors import ExerciseError, PlcError, did_you_mean
 from plcsim.core.literals import to_ns
 from plcsim.plant.protocol import rig_verbs, stations_of
-from plcsim.scenario.verbs import VERBS, Scenario, name_problems, plant_vocabulary
+from plcsim.scenario.names import name_problems, plant_vocabulary
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import VERBS
 from plcsim.sim.recorder import default_signals
 from plcsim.sim.wiring import Wiring
 

@@ -1,5 +1,6 @@
-"""The Plant protocol and ``check_plant``: all that ``plants/`` depends on."""
+"""The Plant protocol, a rig's own scenario verbs and ``check_plant``: all that ``plants/`` depends on."""
 
+from plcsim.plant.check import check_plant
 from plcsim.plant.protocol import (
     CAPABILITY_MEMBERS,
     MOTOR_JAM,
@@ -18,11 +19,11 @@ from plcsim.plant.protocol import (
     SignalSpec,
     Station,
     capable,
-    check_plant,
     rig_verbs,
     stations_of,
     traced_observables,
 )
+from plcsim.plant.verbs import RigVerb
 
 __all__ = [
     "SignalSpec",
@@ -43,6 +44,7 @@ __all__ = [
     "Operated",
     "capable",
     "stations_of",
+    "RigVerb",
     "rig_verbs",
     "traced_observables",
     "check_plant",

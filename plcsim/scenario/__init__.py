@@ -1,31 +1,26 @@
 """Scenarios: the operator's actions and the faults on a timeline, their names, and the runner that applies them."""
 
+from plcsim.plant.verbs import RigVerb
+from plcsim.scenario.names import check_names, controller_verb_problems, name_problems, plant_vocabulary
+from plcsim.scenario.planning import Planned, Scenario, plan
 from plcsim.scenario.verbs import (
     TARGET_ROLES,
     VERB_CAPABILITY,
     VERBS,
     Action,
-    Planned,
-    RigVerb,
-    Scenario,
     ScenarioError,
     TimeSpec,
     Trigger,
     after_event,
     chatter,
-    check_names,
     clear,
-    controller_verb_problems,
     force,
     free_motor,
     held,
     jam,
     jam_motor,
     knock_off,
-    name_problems,
     place,
-    plan,
-    plant_vocabulary,
     power_cycle,
     press,
     release,

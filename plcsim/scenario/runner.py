@@ -22,7 +22,8 @@ from typing import Any
 from plcsim.core.clock import NEVER
 from plcsim.core.errors import ConfigurationError, ExerciseError, PlcError
 from plcsim.plant.protocol import MOTOR_JAM, SENSOR_SHIFT, capable, rig_verbs, stations_of
-from plcsim.scenario.verbs import Action, Planned, Scenario, ScenarioError, plan
+from plcsim.scenario.planning import Planned, Scenario, plan
+from plcsim.scenario.verbs import Action, ScenarioError
 from plcsim.trace.facade import Trace, TraceEvent
 
 POSE_NOISE_MM = 5.0

@@ -1,5 +1,6 @@
-"""Scenarios: what the operator does and what goes wrong, on a timeline an instructor can read.
+"""The scenario verbs: what the operator does and what goes wrong, as actions on a timeline an instructor can read.
 
+>>> from plcsim.scenario import Scenario
 >>> jam_run = Scenario(
 ...     "jam",
 ...     place("part", at="S1", t="0.5s"),
@@ -14,18 +15,22 @@ Times are literals (``"2s"``) or seeded ranges (``"2s..3s"``); an action may ins
 plant (``when=held("S2", "1s")``: after S2 has been interrupted for 1 s). Parts are placed with the
 pose noise of the textbook rigs (±5 mm, ±5°) unless ``noise=False``. Each action remembers the
 file and line that created it, so a bad name is reported where the instructor wrote it.
+
+A rig's own verbs (:class:`~plcsim.plant.verbs.RigVerb`, part of the rig protocol) build their actions here too.
+The timeline as a whole is :mod:`plcsim.scenario.planning`; the names it relies on are checked by
+:mod:`plcsim.scenario.names`.
 """
 
 from __future__ import annotations
 
 import random
-from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from plcsim.core.errors import ConfigurationError, ExerciseError, PlcError, defined_at, did_you_mean
+from plcsim.core.errors import ExerciseError, PlcError, defined_at
 from plcsim.core.literals import format_ns, to_ns
 from plcsim.plant.protocol import MOTOR_JAM, OPERATOR, PART_FAULTS, PARTS, SENSOR_SHIFT
+from plcsim.plant.verbs import RigVerb, build_actions_with
 
 
 class ScenarioError(ExerciseError):
@@ -194,55 +199,6 @@ VERB_CAPABILITY = {
 """The plant capability each of plcsim's verbs needs (a verb on a rig that lacks it is refused at load time)."""
 
 
-@dataclass(frozen=True)
-class RigVerb:
-    """A scenario verb a rig brings (``set_colour``, ``jam_piston``), so that adding one needs no edit in plcsim.
-
-    The rig lists it in its ``VERBS``; the exercise calls it to build an action, like any other verb::
-
-        JAM_PISTON = RigVerb("jam_piston", "jam_piston", "piston", "jam piston {target}", targets="pistons")
-        Scenario("jammed", place("p1", at="table", t="0.5s"), JAM_PISTON("P1", t="1s"), duration="5s")
-
-    Attributes:
-        name: the verb (the kind of its trace event, what ``action(name)`` in a check counts).
-        method: the plant method that carries it out, called as ``method(target, **args)``.
-        role: what the target names (``piston``, ``part``), for messages.
-        phrase: how the action is worded, formatted with ``target`` and the action's keyword arguments.
-        targets: the plant attribute holding the names a target may be (a mapping or a set); empty with
-            ``role="part"``: the target is a part of the scenario (its plant id is passed to the method).
-        state: True if whether it can be done depends on the run (a part that is gone): a failure is then
-            recorded as ``action failed``; otherwise it is the instructor's mistake and raises.
-        doc: what it does, for the rig's documentation.
-        controller: True for a verb the controller brings rather than the rig (the Tecomat's ``interrupt``):
-            it lists it in its own ``VERBS``, ``method`` and ``targets`` are the controller's, and a run on a
-            controller without it is refused before it starts (:func:`controller_verb_problems`).
-    """
-
-    name: str
-    method: str
-    role: str
-    phrase: str
-    targets: str = ""
-    state: bool = False
-    doc: str = ""
-    controller: bool = False
-
-    def __call__(
-        self, target: str, t: Any = None, *, when: Trigger | None = None, delay: Any = 0, **args: Any
-    ) -> Action:
-        action = _action(self.name, target, t, when, delay, **args)
-        action.rig = self
-        return action
-
-    @property
-    def on_parts(self) -> bool:
-        return self.role == "part" and not self.targets
-
-    def valid_targets(self, plant: Any) -> list[str]:
-        """The names its target may be on ``plant`` (parts aside)."""
-        return [] if self.on_parts else list(getattr(plant, self.targets))
-
-
 def _parse(parse: Any, value: Any, what: str) -> Any:
     """``parse(value)``, an error in it reported at the instructor's line."""
     try:
@@ -257,6 +213,16 @@ def _action(verb: str, target: str, t: Any, when: Trigger | None, delay: Any = 0
     spec = None if t is None else _parse(TimeSpec.parse, t, f"{verb} {target}")
     delay_spec = _parse(TimeSpec.parse, delay, f"{verb} {target}: delay")
     return Action(verb, target, spec, when, delay_spec, args, defined_at())
+
+
+def _rig_action(verb: RigVerb, target: str, t: Any, when: Trigger | None, delay: Any, **args: Any) -> Action:
+    """The action of a call of the rig verb ``verb`` (:class:`~plcsim.plant.verbs.RigVerb` builds it here)."""
+    action = _action(verb.name, target, t, when, delay, **args)
+    action.rig = verb
+    return action
+
+
+build_actions_with(_rig_action)
 
 
 def press(button: str, t: Any = None, *, hold: Any = None, when: Trigger | None = None, delay: Any = 0) -> list[Action]:
@@ -415,225 +381,3 @@ def start_cpu(t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> 
 def power_cycle(t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
     """Power the CPU off and on (retain tags survive)."""
     return _action("power_cycle", "CPU", t, when, delay)
-
-
-def _flatten(items: Iterable[Any]) -> list[Action]:
-    out: list[Action] = []
-    for item in items:
-        if isinstance(item, Action):
-            out.append(item)
-        elif isinstance(item, (list, tuple)):
-            out.extend(_flatten(item))
-        else:
-            raise ScenarioError(f"a scenario holds actions such as press(...) or place(...), not {item!r}")
-    return out
-
-
-class Scenario:
-    """A named timeline of actions with a duration and a short description."""
-
-    def __init__(self, name: str, *actions: Action | list[Action], duration: str | int = "10s", description: str = ""):
-        self.name = name
-        self.actions = _flatten(actions)
-        self.defined_at = defined_at()
-        self.duration_ns = _parse(lambda d: to_ns(d, "duration"), duration, f"scenario {name!r}")
-        self.description = description
-        if self.duration_ns <= 0:
-            raise ScenarioError(
-                f"{self.defined_at}: scenario {name!r}: duration {duration!r} is not positive; "
-                f"a run needs a duration such as duration='10s'"
-            )
-        for a in self.actions:
-            if a.t is not None and a.t.hi_ns >= self.duration_ns:
-                raise ScenarioError(
-                    f"{a.defined_at}: scenario {name!r}: {a.describe()}: the run ends at "
-                    f"{format_ns(self.duration_ns)}, so this action may never happen; "
-                    f"make it earlier or the duration longer"
-                )
-
-    def __repr__(self) -> str:
-        return f"<Scenario {self.name}: {len(self.actions)} actions, {format_ns(self.duration_ns)}>"
-
-
-@dataclass
-class Planned:
-    """An action with its drawn time (or its trigger still pending)."""
-
-    action: Action
-    at_ns: int | None
-    order: int
-    done: bool = False
-    armed_since: int | None = None
-
-
-def plan(scenario: Scenario, rng: random.Random) -> list[Planned]:
-    """Draw the random times of a scenario (in the order the actions were written)."""
-    planned: list[Planned] = []
-    starts: dict[int, int] = {}
-    for order, action in enumerate(scenario.actions):
-        if action.verb == "release" and "after" in action.args:
-            start = starts[id(action.args["after"])]
-            at = start + action.args["hold"].draw(rng)
-        elif action.t is not None:
-            at = action.t.draw(rng)
-        else:
-            at = None
-        if at is not None:
-            starts[id(action)] = at
-        planned.append(Planned(action, at, order))
-    return planned
-
-
-def check_names(
-    scenario: Scenario,
-    *,
-    stations: Iterable[str],
-    buttons: Iterable[str],
-    signals: Iterable[str],
-    tags: Iterable[str],
-    actuators: Iterable[str],
-    sensors: Iterable[str] | None = None,
-    events: Iterable[str] | None = None,
-    subjects: Iterable[str] | None = None,
-    capabilities: Iterable[str] | None = None,
-    verbs: Mapping[str, Iterable[str]] | None = None,
-) -> None:
-    """Check every name in the scenario before the run, naming the line and the valid choices."""
-    for problem in name_problems(
-        scenario,
-        stations=stations,
-        buttons=buttons,
-        signals=signals,
-        tags=tags,
-        actuators=actuators,
-        sensors=sensors,
-        events=events,
-        subjects=subjects,
-        capabilities=capabilities,
-        verbs=verbs,
-    ):
-        raise ScenarioError(": ".join(problem))
-
-
-def name_problems(
-    scenario: Scenario,
-    *,
-    stations: Iterable[str],
-    buttons: Iterable[str],
-    signals: Iterable[str],
-    tags: Iterable[str],
-    actuators: Iterable[str],
-    sensors: Iterable[str] | None = None,
-    events: Iterable[str] | None = None,
-    subjects: Iterable[str] | None = None,
-    capabilities: Iterable[str] | None = None,
-    verbs: Mapping[str, Iterable[str]] | None = None,
-) -> list[tuple[str, str]]:
-    """Every name of the scenario that does not exist: ``(file:line, "scenario ...: no ...; valid: ...")``.
-
-    ``signals`` are what a fault can be put on (plant signals and wired tags), ``sensors`` what a trigger
-    waits for (the plant's sensors: nothing else is polled); ``events`` the plant's event vocabulary and
-    ``subjects`` the names its events are about, besides the scenario's parts; ``capabilities`` what the
-    plant declares (a verb needing another one is refused) and ``verbs`` its rig verbs with their valid
-    targets (None: no plant, not checked).
-    """
-    signal_list = list(signals)
-    sensor_list = list(sensors) if sensors is not None else signal_list
-    station_list = list(stations)
-    parts = sorted({a.target for a in scenario.actions if a.verb == "place"})
-    choices: dict[str, list[str]] = {
-        "station": station_list,
-        "button or switch": list(buttons),
-        "tag": list(tags),
-        "part or station": parts + station_list,
-        "part": parts,
-        "wired signal": signal_list,
-        "sensor": sensor_list,
-        "motor": list(actuators),
-        "signal to wait for": sensor_list,
-    }
-    if events is not None:
-        choices["plant event to wait for"] = sorted(events)
-    if subjects is not None:
-        choices["event subject (a part or plant name)"] = parts + sorted(set(subjects) - set(parts))
-    problems = []
-    caps = None if capabilities is None else set(capabilities)
-    for a in scenario.actions:
-        if a.rig is not None and a.rig.controller:
-            continue  # the controller's verb: checked against the controller a run has (controller_verb_problems)
-        rig_problem = _rig_verb_problem(a, verbs)
-        if rig_problem:
-            problems.append((a.defined_at, f"scenario {scenario.name!r}: {a.describe()}: {rig_problem}"))
-            continue
-        targets = None
-        if a.rig is not None and verbs is not None:
-            targets = parts if a.rig.on_parts else list(verbs[a.verb])
-        found = len(problems)
-        for k, (role, name) in enumerate(a.names()):
-            is_target = a.rig is not None and k == 0  # a rig verb's first name is its target
-            valid = targets if is_target else choices.get(role)
-            key = name.split(".")[0].split("[")[0] if role == "tag" else name
-            if valid is None or key in valid:
-                continue
-            listed = ", ".join(valid) if valid else "none"
-            problems.append(
-                (
-                    a.defined_at,
-                    f"scenario {scenario.name!r}: {a.describe()}: no {role} {name!r}"
-                    f"{did_you_mean(name, valid)}; valid: {listed}",
-                )
-            )
-        need = VERB_CAPABILITY.get(a.verb) if a.rig is None else None
-        if len(problems) == found and caps is not None and need is not None and need not in caps:
-            problems.append(
-                (
-                    a.defined_at,
-                    f"scenario {scenario.name!r}: {a.describe()}: the rig cannot do this "
-                    f"(it does not declare the capability {need!r})",
-                )
-            )
-    return problems
-
-
-def controller_verb_problems(scenario: Scenario, controller: Any) -> list[tuple[str, str]]:
-    """Every action of the scenario that needs a verb ``controller`` does not bring, or names a target it
-    lacks (an interrupt source the Tecomat does not have): ``(file:line, "scenario ...: ...")``."""
-    own = getattr(controller, "VERBS", {})
-    family = getattr(controller, "family", None) or getattr(controller.config, "family", "controller")
-    problems = []
-    for a in scenario.actions:
-        if a.rig is None or not a.rig.controller:
-            continue
-        where, what = a.defined_at, f"scenario {scenario.name!r}: {a.describe()}"
-        if own.get(a.verb) is not a.rig:
-            problems.append((where, f"{what}: the {family} cannot do this ({a.rig.doc or 'another controller'})"))
-        elif a.rig.targets and a.target not in (valid := list(getattr(controller, a.rig.targets))):
-            listed = f"{did_you_mean(a.target, valid)}; valid: {', '.join(valid)}"
-            problems.append((where, f"{what}: no {a.rig.role} {a.target!r}{listed}"))
-    return problems
-
-
-def _rig_verb_problem(a: Action, verbs: Mapping[str, Iterable[str]] | None) -> str:
-    """Why the rig cannot carry out this rig verb at all ("" if it can, or for one of plcsim's verbs)."""
-    if a.rig is None or verbs is None or a.verb in verbs:
-        return ""
-    return f"the rig has no verb {a.verb!r}{did_you_mean(a.verb, verbs)}; its verbs: {', '.join(verbs) or 'none'}"
-
-
-def plant_vocabulary(plant: Any) -> dict[str, Any]:
-    """What a scenario may ask of ``plant`` beyond its names: the ``events``, ``subjects``, ``capabilities`` and
-    ``verbs`` (with their valid targets) arguments of :func:`name_problems` (all None for no plant)."""
-    if plant is None:
-        return {"events": None, "subjects": None, "capabilities": None, "verbs": None}
-    missing = [m for m in ("EVENTS", "CAPABILITIES", "VERBS", "event_subjects") if not hasattr(plant, m)]
-    if missing:
-        raise ConfigurationError(
-            f"the plant {getattr(plant, 'name', plant)!r} does not declare {missing}: a plant declares its event "
-            "kinds, capabilities and rig verbs (see plcsim.plant.protocol.Plant)"
-        )
-    return {
-        "events": sorted(plant.EVENTS),
-        "subjects": sorted(plant.event_subjects()),
-        "capabilities": sorted(plant.CAPABILITIES),
-        "verbs": {name: verb.valid_targets(plant) for name, verb in plant.VERBS.items()},
-    }

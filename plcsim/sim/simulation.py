@@ -36,8 +36,10 @@ from plcsim.core.clock import NEVER
 from plcsim.core.errors import ConfigurationError, PlcError
 from plcsim.core.literals import format_ns, to_ns
 from plcsim.plant.protocol import QUIESCENCE, Plant, capable, stations_of, traced_observables
+from plcsim.scenario.names import check_names, controller_verb_problems, plant_vocabulary
+from plcsim.scenario.planning import Scenario
 from plcsim.scenario.runner import ActionRunner
-from plcsim.scenario.verbs import Scenario, ScenarioError, check_names, controller_verb_problems, plant_vocabulary
+from plcsim.scenario.verbs import ScenarioError
 from plcsim.sim.recorder import Recorder
 from plcsim.sim.wiring import Wire, Wiring
 from plcsim.trace.facade import Trace, TraceEvent

@@ -20,7 +20,8 @@ from plcsim.check.exercised import Activity, unprovoked
 from plcsim.core.errors import ExerciseError
 from plcsim.exercise.model import Exercise
 from plcsim.grading.grader import grade, grade_sandboxed, write_gradebook
-from plcsim.scenario.verbs import Scenario, press
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import press
 from plcsim.trace.facade import Trace
 
 DOES_NOTHING = "def nothing(t):\n    pass\n\n\nOB1 = [nothing]\n"

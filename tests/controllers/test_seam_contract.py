@@ -19,7 +19,8 @@ from plcsim.controllers.choice import controller_for
 from plcsim.controllers.profiles import Profile
 from plcsim.controllers.s7.profile import task_kind
 from plcsim.frontends import CONTRACT_TAGS, FrontEnd
-from plcsim.scenario.verbs import Scenario, press
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import press
 from plcsim.sim.wiring import NO
 
 FRONT_ENDS = frontends.front_ends()

@@ -32,7 +32,8 @@ EXERCISE = """
 from plants import Panel
 from plcsim.check import always, same
 from plcsim.exercise.model import IO, Exercise
-from plcsim.scenario.verbs import Scenario, press
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import press
 
 EXERCISE = Exercise(
     number="9.1.1",

@@ -19,7 +19,8 @@ from plcsim.exercise.model import IO, Exercise, Solution
 from plcsim.frontends import read_program
 from plcsim.grading.grader import evaluate, run_scenarios
 from plcsim.grading.report import Report
-from plcsim.scenario.verbs import Scenario, ScenarioError, switch
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import ScenarioError, switch
 from plcsim.tags.types import Byte
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -22,18 +22,8 @@ from plcsim.check import action, count, event, eventually, falls, final, never, 
 from plcsim.core.errors import ConfigurationError, ExerciseError
 from plcsim.exercise.model import IO, Exercise, only
 from plcsim.exercise.validation import validate
-from plcsim.scenario.verbs import (
-    Scenario,
-    ScenarioError,
-    after_event,
-    held,
-    place,
-    press,
-    remove,
-    shift_sensor,
-    stuck,
-    write,
-)
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import ScenarioError, after_event, held, place, press, remove, shift_sensor, stuck, write
 from plcsim.sim.wiring import NO
 
 HERE = re.escape(__file__)
@@ -466,7 +456,7 @@ GOOD = """\
 from plants import Conv1
 from plcsim.check import never
 from plcsim.exercise.model import IO, Exercise
-from plcsim.scenario.verbs import Scenario, place
+from plcsim.scenario import Scenario, place
 
 EXERCISE = Exercise(
     number="9.9.{n}",

@@ -20,7 +20,8 @@ from pathlib import Path
 from plants import Panel
 from plcsim.check import always, same
 from plcsim.exercise.model import IO, Exercise, Solution
-from plcsim.scenario.verbs import Scenario, press
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import press
 
 HERE = Path(__file__).parent
 SOLUTIONS = [Solution("reference", HERE / "solutions" / "{slug}.py", explanation="LED := button")]

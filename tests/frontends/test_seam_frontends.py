@@ -32,7 +32,8 @@ from plcsim.core.errors import ConfigurationError, ProgramError, UnknownTagError
 from plcsim.frontends import read_program, register, suffixes, unregister
 from plcsim.grading.grader import evaluate, run_scenarios
 from plcsim.grading.report import Report
-from plcsim.scenario.verbs import Scenario, press
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import press
 from plcsim.sim.wiring import NO
 from plcsim.tags.table import TagTable
 

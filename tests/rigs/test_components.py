@@ -10,8 +10,11 @@ from plants.conveyors import BarrierLayout, BeltLayout, ConveyorLine
 from plcsim import CPU, Tag
 from plcsim.check import action, count, event
 from plcsim.core.errors import ExerciseError
-from plcsim.plant.protocol import OPERATOR, Station, check_plant
-from plcsim.scenario.verbs import RigVerb, Scenario, place
+from plcsim.plant.check import check_plant
+from plcsim.plant.protocol import OPERATOR, Station
+from plcsim.plant.verbs import RigVerb
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import place
 from plcsim.sim.simulation import Simulation
 from plcsim.sim.wiring import Wire
 
@@ -169,7 +172,7 @@ def test_a_plant_that_declares_nothing_is_refused_with_the_reason():
     from types import SimpleNamespace
 
     from plcsim.core.errors import ConfigurationError
-    from plcsim.scenario.verbs import plant_vocabulary
+    from plcsim.scenario.names import plant_vocabulary
 
     old = SimpleNamespace(name="OLD", VERBS={}, event_subjects=set)  # a plant of the old protocol
     with pytest.raises(ConfigurationError, match=r"'OLD' does not declare \['EVENTS', 'CAPABILITIES'\]"):

@@ -9,7 +9,8 @@ import pytest
 
 from plants import RIGS, Conv1, Machine, Panel
 from plants.components import Belt, Bench, LimitSwitch, OperatorPanel, WorkpieceSpec
-from plcsim.plant.protocol import PARTS, Plant, PlantEvent, capable, check_plant
+from plcsim.plant.check import check_plant
+from plcsim.plant.protocol import PARTS, Plant, PlantEvent, capable
 
 MS = 1_000_000
 

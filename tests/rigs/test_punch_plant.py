@@ -10,8 +10,8 @@ from plants import RIGS, Punch
 from plants.components.component import Bench
 from plants.components.press import Press
 from plcsim import CPU, Tag
-from plcsim.plant.protocol import check_plant
-from plcsim.scenario.verbs import Scenario
+from plcsim.plant.check import check_plant
+from plcsim.scenario.planning import Scenario
 from plcsim.sim.simulation import Simulation
 from plcsim.sim.wiring import Wire
 from plcsim.trace.plot import default_signals, timing_diagram

@@ -10,8 +10,10 @@ from pathlib import Path
 from plants.slide import Slide
 from plcsim.apps.live.build import rig_simulation
 from plcsim.frontends import read_program
-from plcsim.plant.protocol import Plant, check_plant
-from plcsim.scenario.verbs import Scenario, jam_motor, press
+from plcsim.plant.check import check_plant
+from plcsim.plant.protocol import Plant
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import jam_motor, press
 
 ROOT = Path(__file__).resolve().parents[2]
 MS = 1_000_000

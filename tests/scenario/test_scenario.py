@@ -1,4 +1,4 @@
-"""Scenarios (plcsim.scenario.verbs, carried out by the simulator): seeded time ranges, triggers, the name
+"""Scenarios (plcsim.scenario, carried out by the simulator): seeded time ranges, triggers, the name
 checks before a run (with the file and line of the action and the valid choices), actions that fail
 during a run, and the plant faults (shifted sensor, jammed motor).
 """
@@ -14,8 +14,8 @@ import pytest
 from exercises import get
 from plants import Conv1, Panel
 from plcsim import CPU, CPUConfig, Simulation, Tag
+from plcsim.scenario.planning import Scenario, plan
 from plcsim.scenario.verbs import (
-    Scenario,
     ScenarioError,
     TimeSpec,
     after_event,
@@ -24,7 +24,6 @@ from plcsim.scenario.verbs import (
     jam,
     jam_motor,
     place,
-    plan,
     press,
     remove,
     shift_sensor,

@@ -20,7 +20,8 @@ from plants import Conv1, Panel
 from plcsim import CPU, RUN, STOP, CPUConfig, RealtimeSimulation, Simulation, Tag
 from plcsim.core.errors import ConfigurationError
 from plcsim.plant.protocol import SignalSpec
-from plcsim.scenario.verbs import Scenario, held, place, press, remove
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import held, place, press, remove
 from plcsim.sim.simulation import SimulationError
 from plcsim.sim.wiring import NO
 

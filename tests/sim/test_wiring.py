@@ -11,7 +11,8 @@ import pytest
 from plants import Conv1, Panel
 from plcsim import CPU, Int, Simulation, Tag
 from plcsim.plant.protocol import SignalSpec
-from plcsim.scenario.verbs import Scenario, chatter, clear, place, press, stuck, wire_break
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import chatter, clear, place, press, stuck, wire_break
 from plcsim.sim.wiring import NC, NO, Wire, Wiring, WiringError, analog
 
 MS = 1_000_000

@@ -12,7 +12,8 @@ from matplotlib.figure import Figure
 
 from plcsim import CPU, Int, Tag
 from plcsim.core.errors import UnknownTagError
-from plcsim.scenario.verbs import Scenario, press
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import press
 from plcsim.sim.simulation import Simulation
 from plcsim.trace.facade import Trace, TraceEvent
 from plcsim.trace.plot import HIGH, LANE, save_timing_diagram, steps, timing_diagram

@@ -12,7 +12,8 @@ rr = pytest.importorskip("rerun")
 
 from plcsim import CPU, Tag  # noqa: E402
 from plcsim.plant.protocol import Drawable, PlantEvent, SignalSpec, Station  # noqa: E402
-from plcsim.scenario.verbs import Scenario, place, stop_cpu  # noqa: E402
+from plcsim.scenario.planning import Scenario  # noqa: E402
+from plcsim.scenario.verbs import place, stop_cpu  # noqa: E402
 from plcsim.sim.simulation import Simulation  # noqa: E402
 from plcsim.sim.wiring import NO  # noqa: E402
 from plcsim.trace.facade import Trace, TraceEvent  # noqa: E402

@@ -17,7 +17,8 @@ from exercises import get
 from plcsim import CPU, Tag
 from plcsim.check import seen, seen_at
 from plcsim.grading.grader import grade
-from plcsim.scenario.verbs import Scenario, power_cycle, write
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import power_cycle, write
 from plcsim.sim.simulation import Simulation
 
 MS = 1_000_000

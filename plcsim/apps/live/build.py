@@ -14,7 +14,8 @@ from plcsim.core.clock import NEVER
 from plcsim.core.errors import PlcError
 from plcsim.frontends import read_program
 from plcsim.plant.protocol import Plant
-from plcsim.scenario.verbs import RigVerb, Scenario
+from plcsim.plant.verbs import RigVerb
+from plcsim.scenario.planning import Scenario
 from plcsim.sim.simulation import Pacing, Simulation
 from plcsim.sim.wiring import Wire
 from plcsim.tags.table import Tag

@@ -8,7 +8,7 @@ session replays bit for bit: same program, seed and actions give the same trace 
 >>> rec = Recording("PANEL", seed=1, actions=clicks, ended_ns=50_000_000)
 >>> print(rec.to_python(), end="")  # doctest: +ELLIPSIS
 # plcsim live session on PANEL, seed 1: replay with  plcsim run PANEL --program FILE --scenario THIS_FILE
-from plcsim.scenario.verbs import Scenario, press, release
+from plcsim.scenario import Scenario, press, release
 <BLANKLINE>
 SEED = 1
 SCENARIO = Scenario(
@@ -32,9 +32,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from plcsim.scenario import verbs
 from plcsim.core.errors import PlcError
-from plcsim.scenario.verbs import Action, RigVerb, Scenario, ScenarioError
+from plcsim.plant.verbs import RigVerb
+from plcsim.scenario import verbs
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import Action, ScenarioError
 
 # verb -> (constructor in plcsim.scenario.verbs, positional arguments after the target, keyword arguments);
 # an argument is (name in the call, key in Action.args)
@@ -219,7 +221,7 @@ class Recording:
         used = sorted({_CALLS[a.verb][0] for a in self.actions if a.rig is None})
         head = [
             f"# plcsim live session on {self.target}, seed {self.seed}: replay with  {self.replay_command()}",
-            f"from plcsim.scenario.verbs import {', '.join(['Scenario', *used])}",
+            f"from plcsim.scenario import {', '.join(['Scenario', *used])}",
         ]
         body = ["", f"SEED = {self.seed}"]
         if any(a.rig is not None for a in self.actions):  # the rig's and the controller's own verbs, by name

@@ -36,7 +36,9 @@ from plcsim.core.literals import format_ns
 from plcsim.frontends import read_program
 from plcsim.frontends.python.program import Program
 from plcsim.plant.protocol import Drawable, rig_verbs
-from plcsim.scenario.verbs import Action, RigVerb, Scenario
+from plcsim.plant.verbs import RigVerb
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import Action
 from plcsim.sim.simulation import Simulation
 
 PANEL_DEMO = "def OB1(t):\n    t.LED = t.TL\n"

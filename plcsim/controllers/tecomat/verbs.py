@@ -1,9 +1,9 @@
 """Scenario verbs the Tecomat controller brings: raising an interrupt source (P41..P48) and setting the
 real-time clock (S5..S12).
 
-They are :class:`~plcsim.scenario.verbs.RigVerb` s with ``controller=True``: the Tecomat lists them in its
+They are :class:`~plcsim.plant.verbs.RigVerb` s with ``controller=True``: the Tecomat lists them in its
 ``VERBS``, and a scenario that uses one on another controller (an S7 program) is refused before the run
-starts, naming the line (:func:`plcsim.scenario.verbs.controller_verb_problems`).
+starts, naming the line (:func:`plcsim.scenario.names.controller_verb_problems`).
 
 >>> interrupt(1, t="2s").describe(), set_clock("07:59:30", t="1s").describe()
 ('raise interrupt source 1 (P41) at 2 s', 'set the real-time clock to 07:59:30 at 1 s')
@@ -19,7 +19,8 @@ import datetime as _dt
 from typing import Any
 
 from plcsim.core.errors import defined_at
-from plcsim.scenario.verbs import Action, RigVerb, ScenarioError, Trigger
+from plcsim.plant.verbs import RigVerb
+from plcsim.scenario.verbs import Action, ScenarioError, Trigger
 
 SOURCES = tuple(str(k) for k in range(1, 9))
 """The interrupt sources 1..8 (manual Fig. 5: P41..P48)."""

@@ -17,7 +17,8 @@ from plcsim.frontends import read_program
 from plcsim.frontends.il import IlProgram, program_text
 from plcsim.grading.grader import evaluate, grade, run_scenarios
 from plcsim.grading.report import Report
-from plcsim.scenario.verbs import Scenario, press
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import press
 from plcsim.sim.wiring import NO
 
 SOLUTIONS = Path(__file__).resolve().parents[3] / "examples" / "tecomat" / "exercises"

@@ -1,0 +1,83 @@
+"""A scenario as a whole: the named timeline of actions with its duration, and the times drawn for one run.
+
+:class:`Scenario` is what an exercise lists; :func:`plan` draws its seeded time ranges (``"2s..3s"``) for one
+run, in the order the actions were written, and the runner (:mod:`plcsim.scenario.runner`) carries them out.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Iterable
+from dataclasses import dataclass
+from typing import Any
+
+from plcsim.core.errors import defined_at
+from plcsim.core.literals import format_ns, to_ns
+from plcsim.scenario.verbs import Action, ScenarioError, _parse
+
+
+def _flatten(items: Iterable[Any]) -> list[Action]:
+    out: list[Action] = []
+    for item in items:
+        if isinstance(item, Action):
+            out.append(item)
+        elif isinstance(item, (list, tuple)):
+            out.extend(_flatten(item))
+        else:
+            raise ScenarioError(f"a scenario holds actions such as press(...) or place(...), not {item!r}")
+    return out
+
+
+class Scenario:
+    """A named timeline of actions with a duration and a short description."""
+
+    def __init__(self, name: str, *actions: Action | list[Action], duration: str | int = "10s", description: str = ""):
+        self.name = name
+        self.actions = _flatten(actions)
+        self.defined_at = defined_at()
+        self.duration_ns = _parse(lambda d: to_ns(d, "duration"), duration, f"scenario {name!r}")
+        self.description = description
+        if self.duration_ns <= 0:
+            raise ScenarioError(
+                f"{self.defined_at}: scenario {name!r}: duration {duration!r} is not positive; "
+                f"a run needs a duration such as duration='10s'"
+            )
+        for a in self.actions:
+            if a.t is not None and a.t.hi_ns >= self.duration_ns:
+                raise ScenarioError(
+                    f"{a.defined_at}: scenario {name!r}: {a.describe()}: the run ends at "
+                    f"{format_ns(self.duration_ns)}, so this action may never happen; "
+                    f"make it earlier or the duration longer"
+                )
+
+    def __repr__(self) -> str:
+        return f"<Scenario {self.name}: {len(self.actions)} actions, {format_ns(self.duration_ns)}>"
+
+
+@dataclass
+class Planned:
+    """An action with its drawn time (or its trigger still pending)."""
+
+    action: Action
+    at_ns: int | None
+    order: int
+    done: bool = False
+    armed_since: int | None = None
+
+
+def plan(scenario: Scenario, rng: random.Random) -> list[Planned]:
+    """Draw the random times of a scenario (in the order the actions were written)."""
+    planned: list[Planned] = []
+    starts: dict[int, int] = {}
+    for order, action in enumerate(scenario.actions):
+        if action.verb == "release" and "after" in action.args:
+            start = starts[id(action.args["after"])]
+            at = start + action.args["hold"].draw(rng)
+        elif action.t is not None:
+            at = action.t.draw(rng)
+        else:
+            at = None
+        if at is not None:
+            starts[id(action)] = at
+        planned.append(Planned(action, at, order))
+    return planned
