@@ -6,7 +6,6 @@ from plcsim.mutate.engine import (
     KILLED,
     STILLBORN,
     SURVIVED,
-    Mutant,
     MutationReport,
     Outcome,
     behaviour,
@@ -17,6 +16,7 @@ from plcsim.mutate.engine import (
     mutate_exercise,
     print_mutation_report,
 )
+from plcsim.mutate.mutant import Mutant
 
 __all__ = [
     "Mutant",

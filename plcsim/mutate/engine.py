@@ -20,9 +20,7 @@ move       a network moved to the end of its OB
 task       a cyclic interrupt's networks (OB30) run in OB1 instead, every scan
 ========== ==================================================================================
 
-A preset step is one unit in the decimal place below the value's leading digit, at least one
-unit of the literal (10 s -> 9 s / 11 s, 3 s -> 2.9 s / 3.1 s, 100 ms -> 90 ms / 110 ms, PV 3 -> 2 / 4):
-about a tenth of the preset, the size of slip that a check's tolerance should not absorb.
+A preset moves by the preset step of :mod:`plcsim.mutate.mutant`.
 
 A Tecomat instruction-list reference (``.il``) gets the mutants of :mod:`plcsim.mutate.il` (the same
 slips in its instructions), loaded through the Tecomat front end and graded and classified as below.
@@ -56,7 +54,6 @@ import ast
 import copy
 import hashlib
 import json
-import math
 import multiprocessing
 import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
@@ -70,11 +67,11 @@ import numpy as np
 from plcsim.controllers.loaded import SourceProgram
 from plcsim.controllers.s7.cpu import CLOCK_BITS, SYSTEM_BITS
 from plcsim.core.errors import ExerciseError, PlcError, did_you_mean
-from plcsim.core.literals import time_ms
 from plcsim.exercise.model import Exercise
 from plcsim.frontends.python.compiler import Typing
 from plcsim.frontends.python.program import Program
 from plcsim.grading.grader import Report, grade
+from plcsim.mutate.mutant import Mutant, preset_steps
 from plcsim.tags.table import TagTable
 from plcsim.tags.types import Bool
 
@@ -87,20 +84,6 @@ _EDGE_BOXES = {"R_TRIG": "F_TRIG", "F_TRIG": "R_TRIG"}
 _BOUNDARY = {ast.Lt: ast.LtE, ast.LtE: ast.Lt, ast.Gt: ast.GtE, ast.GtE: ast.Gt, ast.Eq: ast.NotEq, ast.NotEq: ast.Eq}
 _PRESETS = ("PT", "PV")
 _CPU_BITS = {name for _, name, _ in CLOCK_BITS} | {name for _, name in SYSTEM_BITS}
-
-
-@dataclass(frozen=True)
-class Mutant:
-    """One mutant of a program: what changed, where, and the mutated source."""
-
-    number: int
-    operator: str
-    line: int
-    description: str
-    source: str
-
-    def __str__(self) -> str:
-        return f"line {self.line}: {self.description}"
 
 
 # --------------------------------------------------------------------------------------------
@@ -284,31 +267,6 @@ def _preset_sites(const: ast.Constant, what: str, index: dict[int, int]) -> Iter
     value = const.value
     for new in preset_steps(value):
         yield "preset", const.lineno, f"{what}{value!r} → {new!r}", _set_attr(index[id(const)], "value", new)
-
-
-def preset_steps(value: Any) -> list[Any]:
-    """The preset one step below and above ``value`` (see the module docstring)."""
-    if isinstance(value, bool):
-        return []
-    if isinstance(value, int):
-        step = max(1, _tenth_of_magnitude(abs(value)))
-        return [v for v in (value - step, value + step) if v >= 0 or value < 0]
-    if isinstance(value, str):
-        try:
-            ms = time_ms(value)
-        except PlcError:
-            return []
-        step = max(1, _tenth_of_magnitude(ms))
-        return [_time_literal(v) for v in (ms - step, ms + step) if v >= 0]
-    return []
-
-
-def _tenth_of_magnitude(n: int) -> int:
-    return 10 ** (int(math.log10(n)) - 1) if n >= 10 else 0
-
-
-def _time_literal(ms: int) -> str:
-    return f"{ms // 1000}s" if ms % 1000 == 0 and ms else f"{ms}ms"
 
 
 def _is_coil(node: ast.Assign) -> bool:

@@ -20,7 +20,7 @@ drop       one instruction dropped (its line keeps its label and comment)
 swap       two adjacent instructions of a process exchanged (comment lines between them stay)
 ========== ==================================================================================
 
-A constant step is the preset step of :mod:`plcsim.mutate.engine` (one unit in the decimal place below the
+A constant step is the preset step of :mod:`plcsim.mutate.mutant` (one unit in the decimal place below the
 leading digit, at least 1: ``#def zpozdeni 25`` -> 24 / 26, ``LD 1`` -> 0 / 2), written in the
 literal's own notation (``$0A`` -> ``$09`` / ``$0B``, ``%0011`` -> ``%0010`` / ``%0100``); other notations and
 expressions are left alone. ``P n`` and ``E n`` bracket a process and ``L n`` or ``name:`` mark a
@@ -46,7 +46,7 @@ from typing import Any
 from plcsim.controllers.tecomat.mnemonics import DEFINED
 from plcsim.controllers.tecomat.numbers import NumberError, number
 from plcsim.frontends.il import IlProgram, io_symbols
-from plcsim.mutate.engine import Mutant, preset_steps
+from plcsim.mutate.mutant import Mutant, preset_steps
 
 _NEGATED = {"LD": "LDC", "AND": "ANC", "OR": "ORC", "XOR": "XOC", "WR": "WRC"}
 NEGATE = {**_NEGATED, **{v: k for k, v in _NEGATED.items()}}

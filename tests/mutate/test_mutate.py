@@ -23,7 +23,6 @@ from plcsim.mutate.engine import (
     KILLED,
     STILLBORN,
     SURVIVED,
-    Mutant,
     behaviour,
     declared_equivalents,
     derive_mutants,
@@ -31,6 +30,7 @@ from plcsim.mutate.engine import (
     mutate_exercise,
     print_mutation_report,
 )
+from plcsim.mutate.mutant import Mutant
 from plcsim.tags.table import Tag, TagTable
 from plcsim.tags.types import Int
 
