@@ -10,13 +10,13 @@ from plcsim.mutate.engine import (
     Outcome,
     behaviour,
     declared_equivalents,
-    derive_mutants,
     edge_memories,
     exercise_mutants,
     mutate_exercise,
     print_mutation_report,
 )
 from plcsim.mutate.mutant import Mutant
+from plcsim.mutate.python import derive_mutants
 
 __all__ = [
     "Mutant",

@@ -1,4 +1,4 @@
-"""Mutation testing of the checks (plcsim.mutate.engine): the operators, kill / survive / equivalent, the CLI.
+"""Mutation testing of the checks (plcsim.mutate): the Python operators, kill / survive / equivalent, the CLI.
 
 The full sweep over every exercise is the benchmark ``python -m benchmarks --only mutation``; these
 tests use the smallest exercises and one seed.
@@ -25,12 +25,12 @@ from plcsim.mutate.engine import (
     SURVIVED,
     behaviour,
     declared_equivalents,
-    derive_mutants,
     exercise_mutants,
     mutate_exercise,
     print_mutation_report,
 )
 from plcsim.mutate.mutant import Mutant
+from plcsim.mutate.python import derive_mutants
 from plcsim.tags.table import Tag, TagTable
 from plcsim.tags.types import Int
 
