@@ -19,8 +19,10 @@ move       a network moved to the end of its OB
 task       a cyclic interrupt's networks (OB30) run in OB1 instead, every scan
 ========== ==================================================================================
 
-A preset moves by the preset step of :mod:`plcsim.mutate.mutant`. :mod:`plcsim.mutate.engine` grades
-the mutants; this module only derives them.
+A preset moves by the preset step of :mod:`plcsim.mutate.mutant`. The timer boxes and the edge boxes
+come from the S7 instruction descriptions (:data:`plcsim.controllers.s7.instructions.BLOCKS`): the
+timer boxes that take just IN and PT (TONR's reset R makes it no slip for them), and the boxes of the
+edge instances. :mod:`plcsim.mutate.engine` grades the mutants; this module only derives them.
 
 >>> from plcsim.tags.table import Tag, TagTable
 >>> table = TagTable()
@@ -34,10 +36,12 @@ from __future__ import annotations
 
 import ast
 import copy
+import inspect
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from plcsim.controllers.s7.instructions import BLOCKS, EdgeTrigger
 from plcsim.core.errors import PlcError
 from plcsim.frontends.python.compiler import Typing
 from plcsim.frontends.python.program import Program
@@ -48,9 +52,16 @@ from plcsim.tags.types import Bool
 if TYPE_CHECKING:
     from plcsim.exercise.model import Exercise
 
-_TIMERS = ("TON", "TOF", "TP")
+
+def _takes_in_and_pt(box: str) -> bool:
+    """Whether the timer box ``box`` takes IN and PT only: TON, TOF and TP do, TONR takes a reset R too."""
+    return list(inspect.signature(getattr(BLOCKS["IEC_TIMER"].instance, box)).parameters) == ["self", "IN", "PT"]
+
+
+_TIMERS = tuple(box for box in BLOCKS["IEC_TIMER"].boxes if _takes_in_and_pt(box))
 _EDGE_FUNCS = {"P": "N", "N": "P", "P_TRIG": "N_TRIG", "N_TRIG": "P_TRIG"}
-_EDGE_BOXES = {"R_TRIG": "F_TRIG", "F_TRIG": "R_TRIG"}
+_EDGE_TRIGGERS = [box for block in BLOCKS.values() if block.instance is EdgeTrigger for box in block.boxes]
+_EDGE_BOXES = dict(zip(_EDGE_TRIGGERS, reversed(_EDGE_TRIGGERS)))  # R_TRIG for F_TRIG, and back
 _BOUNDARY = {ast.Lt: ast.LtE, ast.LtE: ast.Lt, ast.Gt: ast.GtE, ast.GtE: ast.Gt, ast.Eq: ast.NotEq, ast.NotEq: ast.Eq}
 _PRESETS = ("PT", "PV")
 

@@ -17,6 +17,7 @@ from exercises import all_exercises, get
 from plcsim.apps.cli import main
 from plcsim.core.errors import ExerciseError
 from plcsim.frontends.python.program import Program
+from plcsim.mutate import python
 from plcsim.mutate.engine import (
     EQUIVALENT,
     EXPLAINED,
@@ -99,6 +100,11 @@ def test_the_operators_give_the_expected_mutants_of_a_small_program():
     sources = [m.source for m in mutants]
     assert len(set(sources)) == len(sources)
     assert not any("not t.CNT" in s for s in sources)
+
+
+def test_the_timer_and_edge_boxes_swapped_are_those_of_the_s7_instruction_descriptions():
+    assert python._TIMERS == ("TON", "TOF", "TP")  # TONR's reset R makes it no slip for these
+    assert python._EDGE_BOXES == {"R_TRIG": "F_TRIG", "F_TRIG": "R_TRIG"}
 
 
 def test_a_mutant_is_the_program_with_one_change_and_still_loads():
