@@ -6,17 +6,17 @@ from plcsim.mutate.engine import (
     KILLED,
     STILLBORN,
     SURVIVED,
-    Mutant,
     MutationReport,
     Outcome,
     behaviour,
     declared_equivalents,
-    derive_mutants,
     edge_memories,
     exercise_mutants,
     mutate_exercise,
     print_mutation_report,
 )
+from plcsim.mutate.mutant import Mutant
+from plcsim.mutate.python import derive_mutants
 
 __all__ = [
     "Mutant",

@@ -20,7 +20,7 @@ drop       one instruction dropped (its line keeps its label and comment)
 swap       two adjacent instructions of a process exchanged (comment lines between them stay)
 ========== ==================================================================================
 
-A constant step is the preset step of :mod:`plcsim.mutate.engine` (one unit in the decimal place below the
+A constant step is the preset step of :mod:`plcsim.mutate.mutant` (one unit in the decimal place below the
 leading digit, at least 1: ``#def zpozdeni 25`` -> 24 / 26, ``LD 1`` -> 0 / 2), written in the
 literal's own notation (``$0A`` -> ``$09`` / ``$0B``, ``%0011`` -> ``%0010`` / ``%0100``); other notations and
 expressions are left alone. ``P n`` and ``E n`` bracket a process and ``L n`` or ``name:`` mark a
@@ -41,12 +41,15 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from plcsim.controllers.tecomat.mnemonics import DEFINED
 from plcsim.controllers.tecomat.numbers import NumberError, number
 from plcsim.frontends.il import IlProgram, io_symbols
-from plcsim.mutate.engine import Mutant, preset_steps
+from plcsim.mutate.mutant import Mutant, preset_steps
+
+if TYPE_CHECKING:
+    from plcsim.exercise.model import Exercise
 
 _NEGATED = {"LD": "LDC", "AND": "ANC", "OR": "ORC", "XOR": "XOC", "WR": "WRC"}
 NEGATE = {**_NEGATED, **{v: k for k, v in _NEGATED.items()}}
@@ -139,6 +142,16 @@ def load_il(text: str, filename: str, tags: Any = None) -> IlProgram:
 
     assemble(text, filename, predefined=io_symbols(tags))
     return IlProgram(text, filename)
+
+
+def reference_mutants(exercise: Exercise) -> list[Mutant]:
+    """The mutants of an exercise's instruction-list reference (read as the Tecomat front end reads it)."""
+    return derive_il_mutants(IlProgram.from_file(exercise.reference.path).text)
+
+
+def load_mutant(source: str, filename: str, exercise: Exercise) -> IlProgram:
+    """A mutant as a program of the IL front end, assembled against the exercise's I/O table (see :func:`load_il`)."""
+    return load_il(source, filename, exercise.tag_table())
 
 
 Site = tuple[str, int, str, dict[int, str]]
@@ -268,4 +281,4 @@ def _written_like(literal: str, value: int) -> str:
     return str(value)
 
 
-__all__ = ["derive_il_mutants", "load_il"]
+__all__ = ["derive_il_mutants", "load_il", "reference_mutants", "load_mutant"]

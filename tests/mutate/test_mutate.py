@@ -1,4 +1,4 @@
-"""Mutation testing of the checks (plcsim.mutate.engine): the operators, kill / survive / equivalent, the CLI.
+"""Mutation testing of the checks (plcsim.mutate): the Python operators, kill / survive / equivalent, the CLI.
 
 The full sweep over every exercise is the benchmark ``python -m benchmarks --only mutation``; these
 tests use the smallest exercises and one seed.
@@ -17,20 +17,21 @@ from exercises import all_exercises, get
 from plcsim.apps.cli import main
 from plcsim.core.errors import ExerciseError
 from plcsim.frontends.python.program import Program
+from plcsim.mutate import python
 from plcsim.mutate.engine import (
     EQUIVALENT,
     EXPLAINED,
     KILLED,
     STILLBORN,
     SURVIVED,
-    Mutant,
     behaviour,
     declared_equivalents,
-    derive_mutants,
     exercise_mutants,
     mutate_exercise,
     print_mutation_report,
 )
+from plcsim.mutate.mutant import Mutant
+from plcsim.mutate.python import derive_mutants
 from plcsim.tags.table import Tag, TagTable
 from plcsim.tags.types import Int
 
@@ -99,6 +100,11 @@ def test_the_operators_give_the_expected_mutants_of_a_small_program():
     sources = [m.source for m in mutants]
     assert len(set(sources)) == len(sources)
     assert not any("not t.CNT" in s for s in sources)
+
+
+def test_the_timer_and_edge_boxes_swapped_are_those_of_the_s7_instruction_descriptions():
+    assert python._TIMERS == ("TON", "TOF", "TP")  # TONR's reset R makes it no slip for these
+    assert python._EDGE_BOXES == {"R_TRIG": "F_TRIG", "F_TRIG": "R_TRIG"}
 
 
 def test_a_mutant_is_the_program_with_one_change_and_still_loads():

@@ -12,8 +12,9 @@ from exercises import get
 from plcsim.apps.cli import main
 from plcsim.core.errors import PlcError
 from plcsim.exercise.model import Solution
-from plcsim.mutate.engine import EQUIVALENT, EXPLAINED, KILLED, STILLBORN, Mutant, exercise_mutants, mutate_exercise
+from plcsim.mutate.engine import EQUIVALENT, EXPLAINED, KILLED, STILLBORN, exercise_mutants, mutate_exercise
 from plcsim.mutate.il import derive_il_mutants
+from plcsim.mutate.mutant import Mutant
 
 
 def changed(original: str, mutant: Mutant) -> dict[int, str]:
