@@ -12,11 +12,40 @@ controller of its own rather than a profile inside the S7 runtime, and what the 
 from __future__ import annotations
 
 from collections import deque
+from dataclasses import dataclass
 from typing import Any, Protocol
 
 from plcsim.core.clock import Clock
+from plcsim.core.literals import format_ns
 from plcsim.core.observers import Subscribers
 from plcsim.tags.table import TagTable
+
+RUN = "RUN"
+STOP = "STOP"
+"""A controller's two modes (``cpu.mode``)."""
+
+
+@dataclass(frozen=True)
+class DiagnosticEntry:
+    """One entry of a controller's diagnostic buffer (``cpu.diagnostics``)."""
+
+    time_ns: int
+    event: str
+    message: str
+    task: str | None = None
+    network: str | None = None
+    line: int | None = None
+
+    def __str__(self) -> str:
+        where = ""
+        if self.task:
+            where = (
+                f" [{self.task}"
+                + (f" network {self.network}" if self.network else "")
+                + (f", line {self.line}" if self.line else "")
+                + "]"
+            )
+        return f"{format_ns(self.time_ns)}: {self.event}{where}: {self.message}"
 
 
 class Controller(Protocol):

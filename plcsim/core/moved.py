@@ -41,7 +41,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "plcsim.cpu": ("plcsim.controllers.s7.cpu",),
     "plcsim.execution": ("plcsim.controllers.s7.execution",),
     "plcsim.access": ("plcsim.controllers.s7.access",),
-    "plcsim.config": ("plcsim.controllers.s7.config",),
+    "plcsim.config": ("plcsim.controllers.s7.config", "plcsim.controllers.protocol"),
     "plcsim.program": (
         "plcsim.frontends.python.names",
         "plcsim.frontends.python.program",

@@ -30,8 +30,7 @@ import time
 from collections.abc import Callable, Sequence
 from typing import Any, Protocol
 
-from plcsim.controllers.protocol import Controller
-from plcsim.controllers.s7.config import RUN
+from plcsim.controllers.protocol import RUN, Controller
 from plcsim.core.clock import NEVER
 from plcsim.core.errors import ConfigurationError, PlcError
 from plcsim.core.literals import format_ns, to_ns

@@ -7,9 +7,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from plcsim.controllers.choice import controller_for
 from plcsim.controllers.loaded import SourceProgram
 from plcsim.controllers.profiles import all_profiles
-from plcsim.controllers.choice import controller_for
 from plcsim.core.clock import NEVER
 from plcsim.core.errors import PlcError
 from plcsim.frontends import read_program

@@ -29,7 +29,7 @@ import numpy as np
 from plcsim.apps.live.build import LIVE, Target, open_ended
 from plcsim.apps.live.recording import LIVE_ORIGIN, Recording, make_action
 from plcsim.controllers.loaded import SourceProgram
-from plcsim.controllers.s7.cpu import RUN
+from plcsim.controllers.protocol import RUN
 from plcsim.core.clock import NEVER
 from plcsim.core.errors import ExerciseError, PlcError
 from plcsim.core.literals import format_ns

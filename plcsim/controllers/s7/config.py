@@ -1,4 +1,4 @@
-"""The CPU's hardware configuration and simulator options, and its diagnostic-buffer entries."""
+"""The S7 CPU's hardware configuration and simulator options, and its clock and system memory bits."""
 
 from __future__ import annotations
 
@@ -7,11 +7,8 @@ from dataclasses import dataclass, field
 
 from plcsim.controllers.s7.instructions.timers import TimerDialect
 from plcsim.core.errors import ConfigurationError
-from plcsim.core.literals import datetime_literal, format_ns, to_ns
+from plcsim.core.literals import datetime_literal, to_ns
 from plcsim.tags.table import MemoryLayout
-
-RUN = "RUN"
-STOP = "STOP"
 
 CLOCK_BITS = (  # bit, name, half period in ms (S7-1200 clock memory byte layout)
     (0, "Clock_10Hz", 50),
@@ -105,26 +102,3 @@ class CPUConfig:
                 f"(TIA defaults: clock MB0, system MB1; textbook erratum §4.3.8)"
             )
         datetime_literal(self.rtc_start)
-
-
-@dataclass(frozen=True)
-class DiagnosticEntry:
-    """One entry of the diagnostic buffer."""
-
-    time_ns: int
-    event: str
-    message: str
-    task: str | None = None
-    network: str | None = None
-    line: int | None = None
-
-    def __str__(self) -> str:
-        where = ""
-        if self.task:
-            where = (
-                f" [{self.task}"
-                + (f" network {self.network}" if self.network else "")
-                + (f", line {self.line}" if self.line else "")
-                + "]"
-            )
-        return f"{format_ns(self.time_ns)}: {self.event}{where}: {self.message}"

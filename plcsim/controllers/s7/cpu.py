@@ -37,8 +37,9 @@ from dataclasses import replace
 from typing import Any
 
 from plcsim.controllers.loaded import LinkTarget, LoadedProgram, LoadedTask, RuntimeHooks, SourceProgram, TaskSpec
+from plcsim.controllers.protocol import RUN, STOP, DiagnosticEntry
 from plcsim.controllers.s7.access import HostAccess, store_instance_member, store_into
-from plcsim.controllers.s7.config import CLOCK_BITS, RUN, STOP, SYSTEM_BITS, CPUConfig, DiagnosticEntry
+from plcsim.controllers.s7.config import CLOCK_BITS, SYSTEM_BITS, CPUConfig
 from plcsim.controllers.s7.execution import (
     NEVER,
     CycleWatchdog,

@@ -13,7 +13,8 @@ from collections.abc import Callable
 from typing import Any
 
 from plcsim.controllers.loaded import SourceProgram, TaskSpec
-from plcsim.controllers.s7.config import CLOCK_BITS, RUN, CPUConfig
+from plcsim.controllers.protocol import RUN
+from plcsim.controllers.s7.config import CLOCK_BITS, CPUConfig
 from plcsim.controllers.s7.instructions.system import JumpTo, ReturnFromBlock
 from plcsim.core.clock import NEVER, Clock
 from plcsim.core.errors import PlcError

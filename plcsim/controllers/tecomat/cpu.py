@@ -36,7 +36,7 @@ from struct import pack_into
 from typing import Any
 
 from plcsim.controllers.loaded import LoadedProgram, ProgramFacts
-from plcsim.controllers.s7.config import RUN, STOP, DiagnosticEntry
+from plcsim.controllers.protocol import RUN, STOP, DiagnosticEntry
 from plcsim.controllers.tecomat import verbs
 from plcsim.controllers.tecomat.analysis import IlAnalysis, IlCompiled
 from plcsim.controllers.tecomat.assembler import Assembly, assemble
