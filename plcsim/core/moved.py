@@ -69,6 +69,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "plcsim.profiles.listing": ("plcsim.apps.listing",),
     "plcsim.profiles.s7": ("plcsim.controllers.s7.profile",),
     "plcsim.profiles.tecomat": ("plcsim.controllers.tecomat.profile",),
+    "plcsim.tecomat.instructions": ("plcsim.controllers.tecomat.instructions", "plcsim.controllers.tecomat.linker"),
 }
 """An old module -> the module(s) its names are in now (several where it was split)."""
 

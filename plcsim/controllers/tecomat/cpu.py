@@ -40,6 +40,7 @@ from plcsim.controllers.s7.config import RUN, STOP, DiagnosticEntry
 from plcsim.controllers.tecomat import verbs
 from plcsim.controllers.tecomat.analysis import IlAnalysis, IlCompiled
 from plcsim.controllers.tecomat.assembler import Assembly, assemble
+from plcsim.controllers.tecomat.linker import link
 from plcsim.controllers.tecomat.machine import END_CYCLE, Machine, TecomatRuntimeError
 from plcsim.controllers.tecomat.memory import Operand, OperandError, Scratchpad, parse_address, read, write
 from plcsim.controllers.tecomat.settings import TecomatConfig
@@ -166,6 +167,7 @@ class TecomatCPU:
         self.program, self.warnings = asm, list(asm.warnings)
         self._started = False
         self.machine = Machine(asm, self.config)
+        self.machine.code = link(self.machine)
         self.compiled = IlCompiled(IlAnalysis.of(asm))
         self.terminals = Scratchpad({"X": bytearray(self.config.x_size)})
         """The input terminals as the plant drives them; the turnaround samples them into X and U."""
