@@ -69,6 +69,11 @@ MODULES: dict[str, tuple[str, ...]] = {
     "plcsim.profiles.listing": ("plcsim.apps.listing",),
     "plcsim.profiles.s7": ("plcsim.controllers.s7.profile",),
     "plcsim.profiles.tecomat": ("plcsim.controllers.tecomat.profile",),
+    "plcsim.tecomat.assembler": (
+        "plcsim.controllers.tecomat.assembler",
+        "plcsim.controllers.tecomat.assembly",
+        "plcsim.controllers.tecomat.decoder",
+    ),
     "plcsim.tecomat.instructions": ("plcsim.controllers.tecomat.instructions", "plcsim.controllers.tecomat.linker"),
 }
 """An old module -> the module(s) its names are in now (several where it was split)."""
@@ -106,7 +111,9 @@ class _Split(types.ModuleType):
             module = importlib.import_module(home)
             if hasattr(module, name):
                 return getattr(module, name)
-        raise AttributeError(f"module {self.__name__!r} has no attribute {name!r} (it moved to {', '.join(self._homes)})")
+        raise AttributeError(
+            f"module {self.__name__!r} has no attribute {name!r} (it moved to {', '.join(self._homes)})"
+        )
 
 
 class _OldPaths(importlib.abc.MetaPathFinder, importlib.abc.Loader):

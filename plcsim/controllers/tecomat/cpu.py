@@ -39,7 +39,8 @@ from plcsim.controllers.loaded import LoadedProgram, ProgramFacts
 from plcsim.controllers.s7.config import RUN, STOP, DiagnosticEntry
 from plcsim.controllers.tecomat import verbs
 from plcsim.controllers.tecomat.analysis import IlAnalysis, IlCompiled
-from plcsim.controllers.tecomat.assembler import Assembly, assemble
+from plcsim.controllers.tecomat.assembler import assemble
+from plcsim.controllers.tecomat.assembly import Assembly
 from plcsim.controllers.tecomat.linker import link
 from plcsim.controllers.tecomat.machine import END_CYCLE, Machine, TecomatRuntimeError
 from plcsim.controllers.tecomat.memory import Operand, OperandError, Scratchpad, parse_address, read, write

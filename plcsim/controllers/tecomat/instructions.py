@@ -22,7 +22,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from plcsim.controllers.tecomat.assembler import Instruction, Label
+from plcsim.controllers.tecomat.assembly import Instruction, Label
 from plcsim.controllers.tecomat.machine import END, END_CYCLE, MAX_NESTING, STACKS, TecomatRuntimeError
 from plcsim.controllers.tecomat.memory import Operand
 

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from plcsim.controllers.tecomat.assembler import Assembly
+from plcsim.controllers.tecomat.assembly import Assembly
 from plcsim.controllers.tecomat.memory import Scratchpad
 from plcsim.controllers.tecomat.settings import TecomatConfig
 from plcsim.core.errors import PlcError

@@ -7,7 +7,8 @@ import pytest
 
 from plcsim.controllers.protocol import controller_for, program_text
 from plcsim.controllers.tecomat import linker
-from plcsim.controllers.tecomat.assembler import AssemblyError, assemble
+from plcsim.controllers.tecomat.assembler import assemble
+from plcsim.controllers.tecomat.assembly import AssemblyError
 from plcsim.controllers.tecomat.cpu import TecomatCPU
 from plcsim.controllers.tecomat.mnemonics import DEFINED, NAMED_ONLY
 from plcsim.core.errors import ConfigurationError
