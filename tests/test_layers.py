@@ -244,6 +244,14 @@ def test_the_s7_cpu_names_no_instruction():
     assert strings & {f.name for f in FUNCTIONS.values() if f.needs_cpu} == set()
 
 
+TECOMAT_CODE = {f"plcsim.controllers.tecomat.{m}" for m in ("instructions", "blocks", "tables", "fused", "linker")}
+
+
+def test_the_tecomat_machine_imports_no_instruction_and_the_cpu_links():
+    assert targets("plcsim.controllers.tecomat.machine") & TECOMAT_CODE == set()
+    assert "plcsim.controllers.tecomat.linker" in targets("plcsim.controllers.tecomat.cpu")
+
+
 class Capture:
     """A front end that links nothing and keeps what the CPU offered it."""
 

@@ -82,6 +82,12 @@ MODULES: dict[str, tuple[str, ...]] = {
     "plcsim.profiles.listing": ("plcsim.apps.listing",),
     "plcsim.profiles.s7": ("plcsim.controllers.s7.profile", "plcsim.trace.table"),
     "plcsim.profiles.tecomat": ("plcsim.controllers.tecomat.profile",),
+    "plcsim.tecomat.assembler": (
+        "plcsim.controllers.tecomat.assembler",
+        "plcsim.controllers.tecomat.assembly",
+        "plcsim.controllers.tecomat.decoder",
+    ),
+    "plcsim.tecomat.instructions": ("plcsim.controllers.tecomat.instructions", "plcsim.controllers.tecomat.linker"),
 }
 """An old module -> the module(s) its names are in now (several where it was split)."""
 

@@ -59,7 +59,8 @@ class IlProgram:
         """What the program uses, assembled against ``tags`` without running it (None if it does not
         assemble: the run reports why)."""
         from plcsim.controllers.tecomat.analysis import IlAnalysis
-        from plcsim.controllers.tecomat.assembler import AssemblyError, assemble
+        from plcsim.controllers.tecomat.assembler import assemble
+        from plcsim.controllers.tecomat.assembly import AssemblyError
 
         try:
             return IlAnalysis.of(assemble(self.text, self.filename, predefined=io_symbols(tags)))

@@ -137,7 +137,7 @@ def derive_il_mutants(text: str) -> list[Mutant]:
 
 def load_il(text: str, filename: str, tags: Any = None) -> IlProgram:
     """A mutant as a program of the IL front end, assembled against the I/O table ``tags`` at once so
-    that one that does not assemble raises :class:`~plcsim.controllers.tecomat.assembler.AssemblyError` (stillborn)."""
+    that one that does not assemble raises :class:`~plcsim.controllers.tecomat.assembly.AssemblyError` (stillborn)."""
     from plcsim.controllers.tecomat.assembler import assemble
 
     assemble(text, filename, predefined=io_symbols(tags))

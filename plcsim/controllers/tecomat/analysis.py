@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from plcsim.controllers.tecomat.assembler import Assembly
+from plcsim.controllers.tecomat.assembly import Assembly
 
 CHECK_NAMES = {"SET": "SET", "RESET": "RES", "EDGE": "LET"}
 

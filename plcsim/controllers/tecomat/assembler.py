@@ -8,7 +8,11 @@ items`` (the read-only area D; the manual gives it no syntax, this is ours), ``#
 (ignored with a warning: the rig wires X and Y). Processes are bracketed ``P n`` ... ``E n``; a file
 without any ``P`` is process P0 as a whole (EX-01 is printed so).
 
-Errors name the file, the line and the column and suggest the nearest mnemonic or name.
+The assembler reads the lines (pass 1: directives, labels, processes, raw statements), declares the
+names (``#def`` resolved, ``#reg`` allocated in R around the bytes the program names by address) and
+hands the statements to :class:`~plcsim.controllers.tecomat.decoder.Decoder`, which decodes and checks
+their operands into the :class:`~plcsim.controllers.tecomat.assembly.Assembly`. Errors name the file,
+the line and the column and suggest the nearest mnemonic or name.
 
 >>> asm = assemble("#def START x0.0\\n#def MOTOR y0.0\\nLD START\\nWR MOTOR\\n", "motor.il")
 >>> [(i.mnemonic, str(i.arg), i.line) for i in asm.code]
@@ -16,7 +20,7 @@ Errors name the file, the line and the column and suggest the nearest mnemonic o
 >>> assemble("LD X0.0\\nWX Y0.0\\n", "bad.il")
 Traceback (most recent call last):
 ...
-plcsim.controllers.tecomat.assembler.AssemblyError: bad.il, line 2, column 1: no instruction 'WX'; did you mean WR?
+plcsim.controllers.tecomat.assembly.AssemblyError: bad.il, line 2, column 1: no instruction 'WX'; did you mean WR?
 """
 
 from __future__ import annotations
@@ -24,13 +28,13 @@ from __future__ import annotations
 import difflib
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass, field
-from typing import Any
 
-from plcsim.controllers.tecomat.memory import SIZE, Operand, OperandError, immediate, low_high, parse_address
-from plcsim.controllers.tecomat.mnemonics import DEFINED, NAMED_ONLY, WITHOUT_OPERAND_FORM, refusal
+from plcsim.controllers.tecomat.assembly import Assembly, AssemblyError, Symbol, Table
+from plcsim.controllers.tecomat.decoder import ADDRESSLIKE, Decoder, Raw
+from plcsim.controllers.tecomat.memory import SIZE, Operand, OperandError, parse_address
+from plcsim.controllers.tecomat.mnemonics import DEFINED, NAMED_ONLY, refusal
 from plcsim.controllers.tecomat.numbers import NumberError, expression
-from plcsim.core.errors import ProgramError, did_you_mean
+from plcsim.core.errors import did_you_mean
 
 MAX_LINE = 1000
 """Longest source line (the manual's are short; a longer one is a mistake or an attack on the grader)."""
@@ -42,112 +46,6 @@ ITEM_MAX = {"bit": 1, "byte": 0xFF, "word": 0xFFFF}
 _NAME = re.compile(r"^[^\W\d]\w*$")
 _LABEL = re.compile(r"^([^\W\d]\w*)\s*:\s*(.*)$")
 _ITEM = re.compile(r"^(.*?)\s*\[\s*(\d+)\s*\]$")
-
-
-class AssemblyError(ProgramError):
-    """A program the assembler cannot read: the message starts with ``file, line n, column c``."""
-
-
-@dataclass(frozen=True)
-class Timer:
-    """A timer operand ``word.code``: the register pair and the time base (0..3)."""
-
-    word: Operand
-    code: int
-
-    def __str__(self) -> str:
-        return f"{self.word}.{self.code}"
-
-
-@dataclass(frozen=True)
-class Label:
-    """A jump target: a named label (``konec``) or a numbered one (``L 10``)."""
-
-    name: str
-
-    def __str__(self) -> str:
-        return self.name
-
-
-@dataclass
-class Table:
-    """A table in T (``#table``): its format, items and number (declaration order, from 0)."""
-
-    name: str
-    fmt: str
-    items: list[int]
-    number: int
-    line: int
-
-    @property
-    def limit(self) -> int:
-        return len(self.items) - 1
-
-    def layout(self) -> bytes:
-        """The table's bytes as the manual draws them: bits LSB first, words little-endian."""
-        if self.fmt == "bit":
-            out = bytearray((len(self.items) + 7) // 8)
-            for i, item in enumerate(self.items):
-                out[i // 8] |= item << (i % 8)
-            return bytes(out)
-        if self.fmt == "byte":
-            return bytes(self.items)
-        return b"".join(item.to_bytes(2, "little") for item in self.items)
-
-
-@dataclass
-class Symbol:
-    """A name the program declares: an operand (``#def``/``#reg``/``#data``) or a constant (``#def``)."""
-
-    name: str
-    operand: Operand | None
-    value: int | None
-    line: int
-    directive: str
-
-
-@dataclass
-class Instruction:
-    """One decoded instruction: mnemonic, argument, where it is written and in which process."""
-
-    mnemonic: str
-    arg: Any
-    line: int
-    column: int
-    process: int
-
-
-@dataclass
-class Assembly:
-    """A whole program, decoded: its instructions, processes, labels, names and tables."""
-
-    filename: str
-    name: str = ""
-    code: list[Instruction] = field(default_factory=list)
-    processes: dict[int, int] = field(default_factory=dict)
-    """Process number -> index of its first instruction."""
-    labels: dict[str, int] = field(default_factory=dict)
-    """Label (``konec``, ``L10``) -> index of the instruction it marks."""
-    label_process: dict[str, int] = field(default_factory=dict)
-    symbols: dict[str, Symbol] = field(default_factory=dict)
-    """Lower-case name -> symbol."""
-    tables: dict[str, Table] = field(default_factory=dict)
-    data: bytes = b""
-    warnings: list[str] = field(default_factory=list)
-
-    def where(self, index: int) -> str:
-        """``file, line n`` of the instruction at ``index``."""
-        return f"{self.filename}, line {self.code[index].line}"
-
-
-@dataclass
-class _Raw:
-    mnemonic: str
-    text: str
-    line: int
-    column: int
-    op_column: int
-    process: int
 
 
 def assemble(
@@ -164,22 +62,23 @@ class _Assembler:
     def __init__(self, source: str, filename: str, r_size: int, predefined: Mapping[str, Operand]):
         self.source, self.filename, self.r_size = source, filename, r_size
         self.asm = Assembly(filename)
+        self.decoder = Decoder(self.asm, r_size)
         self.predefined = {name.lower(): operand for name, operand in predefined.items()}
         for name, operand in predefined.items():
             self.asm.symbols[name.lower()] = Symbol(name, operand, None, 0, "I/O table")
-            if _ADDRESSLIKE.match(name):
+            if ADDRESSLIKE.match(name):
                 self.asm.warnings.append(
                     f"{filename}: the I/O name {name} is {operand} in this program; the address {name} is "
                     f"written with a space ({name[0]} {name[1:]})"
                 )
-        self.raw: list[_Raw] = []
+        self.raw: list[Raw] = []
         self.defs: dict[str, tuple[str, str, int, int]] = {}
         self.regs: list[tuple[str, str, str, int, int, int]] = []
         self.pending_labels: list[tuple[str, int, int]] = []
         self.raw_labels: dict[str, tuple[int, int, int]] = {}
 
     def fail(self, line: int, column: int, message: str) -> AssemblyError:
-        return AssemblyError(f"{self.filename}, line {line}, column {column}: {message}")
+        return self.decoder.fail(line, column, message)
 
     # -- pass 1: lines into directives, labels and raw instructions -------------------------------
 
@@ -197,7 +96,7 @@ class _Assembler:
             name, line, col = self.pending_labels[0]
             raise self.fail(line, col, f"the label {name} marks no instruction; put it before one")
         self._declare()
-        self._decode()
+        self.decoder.decode(self.raw)
         return self.asm
 
     @staticmethod
@@ -248,7 +147,7 @@ class _Assembler:
             self._begin_process(lineno, op_column, rest)
             return
         if mnemonic == "E":
-            number = self._parameter(lineno, op_column, rest, "E", 0, 64)
+            number = self.decoder.parameter(lineno, op_column, rest, "E", 0, 64)
             if self.process is None or number != self.process:
                 which = "no process is open" if self.process is None else f"the open process is P{self.process}"
                 raise self.fail(lineno, column, f"'E {number}' ends no process: {which}")
@@ -257,7 +156,7 @@ class _Assembler:
         if self.process is None:
             raise self.fail(lineno, column, f"{mnemonic} is outside every process; begin one with 'P 0'")
         if mnemonic == "L":
-            number = self._parameter(lineno, op_column, rest, "L", 0, 255)
+            number = self.decoder.parameter(lineno, op_column, rest, "L", 0, 255)
             self._mark_label(f"L{number}", lineno, column)
         self._emit(mnemonic, rest, lineno, column, op_column)
 
@@ -268,7 +167,7 @@ class _Assembler:
             self.asm.label_process[name] = self.process  # type: ignore[assignment]
             self.raw_labels[name] = (line, col, index)
         self.pending_labels = []
-        self.raw.append(_Raw(mnemonic, text, lineno, column, op_column, self.process))  # type: ignore[arg-type]
+        self.raw.append(Raw(mnemonic, text, lineno, column, op_column, self.process))  # type: ignore[arg-type]
 
     def _mark_label(self, name: str, lineno: int, column: int) -> None:
         key = name.lower() if not re.fullmatch(r"L\d+", name) else name
@@ -279,13 +178,8 @@ class _Assembler:
             )
         self.pending_labels.append((key, lineno, column))
 
-    def _parameter(self, lineno: int, column: int, text: str, what: str, lo: int, hi: int) -> int:
-        if not text.isdigit() or not lo <= int(text) <= hi:
-            raise self.fail(lineno, column, f"{what} takes a number {lo}..{hi}, not {text!r}")
-        return int(text)
-
     def _begin_process(self, lineno: int, column: int, text: str) -> None:
-        number = self._parameter(lineno, column, text, "P", 0, 64)
+        number = self.decoder.parameter(lineno, column, text, "P", 0, 64)
         if number not in PROCESSES:
             raise self.fail(
                 lineno, column, f"there is no process P{number}: the processes are P0..P48, P50..P57, P60, P62..P64"
@@ -404,7 +298,7 @@ class _Assembler:
                 continue
         return out
 
-    # -- pass 2: names, registers, operands ----------------------------------------------------------
+    # -- pass 2: names and registers (the operands are the decoder's) ---------------------------------
 
     def _declare(self) -> None:
         for key, (name, value, lineno, column) in self.defs.items():
@@ -435,7 +329,7 @@ class _Assembler:
         try:
             return Symbol(name, parse_address(value), None, lineno, "#def")
         except OperandError as exc:
-            if _ADDRESSLIKE.match(value):
+            if ADDRESSLIKE.match(value):
                 raise self.fail(lineno, column, str(exc)) from None
         if value.lower() in self.defs and value.lower() != key:
             other = self.defs[value.lower()]
@@ -475,164 +369,6 @@ class _Assembler:
             raise self.fail(lineno, column, f"#reg: no room left in R (R0..R{self.r_size - 1})")
         return start
 
-    def _decode(self) -> None:
-        for r in self.raw:
-            arg = self._argument(r)
-            self.asm.code.append(Instruction(r.mnemonic, arg, r.line, r.column, r.process))
-        self._check_targets()
-
-    def operand(self, r: _Raw, text: str) -> Operand:
-        """An operand, a name or a constant expression (errors at the operand's column)."""
-        lowered = text.lower()
-        for prefix, high in (("low ", False), ("high ", True)):
-            if lowered.startswith(prefix):
-                try:
-                    return low_high(self.operand(r, text[len(prefix) :].strip()), high)
-                except OperandError as exc:
-                    raise self.fail(r.line, r.op_column, str(exc)) from None
-        symbol = self.asm.symbols.get(lowered)  # an I/O name spelt like an address (S1, D1) shadows it
-        if symbol is not None:
-            return symbol.operand if symbol.operand is not None else immediate(symbol.value)  # type: ignore[arg-type]
-        try:
-            return parse_address(text)
-        except OperandError as exc:
-            if _ADDRESSLIKE.match(text):
-                raise self.fail(r.line, r.op_column, str(exc)) from None
-        constants = {k: s.value for k, s in self.asm.symbols.items() if s.value is not None}
-        try:
-            value = expression(text, constants)
-        except NumberError as exc:
-            if re.fullmatch(r"[^\W\d][\w]*", text):
-                names = [s.name for s in self.asm.symbols.values()] + [t.name for t in self.asm.tables.values()]
-                raise self.fail(
-                    r.line, r.op_column, f"no name {text!r}{did_you_mean(text, names)}; declare it with #def or #reg"
-                ) from None
-            raise self.fail(r.line, r.op_column, str(exc)) from None
-        if not 0 <= value <= 0xFFFF:
-            raise self.fail(r.line, r.op_column, f"{text} = {value} does not fit 16 bits (0..65535)")
-        return immediate(value)
-
-    def _argument(self, r: _Raw) -> Any:
-        m, text = r.mnemonic, r.text
-        spec = OPERANDS.get(m)
-        if spec is None:  # no operand, or a parameter
-            return self._parameter_argument(r)
-        if not text:
-            if m in WITHOUT_OPERAND_FORM:
-                return None
-            raise self.fail(r.line, r.op_column, f"{m} needs an operand ({spec.describe()})")
-        if spec.kind == "label":
-            return self._label(r, text)
-        if spec.kind == "table":
-            return self._table_arg(r, text, spec)
-        if spec.kind == "timer":
-            return self._timer(r, text)
-        operand = self.operand(r, text)
-        spec.check(self, r, operand)
-        return operand
-
-    def _parameter_argument(self, r: _Raw) -> Any:
-        m, text = r.mnemonic, r.text
-        if m in ("POP", "BP", "L", "E", "CHG"):
-            if m == "CHG":
-                key = text.upper()
-                if key not in STACK_NAMES:
-                    raise self.fail(r.line, r.op_column, f"CHG takes a stack A..H (or AS..HS), not {text!r}")
-                return key
-            lo, hi = {"POP": (1, 7), "BP": (0, 7), "L": (0, 255), "E": (0, 64)}[m]
-            return self._parameter(r.line, r.op_column, text, m, lo, hi)
-        if text:
-            raise self.fail(r.line, r.op_column, f"{m} takes no operand (remove {text!r})")
-        return None
-
-    def _label(self, r: _Raw, text: str) -> Label:
-        compact = text.replace(" ", "")
-        key = compact.upper() if re.fullmatch(r"[Ll]\d+", compact) else text.lower()
-        if key not in self.asm.labels:
-            names = [n for n in self.asm.labels]
-            raise self.fail(r.line, r.op_column, f"no label {text!r}{did_you_mean(key, names)}")
-        return Label(key)
-
-    def _timer(self, r: _Raw, text: str) -> Timer:
-        base, dot, code_text = text.rpartition(".")
-        if not dot:
-            base, code_text = text, "0"
-        word = self.operand(r, base.strip())
-        _check_pair(self, r, word, r.mnemonic)
-        constants = {k: s.value for k, s in self.asm.symbols.items() if s.value is not None}
-        try:
-            code = expression(code_text, constants)
-        except NumberError:
-            raise self.fail(
-                r.line, r.op_column, f"the time base {code_text!r} is not 0..3 (10 ms, 100 ms, 1 s, 10 s)"
-            ) from None
-        if not 0 <= code <= 3:
-            raise self.fail(r.line, r.op_column, f"the time base {code} is not 0..3 (10 ms, 100 ms, 1 s, 10 s)")
-        return Timer(word, code)
-
-    def _table_arg(self, r: _Raw, text: str, spec: OperandSpec) -> Table | Operand:
-        table = self.asm.tables.get(text.lower())
-        if table is not None:
-            if r.mnemonic == "FTB" and table.fmt == "bit":
-                raise self.fail(r.line, r.op_column, f"FTB searches byte and word tables; {table.name} is a bit table")
-            if r.mnemonic in ("LMS", "WMS") and table.fmt != "word":
-                raise self.fail(
-                    r.line, r.op_column, f"{r.mnemonic} works on word tables; {table.name} is a {table.fmt} table"
-                )
-            return table
-        if r.mnemonic in ("LMS", "WMS"):
-            names = [t.name for t in self.asm.tables.values()]
-            raise self.fail(
-                r.line, r.op_column, f"no table {text!r}{did_you_mean(text, names)}; declare it with #table word"
-            )
-        try:
-            operand = self.operand(r, text)
-        except AssemblyError:
-            names = [t.name for t in self.asm.tables.values()]
-            raise self.fail(
-                r.line, r.op_column, f"no table {text!r}{did_you_mean(text, names)}; declare it with #table"
-            ) from None
-        if operand.area != "R" or operand.width == "long" or (r.mnemonic == "FTB" and operand.width == "bit"):
-            raise self.fail(
-                r.line, r.op_column, f"{r.mnemonic} takes a table name or a table in R (its first item), not {text}"
-            )
-        return operand
-
-    def _check_targets(self) -> None:
-        asm = self.asm
-        for instr in asm.code:
-            if not isinstance(instr.arg, Label):
-                continue
-            target = asm.label_process[instr.arg.name]
-            if instr.mnemonic.startswith("CA"):
-                if target != 60:
-                    raise self.fail(
-                        instr.line,
-                        instr.column,
-                        f"{instr.mnemonic} {instr.arg}: subroutines live in process P60, the label is in P{target}",
-                    )
-            elif target != instr.process:
-                raise self.fail(
-                    instr.line,
-                    instr.column,
-                    f"{instr.mnemonic} {instr.arg}: a jump stays in its process (P{instr.process}); "
-                    f"the label is in P{target}",
-                )
-        seen: dict[tuple[str, int], int] = {}
-        for instr in asm.code:
-            if instr.mnemonic in ("TON", "TOF", "RTO", "IMP"):
-                key = ("timer", instr.arg.word.index)
-            elif instr.mnemonic in ("CTU", "CTD", "CNT"):
-                key = ("counter", instr.arg.index)
-            else:
-                continue
-            if key in seen and key[0] == "timer":
-                asm.warnings.append(
-                    f"{self.filename}, line {instr.line}: a second timer instruction on RW{key[1]} (first on line "
-                    f"{seen[key]}); the manual allows only one timer instruction per object"
-                )
-            seen.setdefault(key, instr.line)
-
 
 def _nearest_mnemonic(mnemonic: str) -> str:
     near = difflib.get_close_matches(mnemonic, sorted(DEFINED), n=3, cutoff=0.5)
@@ -641,69 +377,3 @@ def _nearest_mnemonic(mnemonic: str) -> str:
         if near
         else "; the manual's instructions are listed in plcsim.controllers.tecomat.mnemonics"
     )
-
-
-_ADDRESSLIKE = re.compile(r"^[XYSRDU]\s*[WL]?\s*\d+(\.\d+)?$", re.IGNORECASE)
-STACK_NAMES = frozenset([*"ABCDEFGH", *(f"{c}S" for c in "ABCDEFGH")])
-
-
-@dataclass(frozen=True)
-class OperandSpec:
-    """What an instruction's operand may be: its areas and widths (as the manual's operand lists)."""
-
-    kind: str
-    areas: str = ""
-    widths: tuple[str, ...] = ()
-    immediate: bool = False
-
-    def describe(self) -> str:
-        if self.kind != "operand":
-            return {"label": "a label", "table": "a table", "timer": "a timer RWn.code"}[self.kind]
-        return f"{'/'.join(self.widths)} of {', '.join(self.areas)}" + (" or a number" if self.immediate else "")
-
-    def check(self, asm: _Assembler, r: _Raw, op: Operand) -> None:
-        if op.is_immediate:
-            if not self.immediate:
-                raise asm.fail(r.line, r.op_column, f"{r.mnemonic} does not take a number; it takes {self.describe()}")
-            return
-        if op.area not in self.areas:
-            raise asm.fail(
-                r.line, r.op_column, f"{r.mnemonic} does not take {op} (area {op.area}); it takes {self.describe()}"
-            )
-        if op.width not in self.widths:
-            extra = {
-                "word": " (a word operand is in the extended set)",
-                "long": " (in the extended set only LD, LDC, WR, WRC and PUT take a long)",
-            }.get(op.width, "")
-            raise asm.fail(
-                r.line, r.op_column, f"{r.mnemonic} {op}: a {op.width} operand is not allowed{extra}; {self.describe()}"
-            )
-        if self.kind == "pair":
-            _check_pair(asm, r, op, r.mnemonic)
-        size = {"X": 128, "Y": 128, "S": 64, "R": asm.r_size, "U": 128, "D": len(asm.asm.data)}[op.area]
-        if op.index + SIZE[op.width] - 1 >= size:
-            raise asm.fail(r.line, r.op_column, f"{op} is outside {op.area}0..{op.area}{size - 1}")
-
-
-def _check_pair(asm: _Assembler, r: _Raw, op: Operand, mnemonic: str) -> None:
-    if op.is_immediate or op.area != "R" or op.width != "word" or op.index > 254:
-        raise asm.fail(r.line, r.op_column, f"{mnemonic} works on a register pair RW0..RW254, not {op}")
-
-
-_READ = OperandSpec("operand", "XYSRD", ("bit", "byte", "word", "long"), True)
-_WRITE = OperandSpec("operand", "XYSR", ("bit", "byte", "word", "long"))
-_LOGIC = OperandSpec("operand", "XYSRUD", ("bit", "byte"), True)
-_MEMORY = OperandSpec("operand", "XYSR", ("bit", "byte"))
-_COMPARE = OperandSpec("operand", "XYSRD", ("byte", "word"), True)
-_PAIR = OperandSpec("pair", "R", ("word",))
-OPERANDS: dict[str, OperandSpec] = {
-    **dict.fromkeys(("LD", "LDC"), _READ),
-    **dict.fromkeys(("WR", "WRC", "PUT"), _WRITE),
-    **dict.fromkeys(("AND", "ANC", "OR", "ORC", "XOR", "XOC"), _LOGIC),
-    **dict.fromkeys(("SET", "RES", "LET"), _MEMORY),
-    **dict.fromkeys(("EQ", "LT", "GT", "ADD"), _COMPARE),
-    **dict.fromkeys(("CTU", "CTD", "CNT", "SFL", "SFR"), _PAIR),
-    **dict.fromkeys(("TON", "TOF", "RTO", "IMP"), OperandSpec("timer")),
-    **dict.fromkeys(("JMP", "JMD", "JMC", "CAL", "CAD", "CAC"), OperandSpec("label")),
-    **dict.fromkeys(("LTB", "FTB", "LMS", "WMS"), OperandSpec("table")),
-}

@@ -25,7 +25,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from plcsim.controllers.tecomat.assembler import Instruction
+from plcsim.controllers.tecomat.assembly import Instruction
 from plcsim.controllers.tecomat.settings import TIME_BASES_NS
 
 if TYPE_CHECKING:

@@ -39,7 +39,9 @@ from plcsim.controllers.loaded import LoadedProgram, ProgramFacts
 from plcsim.controllers.protocol import RUN, STOP, DiagnosticEntry
 from plcsim.controllers.tecomat import verbs
 from plcsim.controllers.tecomat.analysis import IlAnalysis, IlCompiled
-from plcsim.controllers.tecomat.assembler import Assembly, assemble
+from plcsim.controllers.tecomat.assembler import assemble
+from plcsim.controllers.tecomat.assembly import Assembly
+from plcsim.controllers.tecomat.linker import link
 from plcsim.controllers.tecomat.machine import END_CYCLE, Machine, TecomatRuntimeError
 from plcsim.controllers.tecomat.memory import Operand, OperandError, Scratchpad, parse_address, read, write
 from plcsim.controllers.tecomat.settings import TecomatConfig
@@ -73,6 +75,21 @@ class TecomatCPU:
         config: a :class:`TecomatConfig`; keyword ``options`` build one instead.
         symbols: extra names bound to addresses (``{"TLACIDLO": "X0.0"}``), e.g. an exercise's I/O names.
         start: cold-start into RUN after loading.
+        clock: the clock to run on (a simulation shares one with the plant); a new one at 0 by default.
+        filename: the program's name in error messages and diagnostics.
+        **options: fields of :class:`TecomatConfig` (``cycle="10ms"``), when no ``config`` is given.
+
+    Attributes:
+        mode: ``"RUN"`` or ``"STOP"``.
+        inputs: each input symbol's level as last driven (:meth:`set_input`, the wiring).
+        outputs: each output symbol's value as the last cycle's end wrote Y (all off in STOP).
+        scan_count: the cycles run so far.
+        warnings: what was noticed about the program and its options (``#include`` ignored, an I/O name
+            spelt like an address, an option the Tecomat does not have ...).
+        diagnostics: the diagnostic buffer, newest last: downloads, mode changes, errors (1000 kept).
+        symbols: the names of X, Y and R the program declares (and ``symbols``), as operands.
+        program: the loaded :class:`Assembly`.
+        machine: the state the program runs on: the scratchpad ``machine.pad``, the stacks, the linked code.
     """
 
     family = "Tecomat NS950"
@@ -166,6 +183,7 @@ class TecomatCPU:
         self.program, self.warnings = asm, list(asm.warnings)
         self._started = False
         self.machine = Machine(asm, self.config)
+        self.machine.code = link(self.machine)
         self.compiled = IlCompiled(IlAnalysis.of(asm))
         self.terminals = Scratchpad({"X": bytearray(self.config.x_size)})
         """The input terminals as the plant drives them; the turnaround samples them into X and U."""
@@ -372,6 +390,7 @@ class TecomatCPU:
 
     @property
     def now(self) -> int:
+        """The simulated time now, in ns."""
         return self.clock.now
 
     def run(self, duration: str | int) -> None:
@@ -514,6 +533,7 @@ class TecomatCPU:
         )
 
     def local_time_at(self, t_ns: int) -> _dt.datetime:
+        """The real-time clock at the simulated time ``t_ns``."""
         return self._rtc_base + _dt.timedelta(microseconds=t_ns // 1000)
 
     def _processes(self) -> None:

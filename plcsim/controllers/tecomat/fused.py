@@ -32,7 +32,7 @@ from plcsim.controllers.tecomat.machine import END
 from plcsim.controllers.tecomat.memory import Operand
 
 if TYPE_CHECKING:
-    from plcsim.controllers.tecomat.assembler import Instruction
+    from plcsim.controllers.tecomat.assembly import Instruction
     from plcsim.controllers.tecomat.machine import Machine
 
 Code = Callable[[], int]

@@ -1,6 +1,8 @@
-"""The instructions, linked once into closures: each runs one instruction and returns the next index.
+"""The plain instructions' builders: each makes the closure that runs one instruction and returns the next index.
 
-Every closure is specialised when the program is linked (the operand's area, byte and bit, the width,
+:data:`BUILDERS` maps a mnemonic to its builder; function blocks (:mod:`.blocks`) and tables (:mod:`.tables`)
+have their own, and :mod:`.linker` picks each instruction's. Every closure is specialised when the program is
+linked (the operand's area, byte and bit, the width,
 the jump target are constants in it), so a cycle runs no decoding at all. Stack effects follow the
 manual's table (``spec/tecomat.md`` §4.3): LD/LDC push; logic and comparisons with an operand overwrite
 A0; AND/OR/XOR/ADD without an operand pop; FLG pushes; jumps leave the stack alone.
@@ -20,27 +22,15 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from plcsim.controllers.tecomat.assembler import Instruction, Label
-from plcsim.controllers.tecomat.blocks import BLOCKS, block
-from plcsim.controllers.tecomat.fused import fuse
+from plcsim.controllers.tecomat.assembly import Instruction, Label
 from plcsim.controllers.tecomat.machine import END, END_CYCLE, MAX_NESTING, STACKS, TecomatRuntimeError
 from plcsim.controllers.tecomat.memory import Operand
-from plcsim.controllers.tecomat.tables import TABLES
 
 if TYPE_CHECKING:
     from plcsim.controllers.tecomat.machine import Machine
 
 FFFF = 0xFFFF
 Code = Callable[[], int]
-
-
-def link(m: Machine) -> list[Code]:
-    """The program's closures, one per instruction."""
-    code = []
-    for index, instr in enumerate(m.asm.code):
-        builder = BUILDERS.get(instr.mnemonic) or (block if instr.mnemonic in BLOCKS else TABLES[instr.mnemonic])
-        code.append(builder(m, index, instr))
-    return fuse(m, code) if m.config.fuse else code
 
 
 def _push(m: Machine) -> Callable[[int], None]:

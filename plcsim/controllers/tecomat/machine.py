@@ -1,12 +1,15 @@
-"""The NS950 machine: scratchpad, the eight 8-level stacks, the call stack, and the linked code.
+"""The NS950 machine: scratchpad, the eight 8-level stacks, the call stack, and the linked code it runs.
 
-The assembler's instructions are linked once into closures (:mod:`plcsim.controllers.tecomat.instructions`):
-each runs one instruction and returns the index of the next one, so a process runs as
-``while pc >= 0: pc = code[pc]()``. Booleans are 16-bit masks (a bit LD fills all of A0; a true
-comparison gives FFFFH); a binary input is the OR of a level's 16 bits.
+The assembler's instructions are linked once into closures (:func:`plcsim.controllers.tecomat.linker.link`,
+called by whoever downloads the program: the CPU): each runs one instruction and returns the index of the
+next one, so a process runs as ``while pc >= 0: pc = code[pc]()``. The machine is the bottom of the
+controller: the instruction modules build on its state, and it imports none of them. Booleans are 16-bit
+masks (a bit LD fills all of A0; a true comparison gives FFFFH); a binary input is the OR of a level's 16 bits.
 
 >>> from plcsim.controllers.tecomat.assembler import assemble
+>>> from plcsim.controllers.tecomat.linker import link
 >>> m = Machine(assemble("LD X0.0\\nLD R10\\nLD SW 10\\n"))
+>>> m.code = link(m)
 >>> m.pad.areas["X"][0], m.pad.areas["R"][10], m.pad.areas["S"][10:12] = 1, 0x40, bytes([1, 7])
 >>> m.run_process(0)
 -1
@@ -18,7 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from plcsim.controllers.tecomat.assembler import Assembly
+from plcsim.controllers.tecomat.assembly import Assembly
 from plcsim.controllers.tecomat.memory import Scratchpad
 from plcsim.controllers.tecomat.settings import TecomatConfig
 from plcsim.core.errors import PlcError
@@ -44,8 +47,6 @@ class Machine:
     """The state one Tecomat program runs on, and its linked code."""
 
     def __init__(self, asm: Assembly, config: TecomatConfig | None = None):
-        from plcsim.controllers.tecomat.instructions import link
-
         self.asm = asm
         self.config = config or TecomatConfig()
         cfg = self.config
@@ -65,7 +66,8 @@ class Machine:
         self.blocks: list = []
         """The hidden state of every function block (edge memories, timer phases), reset by a cold restart."""
         self.numbered = {int(name[1:]): i for name, i in asm.labels.items() if name[:1] == "L" and name[1:].isdigit()}
-        self.code: list[Callable[[], int]] = link(self)
+        self.code: list[Callable[[], int]] = []
+        """One closure per instruction of ``asm``, set by :func:`plcsim.controllers.tecomat.linker.link`."""
 
     # -- the stack -----------------------------------------------------------------------------------
 

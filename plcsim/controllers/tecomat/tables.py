@@ -16,7 +16,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from plcsim.controllers.tecomat.assembler import Instruction, Table
+from plcsim.controllers.tecomat.assembly import Instruction, Table
 from plcsim.controllers.tecomat.machine import TecomatRuntimeError
 from plcsim.controllers.tecomat.memory import Operand
 

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from plcsim.controllers.tecomat import instructions
+from plcsim.controllers.tecomat import linker
 from plcsim.controllers.tecomat.assembler import assemble
 from plcsim.controllers.tecomat.cpu import TecomatCPU, load_file
 
@@ -21,7 +21,7 @@ EXAMPLES = Path(__file__).resolve().parents[3] / "examples" / "tecomat"
 def linking(request, monkeypatch):
     """Every test runs on the fast path (fused runs) and on the plain closures: the same behaviour."""
     if request.param == "closures":
-        monkeypatch.setattr(instructions, "fuse", lambda m, code: code)
+        monkeypatch.setattr(linker, "fuse", lambda m, code: code)
     return request.param
 
 

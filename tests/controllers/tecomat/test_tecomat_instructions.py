@@ -6,8 +6,9 @@ from __future__ import annotations
 import pytest
 
 from plcsim.controllers.choice import controller_for
-from plcsim.controllers.tecomat import instructions
-from plcsim.controllers.tecomat.assembler import AssemblyError, assemble
+from plcsim.controllers.tecomat import linker
+from plcsim.controllers.tecomat.assembler import assemble
+from plcsim.controllers.tecomat.assembly import AssemblyError
 from plcsim.controllers.tecomat.cpu import TecomatCPU
 from plcsim.controllers.tecomat.mnemonics import DEFINED, NAMED_ONLY
 from plcsim.core.errors import ConfigurationError
@@ -20,7 +21,7 @@ from plcsim.tags.types import DWord
 def linking(request, monkeypatch):
     """Every test runs on the fast path (fused runs) and on the plain closures: the same behaviour."""
     if request.param == "closures":
-        monkeypatch.setattr(instructions, "fuse", lambda m, code: code)
+        monkeypatch.setattr(linker, "fuse", lambda m, code: code)
     return request.param
 
 

@@ -11,7 +11,7 @@ import exercises
 from plants import Panel
 from plcsim import CPU, Program, Simulation, Tag
 from plcsim.controllers.choice import controller_for
-from plcsim.controllers.tecomat.assembler import AssemblyError
+from plcsim.controllers.tecomat.assembly import AssemblyError
 from plcsim.core.errors import ConfigurationError, ProgramError
 from plcsim.frontends import read_program
 from plcsim.frontends.il import IlProgram, program_text
