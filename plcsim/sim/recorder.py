@@ -21,8 +21,8 @@ from plcsim.controllers.s7.cpu import CLOCK_BITS, CPU, SYSTEM_BITS
 from plcsim.controllers.s7.instructions import block_of
 from plcsim.core.errors import UnknownTagError, did_you_mean
 from plcsim.core.observers import Subscribers
-from plcsim.tags.table import PlcStruct
 from plcsim.tags.types import ElementaryType
+from plcsim.tags.values import PlcStruct
 from plcsim.trace.facade import BLOCK, Trace
 from plcsim.trace.rows import UNPACKABLE
 

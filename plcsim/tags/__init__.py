@@ -1,28 +1,10 @@
 """The tag table, the S7 value types and byte-addressed memory: what every controller's I/O names stand on."""
 
-from plcsim.tags.table import (
-    DB,
-    AliasCell,
-    Bool,
-    DataBlock,
-    FBType,
-    Int,
-    MemoryLayout,
-    PlcArray,
-    PlcStruct,
-    Tag,
-    TagEntry,
-    TagTable,
-    area_memories,
-    build_runtime,
-    build_tags,
-    copy_value,
-    instantiate,
-    link_aliases,
-    non_optimized_offsets,
-    reset_to_start,
-    store,
-)
+from plcsim.tags.aliasing import AliasCell, MemoryLayout, area_memories, link_aliases, non_optimized_offsets
+from plcsim.tags.runtime import build_runtime, build_tags
+from plcsim.tags.table import DB, DataBlock, FBType, Tag, TagEntry, TagTable
+from plcsim.tags.types import Bool, Int
+from plcsim.tags.values import PlcArray, PlcStruct, copy_value, instantiate, reset_to_start, store
 
 __all__ = [
     "Tag",

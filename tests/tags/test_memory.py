@@ -19,8 +19,8 @@ from hypothesis import strategies as st
 
 from plcsim import CPU, DB, Tag
 from plcsim.core.errors import AddressError
+from plcsim.tags.aliasing import non_optimized_offsets
 from plcsim.tags.memory import ByteMemory, parse_address
-from plcsim.tags.table import non_optimized_offsets
 from plcsim.tags.types import Bool, Byte, DInt, DWord, Int, Real, Word
 
 

@@ -8,8 +8,8 @@ from typing import Any
 from plcsim.controllers.s7.instructions import block_of
 from plcsim.core.errors import PlcTypeError, UnknownTagError, did_you_mean
 from plcsim.tags.memory import Address, parse_address
-from plcsim.tags.table import PlcArray, PlcStruct, store
 from plcsim.tags.types import ElementaryType
+from plcsim.tags.values import PlcArray, PlcStruct, store
 
 
 class HostAccess:

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from plcsim.controllers.s7.instructions.timers import TimerDialect
 from plcsim.core.errors import ConfigurationError
 from plcsim.core.literals import datetime_literal, to_ns
-from plcsim.tags.table import MemoryLayout
+from plcsim.tags.aliasing import MemoryLayout
 
 CLOCK_BITS = (  # bit, name, half period in ms (S7-1200 clock memory byte layout)
     (0, "Clock_10Hz", 50),

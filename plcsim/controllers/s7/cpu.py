@@ -56,16 +56,12 @@ from plcsim.core.clock import Clock
 from plcsim.core.errors import ConfigurationError, PlcTypeError
 from plcsim.core.literals import datetime_literal, format_ns, to_ns
 from plcsim.core.observers import Subscribers, assigned_hook
+from plcsim.tags.aliasing import non_optimized_offsets
 from plcsim.tags.memory import Address, ByteMemory, parse_address
-from plcsim.tags.table import (
-    PlcStruct,
-    Tag,
-    TagTable,
-    build_runtime,
-    non_optimized_offsets,
-    reset_to_start,
-)
+from plcsim.tags.runtime import build_runtime
+from plcsim.tags.table import Tag, TagTable
 from plcsim.tags.types import Bool, Int
+from plcsim.tags.values import PlcStruct, reset_to_start
 
 
 class CPU(TaskRunner, HostAccess):

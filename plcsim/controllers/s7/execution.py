@@ -19,7 +19,7 @@ from plcsim.controllers.s7.instructions.system import JumpTo, ReturnFromBlock
 from plcsim.core.clock import NEVER, Clock
 from plcsim.core.errors import PlcError
 from plcsim.core.observers import Subscribers
-from plcsim.tags.table import PlcStruct, store
+from plcsim.tags.values import PlcStruct, store
 
 
 class CycleWatchdog(Exception):  # noqa: N818 - it is the S7 name of the event

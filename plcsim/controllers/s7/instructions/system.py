@@ -7,8 +7,8 @@ from collections.abc import Callable
 from typing import Any
 
 from plcsim.core.errors import PlcTypeError
-from plcsim.tags.table import PlcArray, PlcStruct, store
 from plcsim.tags.types import DTL, ElementaryType, StringType, StructType
+from plcsim.tags.values import PlcArray, PlcStruct, store
 
 
 class JumpTo(Exception):  # noqa: N818 - control flow, not an error
