@@ -352,7 +352,7 @@ def grade_sandboxed(
     """Grade an untrusted submission file: run it in a confined child (:mod:`plcsim.grading.sandbox.parent`), check here.
 
     ``child_entry`` (tests only) names another child module to start, to prove what the grader does
-    with a hostile child's output. ``probes``: a batch's :class:`plcsim.grading.sandbox.parent.Probes`."""
+    with a hostile child's output. ``probes``: a batch's :class:`plcsim.grading.sandbox.probes.Probes`."""
     from plcsim.grading.sandbox.parent import DEFAULT_ENTRY, run_child
 
     limits = limits or Limits()
@@ -433,10 +433,10 @@ class ExerciseRef:
     @classmethod
     def of(cls, exercise: Exercise) -> ExerciseRef:
         """Raises ConfigurationError for an exercise no module defines (one built in a test or notebook)."""
-        from plcsim.grading.sandbox.parent import _locate, _package_root
+        from plcsim.grading.sandbox.importable import locate, package_root
 
-        module, attribute = _locate(exercise)
-        top = _package_root(sys.modules[module])
+        module, attribute = locate(exercise)
+        top = package_root(sys.modules[module])
         return cls(module, attribute, str(top.parent) if top is not None else None)
 
     def resolve(self) -> Exercise:
@@ -458,7 +458,7 @@ class GradingTask:
     seed: int
     limits: Limits | None
     probes: Any
-    """The batch's :class:`plcsim.grading.sandbox.parent.Probes`, or None to probe in the task."""
+    """The batch's :class:`plcsim.grading.sandbox.probes.Probes`, or None to probe in the task."""
     options: dict[str, Any]
     version: str
 
@@ -499,7 +499,7 @@ def grade_batch(
     Recordings, traces and diagrams (``rrd_dir``, ``traces_dir``, ``plots_dir``) go into one folder per
     student below the folder given (``out/alice/led-1-alice-presses.rrd``)."""
     from plcsim.grading.executors import open_executor
-    from plcsim.grading.sandbox.parent import Probes
+    from plcsim.grading.sandbox.probes import Probes
 
     paths = [Path(p) for p in paths]
     reports: list[Report | None] = [None] * len(paths)

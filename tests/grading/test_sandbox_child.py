@@ -199,7 +199,7 @@ def test_a_project_inside_the_temporary_folder_is_readable_the_scratch_beside_it
     """A clone under /tmp once made every lazy import of the child fail after the lock-down (every
     sandboxed ``.il`` grade crashed on ``plcsim.frontends.il``): the temporary folder is hidden from a
     root that holds it, never from a root inside it."""
-    from plcsim.grading.sandbox import parent as sandbox
+    from plcsim.grading.sandbox import readable as sandbox
 
     temp = tmp_path / "tmp"
     package = temp / "clone" / "plcsim"

@@ -1,4 +1,5 @@
-"""The grading child: ``python -m plcsim.grading.sandbox.child REQUEST`` (started by :mod:`plcsim.grading.sandbox.parent`).
+"""The grading child: ``python -m plcsim.grading.sandbox.child REQUEST``, started by the grader
+(:mod:`plcsim.grading.sandbox.parent`).
 
 It confines itself (:mod:`plcsim.grading.sandbox.confine`), loads the exercise and the submission, runs every
 scenario and writes the raw results (:mod:`plcsim.grading.run_result`) to the file descriptor the grader
@@ -22,9 +23,7 @@ import sys
 from collections.abc import Callable
 from typing import Any
 
-SIGNAL_EXIT_BASE = 128
-MEMORY_EXIT = 86
-"""Exit code of a child that ran out of memory even for its failure message."""
+from plcsim.grading.sandbox.exits import MEMORY_EXIT, SIGNAL_EXIT_BASE
 
 
 def main(argv: list[str], work: Callable[[dict[str, Any]], bytes] | None = None) -> int:
