@@ -74,7 +74,8 @@ from plcsim.core.literals import time_ms
 from plcsim.exercise.model import Exercise
 from plcsim.frontends.python.compiler import Typing
 from plcsim.frontends.python.program import Program
-from plcsim.grading.grader import Report, grade
+from plcsim.grading.grader import grade
+from plcsim.grading.report import Report
 from plcsim.tags.table import TagTable
 from plcsim.tags.types import Bool
 

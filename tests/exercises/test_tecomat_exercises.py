@@ -17,8 +17,9 @@ from plcsim.controllers.tecomat.verbs import INTERRUPT, interrupt, set_clock
 from plcsim.core.errors import ExerciseError
 from plcsim.exercise.model import IO, Exercise, Solution
 from plcsim.frontends import read_program
-from plcsim.grading.grader import evaluate, run_scenarios
 from plcsim.grading.report import Report
+from plcsim.grading.run import run_scenarios
+from plcsim.grading.scoring import evaluate
 from plcsim.scenario.verbs import Scenario, ScenarioError, switch
 from plcsim.tags.types import Byte
 

@@ -31,8 +31,9 @@ from plcsim.controllers.s7.instructions import FB_TYPES
 from plcsim.core.errors import ConfigurationError, ProgramError, UnknownTagError
 from plcsim.frontends import read_program, register, suffixes, unregister
 from plcsim.frontends.python.compiler import STORE
-from plcsim.grading.grader import evaluate, run_scenarios
 from plcsim.grading.report import Report
+from plcsim.grading.run import run_scenarios
+from plcsim.grading.scoring import evaluate
 from plcsim.scenario.verbs import Scenario, press
 from plcsim.sim.wiring import NO
 from plcsim.tags.table import TagTable

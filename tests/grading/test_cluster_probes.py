@@ -12,7 +12,7 @@ import shutil
 import pytest
 
 from exercises import get
-from plcsim.grading.grader import grade_batch
+from plcsim.grading.batch import grade_batch
 from plcsim.grading.sandbox import probes as sandbox_probes
 from plcsim.grading.sandbox import readable as sandbox_readable
 from plcsim.grading.sandbox.probes import Probes

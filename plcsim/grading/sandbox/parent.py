@@ -52,6 +52,7 @@ from plcsim.grading.run_result import (
 from plcsim.grading.sandbox import forkserver
 from plcsim.grading.sandbox.exits import MEMORY_EXIT, SIGNAL_EXIT_BASE
 from plcsim.grading.sandbox.importable import locate
+from plcsim.grading.sandbox.limits import Limits
 from plcsim.grading.sandbox.probes import Probes
 from plcsim.grading.sandbox.readable import readable_paths
 
@@ -97,7 +98,7 @@ def run_child(
     path: Path,
     seed: int,
     scenarios: list[Any],
-    limits: Any,
+    limits: Limits,
     *,
     geometry: bool = False,
     entry: str = DEFAULT_ENTRY,
