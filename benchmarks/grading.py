@@ -91,7 +91,7 @@ def _rates(settings: Settings) -> Iterator[dict[str, Any]]:
 
 def _grade_class(classes: list[tuple[Any, list[Any]]], pool: Any) -> tuple[float, list[str]]:
     """Grade each exercise's folder through ``pool``: the seconds taken and the grades that went wrong."""
-    from plcsim.grading.grader import grade_batch
+    from plcsim.grading.batch import grade_batch
 
     unexpected = []
     t0 = time.perf_counter()

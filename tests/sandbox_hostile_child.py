@@ -26,7 +26,7 @@ from plcsim.grading.sandbox.child import lock_down, main
 def _runs(request: dict[str, Any], solution: str = "reference") -> list[Any]:
     import importlib
 
-    from plcsim.grading.grader import run_scenarios
+    from plcsim.grading.run import run_scenarios
 
     exercise = getattr(importlib.import_module(request["module"]), request["attribute"])
     chosen = exercise.reference if solution == "reference" else exercise.solution(solution)
@@ -116,10 +116,10 @@ def work(request: dict[str, Any]) -> bytes:
         runs[0].warnings = [f"open {fd} -> {_target(int(fd))}" for fd in sorted(listing, key=int)]
         return encode_runs(runs)
     if do == "poison":  # change in this process what the next child would use, if it were inherited
-        import plcsim.grading.grader
+        import plcsim.grading.run
         import plcsim.grading.run_result
 
-        plcsim.grading.grader.run_scenarios = None
+        plcsim.grading.run.run_scenarios = None
         plcsim.grading.run_result.encode_runs = lambda *a, **k: b"forged"
         sys.modules[request["module"]].__dict__.clear()
         os._exit(3)

@@ -13,7 +13,8 @@ from pathlib import Path
 
 from plcsim.check import StaticCheck
 from plcsim.exercise.model import Exercise
-from plcsim.grading.grader import Report, grade
+from plcsim.grading.grader import grade
+from plcsim.grading.report import Report
 
 SEEDS = range(1, 21)
 

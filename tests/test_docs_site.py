@@ -80,6 +80,6 @@ def test_the_docstrings_restructuredtext_is_rendered_as_code_not_left_raw(site):
     for page in (site / "reference").glob("*/index.html"):
         assert not re.search(r":(mod|func|class|meth|attr):`", text_of(page)), page
     grading = (site / "reference/grading/index.html").read_text(encoding="utf-8")
-    assert "<code>run_scenarios</code>" in grading  # :func:`run_scenarios` in plcsim/grading.py
+    assert "<code>run_scenarios</code>" in grading  # :func:`run_scenarios` in plcsim/grading/grader.py
     check = (site / "reference/check/index.html").read_text(encoding="utf-8")
     assert re.search(r"<pre[^>]*>(?:(?!</pre>).)*conveyor_checks", check, re.DOTALL)  # a >>> example, as code

@@ -442,8 +442,10 @@ def _grade(args: argparse.Namespace) -> int:
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
     from plcsim.exercise.catalog import get
-    from plcsim.grading.grader import Limits, grade, grade_batch, grade_sandboxed, write_gradebook, write_junit
-    from plcsim.grading.report import write_gradescope
+    from plcsim.grading.batch import grade_batch
+    from plcsim.grading.grader import grade, grade_sandboxed
+    from plcsim.grading.report import write_gradebook, write_gradescope, write_junit
+    from plcsim.grading.sandbox.limits import Limits
     from plcsim.grading.terminal import print_batch_line, print_report
 
     console = Console()

@@ -19,7 +19,7 @@ Fixtures:
   limits=None)`` runs one scenario and returns a :class:`PlcRun` (trace, CPU state, ``check()`` and
   ``require()`` for the checker language of :mod:`plcsim.check`);
 * ``plcsim_grade(exercise, program=None, *, seed=None, scenarios=None, solution=None, sandbox=None,
-  limits=None)`` grades every scenario and check and returns the :class:`~plcsim.grading.grader.Report`;
+  limits=None)`` grades every scenario and check and returns the :class:`~plcsim.grading.report.Report`;
 * ``plcsim_program``: the submission of ``--plcsim-program`` (None without it);
   ``plcsim_seed``: the seed (1, or each of ``--plcsim-seeds``).
 
@@ -287,7 +287,9 @@ def _exercise(exercise: Any) -> Any:
 
 def _run_one(ex: Any, path: Path, scenario: str, seed: int, confined: bool, limits: Any) -> PlcRun | SubmissionError:
     from plcsim.core.errors import PlcError
-    from plcsim.grading.grader import Limits, load_error_kind, parent_analysis, run_scenarios
+    from plcsim.grading.grader import parent_analysis
+    from plcsim.grading.run import load_error_kind, run_scenarios
+    from plcsim.grading.sandbox.limits import Limits
 
     try:
         analysis = parent_analysis(ex, path)

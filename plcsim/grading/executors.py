@@ -1,6 +1,6 @@
 """Where a batch is graded: a :class:`concurrent.futures.Executor` named by ``plcsim grade --executor``.
 
-Every executor runs the same task (:func:`plcsim.grading.grader.grade_task`): one submission, graded in a
+Every executor runs the same task (:func:`plcsim.grading.batch.grade_task`): one submission, graded in a
 fresh confined child process that it starts and waits on, the checks evaluated in the task's own
 process. The executors differ only in where that task runs:
 
@@ -26,7 +26,7 @@ Dask at all.
 >>> parse_executor("ray")
 Traceback (most recent call last):
 ...
-plcsim.core.errors.ConfigurationError: unknown executor 'ray': use local, dask, or dask://HOST:PORT (tcp://HOST:PORT) ...
+plcsim.core.errors.ConfigurationError: unknown executor 'ray': use local, dask, or dask://HOST:PORT ...
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """The grade of a submission as data, and its files: JSON, JUnit XML, the gradebook CSV.
 
-A report is built by the grader (:mod:`plcsim.grading.grader`) from checks it ran itself; nothing in it
+A report is built by the grader (:mod:`plcsim.grading.scoring`) from checks it ran itself; nothing in it
 comes from a submission except texts (messages, file names), which every writer here treats as
 data: JUnit escapes them as XML, the CSV neutralises cells a spreadsheet would run as a formula.
 """

@@ -2,7 +2,7 @@
 
 A :class:`RunResult` is the raw outcome of one scenario: the trace (columns, times, tasks, events,
 optionally the plant's geometry), the CPU's mode, error and warnings, and the run's length. It holds
-no score: the checks run in the grader on it (see :mod:`plcsim.grading.grader`).
+no score: the checks run in the grader on it (see :mod:`plcsim.grading.scoring`).
 
 The child's message is ``MAGIC``, an 8-byte header length, a JSON header and the raw float64 row
 tables. Nothing in it is unpickled or executed; :func:`decode` accepts it only if it has exactly the

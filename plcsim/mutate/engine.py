@@ -41,8 +41,8 @@ from plcsim.controllers.s7.cpu import CLOCK_BITS, SYSTEM_BITS
 from plcsim.core.errors import ExerciseError, PlcError, did_you_mean
 from plcsim.exercise.model import Exercise
 from plcsim.frontends.python.program import Program
-from plcsim.frontends.python.typecheck import Typing
-from plcsim.grading.grader import Report, grade
+from plcsim.grading.grader import grade
+from plcsim.grading.report import Report
 from plcsim.mutate import il, python
 from plcsim.mutate.mutant import Mutant
 

@@ -103,7 +103,7 @@ def test_programs_run_in_the_sandbox_unless_the_instructor_opts_out(pytester):
     pytester.makepyfile(
         test_sandbox="""
         import pytest
-        from plcsim.grading.grader import Limits
+        from plcsim.grading.sandbox.limits import Limits
         from plcsim.apps.pytest_plugin import SubmissionError
 
         def test_sandboxed(plcsim_run):

@@ -19,7 +19,8 @@ from plcsim.check.base import Context
 from plcsim.check.exercised import Activity, unprovoked
 from plcsim.core.errors import ExerciseError
 from plcsim.exercise.model import Exercise
-from plcsim.grading.grader import grade, grade_sandboxed, write_gradebook
+from plcsim.grading.grader import grade, grade_sandboxed
+from plcsim.grading.report import write_gradebook
 from plcsim.scenario.planning import Scenario
 from plcsim.scenario.verbs import press
 from plcsim.trace.facade import Trace

@@ -12,13 +12,14 @@ import exercises
 from plants import Panel
 from plcsim import CPU, Program, Simulation, Tag
 from plcsim.check import action, count, final
-from plcsim.frontends.il import program_text
 from plcsim.controllers.tecomat.verbs import INTERRUPT, interrupt, set_clock
 from plcsim.core.errors import ExerciseError
 from plcsim.exercise.model import IO, Exercise, Solution
 from plcsim.frontends import read_program
-from plcsim.grading.grader import evaluate, run_scenarios
+from plcsim.frontends.il import program_text
 from plcsim.grading.report import Report
+from plcsim.grading.run import run_scenarios
+from plcsim.grading.scoring import evaluate
 from plcsim.scenario.planning import Scenario
 from plcsim.scenario.verbs import ScenarioError, switch
 from plcsim.tags.types import Byte

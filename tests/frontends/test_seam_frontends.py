@@ -30,8 +30,9 @@ from plcsim.controllers.loaded import (
 from plcsim.controllers.s7.instructions import FB_TYPES
 from plcsim.core.errors import ConfigurationError, ProgramError, UnknownTagError
 from plcsim.frontends import read_program, register, suffixes, unregister
-from plcsim.grading.grader import evaluate, run_scenarios
 from plcsim.grading.report import Report
+from plcsim.grading.run import run_scenarios
+from plcsim.grading.scoring import evaluate
 from plcsim.scenario.planning import Scenario
 from plcsim.scenario.verbs import press
 from plcsim.sim.wiring import NO

@@ -1,4 +1,4 @@
-"""Class-scale grading (plcsim.grading.executors, plcsim.grading.grader.grade_batch): a Dask cluster of two local
+"""Class-scale grading (plcsim.grading.executors, plcsim.grading.batch.grade_batch): a Dask cluster of two local
 worker processes grades a class folder into the same gradebook, JSON reports and JUnit file as
 ``--jobs 2``, each submission still in its own confined child; a worker killed mid-grade voids that
 one grade as a grader error and keeps the others; nothing in batch grading calls ``os.fork``.
@@ -19,8 +19,10 @@ import pytest
 from exercises import get
 from plcsim.apps.cli import EXIT_FAILED, EXIT_GRADER, EXIT_USAGE, main
 from plcsim.core.errors import ConfigurationError
+from plcsim.grading.batch import grade_batch
 from plcsim.grading.executors import open_executor
-from plcsim.grading.grader import Limits, grade_batch, write_gradebook, write_junit
+from plcsim.grading.report import write_gradebook, write_junit
+from plcsim.grading.sandbox.limits import Limits
 
 # one xdist worker runs them: they share one local Dask cluster (a second would double the workers)
 pytestmark = pytest.mark.xdist_group("cluster")
@@ -217,7 +219,7 @@ def test_a_scheduler_that_does_not_answer_and_a_missing_dask_are_usage_errors(mo
 
 
 def test_a_task_that_raises_is_a_grader_error_of_that_submission_alone(classes, monkeypatch):
-    from plcsim.grading import grader as grading
+    from plcsim.grading import batch as grading
 
     real = grading.grade_sandboxed
 

@@ -1,4 +1,4 @@
-"""The batch's trusted probe (plcsim.grading.sandbox.parent.Probes): run once per (exercise, scenario, seed) for a
+"""The batch's trusted probe (plcsim.grading.sandbox.probes.Probes): run once per (exercise, scenario, seed) for a
 whole batch instead of once per submission, and out of reach of the submissions: every submission is
 validated against its own copy, and hostile children graded in the same batch leave the cached
 probes as a fresh probe computes them.
@@ -12,9 +12,10 @@ import shutil
 import pytest
 
 from exercises import get
-from plcsim.grading.grader import grade_batch
-from plcsim.grading.sandbox import parent as sandbox
-from plcsim.grading.sandbox.parent import Probes
+from plcsim.grading.batch import grade_batch
+from plcsim.grading.sandbox import probes as sandbox_probes
+from plcsim.grading.sandbox import readable as sandbox_readable
+from plcsim.grading.sandbox.probes import Probes
 
 # one xdist worker runs them: they share one local Dask cluster (a second would double the workers)
 pytestmark = pytest.mark.xdist_group("cluster")
@@ -38,7 +39,7 @@ def test_each_submission_gets_its_own_copy_of_a_probe(ex4):
 def test_a_seed_or_scenario_the_batch_did_not_probe_is_probed_afresh(ex4, monkeypatch):
     probes = Probes.of(ex4, ex4.scenarios[:1], seed=1)
     calls = []
-    monkeypatch.setattr(sandbox, "_expected", lambda ex, s, seed: calls.append((s.name, seed)) or "fresh")
+    monkeypatch.setattr(sandbox_probes, "_expected", lambda ex, s, seed: calls.append((s.name, seed)) or "fresh")
     assert probes.expected(ex4, ex4.scenarios[0], 2) == "fresh"
     assert probes.expected(ex4, ex4.scenarios[1], 1) == "fresh"
     assert probes.expected(ex4, ex4.scenarios[0], 1) != "fresh"
@@ -49,8 +50,8 @@ def test_a_batch_probes_each_scenario_once(ex4, tmp_path, monkeypatch):
     for sol in ex4.solutions:
         shutil.copy(sol.path, tmp_path / f"{sol.name}.py")
     calls = []
-    real = sandbox._expected
-    monkeypatch.setattr(sandbox, "_expected", lambda ex, s, seed: calls.append(s.name) or real(ex, s, seed))
+    real = sandbox_probes._expected
+    monkeypatch.setattr(sandbox_probes, "_expected", lambda ex, s, seed: calls.append(s.name) or real(ex, s, seed))
     reports = grade_batch(ex4, sorted(tmp_path.glob("*.py")), jobs=2, seed=3)
     assert [(r.student, r.score, r.max_score) for r in reports] == [
         ("reference", 10.0, 10.0),
@@ -83,11 +84,11 @@ def test_hostile_children_in_a_batch_leave_the_cached_probes_untouched(tmp_path,
 
 def test_what_a_child_may_read_is_walked_once_per_batch(ex4, tmp_path):
     paths = [tmp_path / f"student{k}.py" for k in range(3)]
-    sandbox._granted.cache_clear()
-    lists = [sandbox._readable(ex4, p) for p in paths]
-    info = sandbox._granted.cache_info()
+    sandbox_readable._granted.cache_clear()
+    lists = [sandbox_readable.readable_paths(ex4, p) for p in paths]
+    info = sandbox_readable._granted.cache_info()
     assert (info.misses, info.hits) == (1, 2)
-    sandbox._granted.cache_clear()
-    assert lists[0] == lists[1] == lists[2] == sandbox._readable(ex4, paths[0])  # a fresh walk: the same
+    sandbox_readable._granted.cache_clear()
+    assert lists[0] == lists[1] == lists[2] == sandbox_readable.readable_paths(ex4, paths[0])  # a fresh walk: the same
     assert not any(str(tmp_path) in entry for entry in lists[0])
     assert not any("solutions" in entry for entry in lists[0])

@@ -18,8 +18,9 @@ import pytest
 import plcsim
 from exercises import get
 from plcsim.apps.cli import EXIT_FAILED, main
-from plcsim.grading.grader import grade, grade_batch, grade_sandboxed, write_gradebook
-from plcsim.grading.report import gradescope_results
+from plcsim.grading.batch import grade_batch
+from plcsim.grading.grader import grade, grade_sandboxed
+from plcsim.grading.report import gradescope_results, write_gradebook
 
 SCHEMA = json.loads((Path(__file__).parents[2] / "docs" / "report.schema.json").read_text(encoding="utf-8"))
 STOPS_AT_ONCE = "def spin(t):\n    while True:\n        pass\n\n\nOB1 = [spin]\n"

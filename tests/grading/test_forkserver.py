@@ -17,8 +17,9 @@ import numpy as np
 import pytest
 
 from exercises import get
-from plcsim.grading.grader import Limits, grade_sandboxed
+from plcsim.grading.grader import grade_sandboxed
 from plcsim.grading.sandbox import forkserver
+from plcsim.grading.sandbox.limits import Limits
 
 pytestmark = [
     pytest.mark.xdist_group("sandbox"),

@@ -18,7 +18,10 @@ import numpy as np
 import pytest
 
 from exercises import get
-from plcsim.grading.grader import Limits, Report, grade, grade_batch, grade_sandboxed, write_gradebook
+from plcsim.grading.batch import grade_batch
+from plcsim.grading.grader import grade, grade_sandboxed
+from plcsim.grading.report import Report, write_gradebook
+from plcsim.grading.sandbox.limits import Limits
 
 # one xdist worker runs them in turn: they look for the hostile child's leftovers machine-wide and
 # time their limits, so two at once on two cores would see each other

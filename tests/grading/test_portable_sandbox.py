@@ -43,8 +43,9 @@ from test_sandbox_child import (  # noqa: F401 - fixtures and tests re-run on th
 )
 
 from plcsim.core.errors import ConfigurationError
-from plcsim.grading.grader import Limits, grade_sandboxed
+from plcsim.grading.grader import grade_sandboxed
 from plcsim.grading.sandbox.confine import ORPHANED_EXIT
+from plcsim.grading.sandbox.limits import Limits
 from plcsim.grading.sandbox.parent import MODE_VARIABLE, portable_mode
 
 # one xdist worker runs them in turn: they look for the hostile child's leftovers machine-wide and

@@ -1,6 +1,6 @@
-"""The grading child as a hostile process (plcsim.grading.sandbox.parent, plcsim.grading.sandbox.confine): a test-double child
-(``tests/sandbox_hostile_child.py``, started through ``grade_sandboxed(child_entry=...)``) does what a
-submission that escaped the compiler could do. The grader must refuse every forged result, kill
+"""The grading child as a hostile process (plcsim.grading.sandbox.parent, plcsim.grading.sandbox.confine): a
+test-double child (``tests/sandbox_hostile_child.py``, started through ``grade_sandboxed(child_entry=...)``) does
+what a submission that escaped the compiler could do. The grader must refuse every forged result, kill
 what the child leaves behind, keep nothing on disk and report the true outcome.
 
 Exercise 4.3.1 (one 4 s scenario, 3 points) keeps each child short.
@@ -20,8 +20,9 @@ import pytest
 
 from exercises import get
 from plcsim.core.errors import ConfigurationError
-from plcsim.grading.grader import Limits, grade_sandboxed
+from plcsim.grading.grader import grade_sandboxed
 from plcsim.grading.sandbox import forkserver
+from plcsim.grading.sandbox.limits import Limits
 
 # one xdist worker runs them in turn: they look for the hostile child's leftovers machine-wide and
 # time their limits, so two at once on two cores would see each other
@@ -199,7 +200,7 @@ def test_a_project_inside_the_temporary_folder_is_readable_the_scratch_beside_it
     """A clone under /tmp once made every lazy import of the child fail after the lock-down (every
     sandboxed ``.il`` grade crashed on ``plcsim.frontends.il``): the temporary folder is hidden from a
     root that holds it, never from a root inside it."""
-    from plcsim.grading.sandbox import parent as sandbox
+    from plcsim.grading.sandbox import readable as sandbox
 
     temp = tmp_path / "tmp"
     package = temp / "clone" / "plcsim"

@@ -241,13 +241,13 @@ def test_a_module_the_grading_child_cannot_import_is_a_grader_error_not_the_stud
     import plcsim.frontends
     from plcsim.grading.run_result import decode
     from plcsim.grading.sandbox import child as sandbox_child
-    from plcsim.grading.sandbox import parent as sandbox
+    from plcsim.grading.sandbox import importable as sandbox
 
     def unreadable(path):
         raise ModuleNotFoundError("No module named 'plcsim.frontends.il'", name="plcsim.frontends.il")
 
     monkeypatch.setattr(plcsim.frontends, "read_program", unreadable)
-    module, attribute = sandbox._locate(ex1)
+    module, attribute = sandbox.locate(ex1)
     request = {"module": module, "attribute": attribute, "path": str(ex1.reference.path), "confine": False}
     kind, message = decode(sandbox_child.grade_request(request), [], seed=1)
     assert kind == "grader error"

@@ -10,10 +10,11 @@ import pytest
 from sandbox_hostile_child import _TAMPER, _retitle
 
 from exercises import get
-from plcsim.grading.grader import evaluate, run_scenarios
 from plcsim.grading.report import Report
+from plcsim.grading.run import run_scenarios
 from plcsim.grading.run_result import InvalidResultError, decode, encode_failure, encode_runs, message_length
-from plcsim.grading.sandbox.parent import _expected
+from plcsim.grading.sandbox.probes import _expected
+from plcsim.grading.scoring import evaluate
 
 # one xdist worker runs them in turn: they look for the hostile child's leftovers machine-wide and
 # time their limits, so two at once on two cores would see each other

@@ -1,8 +1,10 @@
-"""The grading child: ``python -m plcsim.grading.sandbox.child REQUEST`` (started by :mod:`plcsim.grading.sandbox.parent`).
+"""The grading child: ``python -m plcsim.grading.sandbox.child REQUEST``, started by the grader
+(:mod:`plcsim.grading.sandbox.parent`).
 
 It confines itself (:mod:`plcsim.grading.sandbox.confine`), loads the exercise and the submission, runs every
-scenario and writes the raw results (:mod:`plcsim.grading.run_result`) to the file descriptor the grader
-passed; then it exits. It sends no score: the grader evaluates the checks itself.
+scenario (:mod:`plcsim.grading.run`; it imports nothing of the grader) and writes the raw results
+(:mod:`plcsim.grading.run_result`) to the file descriptor the grader passed; then it exits. It sends no
+score: the grader evaluates the checks itself.
 
 On the portable path (``"confine": false`` in the request: Windows, or ``PLCSIM_SANDBOX=portable``)
 it applies none of that and writes its result to a file; the grader watches it from outside
@@ -22,9 +24,7 @@ import sys
 from collections.abc import Callable
 from typing import Any
 
-SIGNAL_EXIT_BASE = 128
-MEMORY_EXIT = 86
-"""Exit code of a child that ran out of memory even for its failure message."""
+from plcsim.grading.sandbox.exits import MEMORY_EXIT, SIGNAL_EXIT_BASE
 
 
 def main(argv: list[str], work: Callable[[dict[str, Any]], bytes] | None = None) -> int:
@@ -76,7 +76,7 @@ def grade_request(request: dict[str, Any]) -> bytes:
     """Load the exercise, lock down, run the submission in every scenario: the message for the grader."""
     from plcsim.core.errors import ExerciseError, PlcError
     from plcsim.frontends import read_program
-    from plcsim.grading.grader import load_error_kind, run_scenarios
+    from plcsim.grading.run import load_error_kind, run_scenarios
     from plcsim.grading.run_result import encode_failure, encode_runs
 
     exercise = getattr(importlib.import_module(request["module"]), request["attribute"])

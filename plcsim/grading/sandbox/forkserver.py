@@ -331,8 +331,8 @@ def main(argv: list[str]) -> int:
     """``python -m plcsim.grading.sandbox.forkserver FD``: serve the requests on the socket ``FD`` until it closes."""
     control = socket.socket(fileno=int(argv[1]))
     import plcsim.grading.sandbox.child  # noqa: F401 - what every child imports, once for all
-    from plcsim import frontends, grading  # noqa: F401
-    from plcsim.grading import run_result  # noqa: F401
+    from plcsim import frontends  # noqa: F401
+    from plcsim.grading import run, run_result  # noqa: F401
 
     serve(control)
     return 0

@@ -5,7 +5,9 @@ inherited; on Linux forked from a clean fork server, :mod:`plcsim.grading.sandbo
 the imports), in its own session and process group, in a fresh scratch folder that is removed
 afterwards, with limits it applies to itself before it loads the submission (:mod:`plcsim.grading.sandbox.confine`).
 Its stdout and stderr are thrown away: only the result pipe counts, and what arrives there is
-validated (:mod:`plcsim.grading.run_result`) against what this process computed the exercise must produce.
+validated (:mod:`plcsim.grading.run_result`) against what this process computed the exercise must produce
+(the trusted probe, :mod:`plcsim.grading.sandbox.probes`). What the child may read is listed here too
+(:mod:`plcsim.grading.sandbox.readable`) and sent along with the request.
 
 The grader reads the pipe until the message is complete, the child has exited or the wall-time
 limit has passed, never waiting for end-of-file (a grandchild may hold the pipe open); then it kills
@@ -18,7 +20,6 @@ path runs the child without any of it and watches it from outside (:mod:`plcsim.
 from __future__ import annotations
 
 import contextlib
-import copy
 import functools
 import json
 import os
@@ -27,20 +28,17 @@ import shutil
 import signal
 import subprocess
 import sys
-import sysconfig
 import tempfile
 import threading
 import time
 import uuid
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from plcsim.grading.sandbox import forkserver
 from plcsim.core.errors import ConfigurationError
 from plcsim.exercise.model import Exercise
-from plcsim.frontends.python.program import Program
 from plcsim.grading.run_result import (
     EXTRA_COLUMNS,
     HEAD,
@@ -51,7 +49,12 @@ from plcsim.grading.run_result import (
     decode,
     message_length,
 )
-from plcsim.grading.sandbox.child import MEMORY_EXIT, SIGNAL_EXIT_BASE
+from plcsim.grading.sandbox import forkserver
+from plcsim.grading.sandbox.exits import MEMORY_EXIT, SIGNAL_EXIT_BASE
+from plcsim.grading.sandbox.importable import locate
+from plcsim.grading.sandbox.limits import Limits
+from plcsim.grading.sandbox.probes import Probes
+from plcsim.grading.sandbox.readable import readable_paths
 
 DEFAULT_ENTRY = "plcsim.grading.sandbox.child"
 POSIX = hasattr(os, "waitid") and hasattr(os, "killpg") and hasattr(os, "wait4")
@@ -60,7 +63,6 @@ MODE_VARIABLE = "PLCSIM_SANDBOX"
 """``PLCSIM_SANDBOX=portable`` takes the portable path on any system (to prove it on Linux)."""
 EXIT_GRACE_S = 1.0
 """How long a child whose pipe closed without a result may take to exit and tell its exit status."""
-_PROBE_PROGRAM = "def OB1(t):\n    pass\n"
 
 
 @dataclass
@@ -75,16 +77,14 @@ class ChildOutcome:
 
 
 _PREPARING = threading.Lock()
-_PYTHON_PATHS = tuple(sysconfig.get_paths().values())
-"""Computed once at import: sysconfig fills its caches lazily and not thread-safely, and a batch grades
-from several threads (two threads in the first grade of a batch met "dictionary changed size")."""
 
 
 def portable_mode() -> bool:
     """True where the child gets no POSIX confinement: on Windows, or with ``PLCSIM_SANDBOX=portable``.
 
     The portable path disables every Unix-only part (resource limits, process groups, namespaces,
-    Landlock, cgroups, fork); the grader then watches the child from outside (:mod:`plcsim.grading.sandbox.watchdog`)."""
+    Landlock, cgroups, fork); the grader then watches the child from outside
+    (:mod:`plcsim.grading.sandbox.watchdog`)."""
     mode = os.environ.get(MODE_VARIABLE, "").strip().lower()
     if mode not in ("", "confined", "portable"):
         raise ConfigurationError(
@@ -98,7 +98,7 @@ def run_child(
     path: Path,
     seed: int,
     scenarios: list[Any],
-    limits: Any,
+    limits: Limits,
     *,
     geometry: bool = False,
     entry: str = DEFAULT_ENTRY,
@@ -112,8 +112,8 @@ def run_child(
     with _PREPARING:  # process-wide state (sys.modules, sysconfig's lazy caches): one batch thread at a time
         probes = probes or Probes(exercise.number, seed, {})
         expected = [probes.expected(exercise, s, seed) for s in scenarios]  # an exercise's mistake shows here
-        module, attribute = _locate(exercise)
-        readable = [str(path.resolve()), *_readable(exercise, path)]
+        module, attribute = locate(exercise)
+        readable = [str(path.resolve()), *readable_paths(exercise, path)]
     cap = MAX_HEADER_BYTES + sum(e.max_rows * (HEAD + len(e.kinds) + EXTRA_COLUMNS) * 8 for e in expected)
     portable = portable_mode()
     scratch = tempfile.mkdtemp(prefix="plcsim-grade-")
@@ -238,8 +238,8 @@ _PER_CHILD_ENV = ("HOME", "TMPDIR")
 def _run_portable(entry: str, request: dict[str, Any], limits: Any, cap: int) -> tuple[Any, ...]:
     """No process groups, no select on pipes, no resource limits (Windows, or ``PLCSIM_SANDBOX=portable``):
     the child writes its result to a file in scratch, and the grader watches the child and what it starts
-    from outside (:mod:`plcsim.grading.sandbox.watchdog`), killing them all at the wall-time, CPU-time or memory limit or
-    when the result file grows past what any result can hold. The child's stdin is a pipe the grader
+    from outside (:mod:`plcsim.grading.sandbox.watchdog`), killing them all at the wall-time, CPU-time or
+    memory limit or when the result file grows past what any result can hold. The child's stdin is a pipe the grader
     holds open: the child ends itself when it closes (the grader ended)."""
     from plcsim.grading.sandbox.watchdog import POLL_S, TreeWatch
 
@@ -413,149 +413,6 @@ def gaps(cgroup: str | None, portable: bool = False) -> list[str]:
     if os.geteuid() == 0 and cgroup is None:
         return ["sandbox: running as root without a writable pids cgroup, the number of processes is not limited"]
     return []
-
-
-@dataclass(frozen=True)
-class Probes:
-    """The trusted probe's results of one batch, computed once per (exercise, scenario, seed) in the
-    grader (:meth:`of`) instead of once per submission.
-
-    Each submission is validated against its own deep copy (:meth:`expected`), so nothing done while
-    grading one submission can change what the next is checked against; what a child sends never
-    reaches them. A scenario or seed the batch did not probe is probed afresh.
-    """
-
-    exercise: str
-    seed: int
-    by_scenario: Mapping[str, Expected]
-    """Scenario name -> what its run must look like."""
-
-    @classmethod
-    def of(cls, exercise: Exercise, scenarios: Sequence[Any], seed: int) -> Probes:
-        return cls(exercise.number, seed, {s.name: _expected(exercise, s, seed) for s in scenarios})
-
-    def expected(self, exercise: Exercise, scenario: Any, seed: int) -> Expected:
-        """What the run of ``scenario`` must look like: a copy of the cached probe, or a fresh probe."""
-        ours = (exercise.number, seed) == (self.exercise, self.seed)
-        cached = self.by_scenario.get(scenario.name) if ours else None
-        return copy.deepcopy(cached) if cached is not None else _expected(exercise, scenario, seed)
-
-
-def _expected(exercise: Exercise, scenario: Any, seed: int) -> Expected:
-    """What the run of ``scenario`` must look like, from a trusted probe program on the same CPU and rig."""
-    sim = exercise.simulation(Program.from_source(_PROBE_PROGRAM, "<probe>"), _for_the_probe(scenario), seed=seed)
-    trace = sim.trace
-    step = max(1, min(sim.dt_ns, trace.meta.get("cycle_ns") or sim.dt_ns))
-    duration = scenario.duration_ns
-    max_rows = max(4 * (duration // step + 1), 2 * (duration // 100_000 + 1)) + 10_000
-    meta = {k: v for k, v in trace.meta.items() if k not in ("end_ns", "scans", "program")}
-    return Expected(scenario.name, duration, max_rows, dict(trace.kinds), dict(trace.types), meta)
-
-
-def _for_the_probe(scenario: Any) -> Any:
-    """``scenario`` without the verbs a controller brings (the Tecomat's ``set_clock``, ``interrupt``): the
-    probe runs on the S7, which cannot carry them out, and they change what a program reads, never the
-    shape of the trace the probe is asked for."""
-    kept = [a for a in scenario.actions if a.rig is None or not a.rig.controller]
-    if len(kept) == len(scenario.actions):
-        return scenario
-    probe = copy.copy(scenario)
-    probe.actions = kept
-    return probe
-
-
-def _locate(exercise: Exercise) -> tuple[str, str]:
-    """The module and attribute a fresh interpreter finds ``exercise`` under (``EXERCISE`` first)."""
-    modules = [(name, vars(m)) for name, m in list(sys.modules.items()) if name != "__main__" and m is not None]
-    for name, namespace in modules:
-        if namespace.get("EXERCISE") is exercise:
-            return name, "EXERCISE"
-    for name, namespace in modules:
-        for attribute, value in list(namespace.items()):
-            if value is exercise:
-                return name, attribute
-    raise ConfigurationError(
-        f"exercise {exercise.number} is not importable by a module name, so a grading child cannot load it; "
-        f"define it in a module (EXERCISE = Exercise(...)) or grade in this process with grade()"
-    )
-
-
-_SYSTEM_READABLE = ("/usr", "/lib", "/lib64", "/etc", "/dev/null", "/dev/zero", "/dev/urandom")
-"""Besides the Python installation and the loaded packages: shared libraries, configuration, devices."""
-
-
-def _readable(exercise: Exercise, path: Path) -> list[str]:
-    """What the child may read (a list of allowed files and folders, not of forbidden ones): the Python
-    installation, the folders of the packages this process has loaded and the system's libraries; not
-    the exercise's solutions, not the other files of the submission's folder (the other students'),
-    not the temporary folder (the other children's scratch).
-
-    The walk is cached (:func:`_granted`): the submissions of a batch share their folder, hidden
-    folders and loaded packages, so it runs once per batch, not once per submission."""
-    hidden = {s.path.resolve().parent for s in exercise.solutions}
-    hidden |= {h.parent for h in hidden if h.parent.name == "solutions"}
-    temp = Path(tempfile.gettempdir()).resolve()
-    folder = path.resolve().parent  # its sub-folders may hold packages; its files are other submissions
-    roots = {Path(p) for p in _SYSTEM_READABLE}
-    roots |= {Path(p) for p in _PYTHON_PATHS}
-    roots |= {_package_root(m) for m in list(sys.modules.values())} - {None}  # type: ignore[arg-type]
-    return list(_granted(folder, frozenset(hidden), temp, frozenset(roots)))
-
-
-@functools.lru_cache(maxsize=32)
-def _granted(folder: Path, hidden: frozenset[Path], temp: Path, roots: frozenset[Path]) -> tuple[str, ...]:
-    """The trees below ``roots`` a child may read: each root whole, or, where it holds a hidden folder,
-    the ``temp`` folder or the submissions' ``folder``, its other entries (never the files of ``folder``
-    itself, never ``temp``).
-
-    ``temp`` (where every child has its scratch) is left out of a root that holds it, but a root inside
-    it is granted: a project cloned or installed under ``/tmp`` must still be importable by the child
-    (hiding all of ``temp`` made every lazy import of such an installation fail after the lock-down)."""
-    out: list[str] = []
-
-    def within(inner: Path, outer: Path) -> bool:
-        return inner == outer or outer in inner.parents
-
-    def grant(p: Path) -> None:
-        if p == temp or any(within(p, h) for h in hidden) or not p.exists():
-            return
-        if p.is_file() and p.parent == folder:
-            return
-        if not any(within(h, p) for h in hidden) and not within(temp, p) and not within(folder, p):
-            out.append(str(p))
-            return
-        if p.is_dir():
-            for child in p.iterdir():
-                if not child.is_symlink():
-                    grant(child)
-
-    for root in sorted(roots):
-        grant(root.resolve())
-    granted = set(out)
-    return tuple(sorted(g for g in granted if not _ancestors(g) & granted))  # one rule per granted tree
-
-
-def _ancestors(path: str) -> set[str]:
-    out, parent = set(), os.path.dirname(path)
-    while parent and parent not in out and parent != path:
-        out.add(parent)
-        path, parent = parent, os.path.dirname(parent)
-    return out
-
-
-def _package_root(module: Any) -> Path | None:
-    """The top-level package folder (or the file) a loaded module comes from."""
-    file = getattr(module, "__file__", None)
-    return _root_of(file, module.__name__.count(".")) if file else None
-
-
-@functools.lru_cache(maxsize=8192)
-def _root_of(file: str, depth: int) -> Path:
-    """The folder ``depth`` levels above a package module's file (its file, for a top-level module)."""
-    top = Path(file).resolve().parent if Path(file).name == "__init__.py" else Path(file).resolve()
-    for _ in range(depth):
-        top = top.parent
-    return top
 
 
 def _child_env(scratch: str) -> dict[str, str]:

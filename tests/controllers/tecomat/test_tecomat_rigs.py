@@ -15,8 +15,10 @@ from plcsim.controllers.tecomat.assembly import AssemblyError
 from plcsim.core.errors import ConfigurationError, ProgramError
 from plcsim.frontends import read_program
 from plcsim.frontends.il import IlProgram, program_text
-from plcsim.grading.grader import evaluate, grade, run_scenarios
+from plcsim.grading.grader import grade
 from plcsim.grading.report import Report
+from plcsim.grading.run import run_scenarios
+from plcsim.grading.scoring import evaluate
 from plcsim.scenario.planning import Scenario
 from plcsim.scenario.verbs import press
 from plcsim.sim.wiring import NO
