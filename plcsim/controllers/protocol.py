@@ -58,6 +58,9 @@ class Controller(Protocol):
     table: TagTable
     t: Any
     """The traced values as attributes (``t.__dict__[name]``)."""
+    system_tags: frozenset[str]
+    """Tags the controller keeps itself (the S7's clock and system memory bits): the default trace leaves
+    them out unless the program uses them."""
     inputs: dict[str, Any]
     """The input terminals by tag name; the wiring writes them before each step."""
     outputs: dict[str, Any]

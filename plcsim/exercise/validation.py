@@ -19,7 +19,9 @@ from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING, Any
 
 from plcsim.check import Check, Quantity, Span
-from plcsim.controllers.s7.cpu import CPU, CPUConfig
+from plcsim.controllers.choice import controller_for
+from plcsim.controllers.protocol import Controller
+from plcsim.controllers.s7.config import CPUConfig
 from plcsim.core.errors import ExerciseError, PlcError, did_you_mean
 from plcsim.core.literals import to_ns
 from plcsim.plant.protocol import rig_verbs, stations_of
@@ -59,7 +61,7 @@ class _Validation:
         self.exercise = exercise
         self.problems: list[str] = []
         self.plant: Any = None
-        self.cpu: CPU | None = None
+        self.cpu: Controller | None = None
         self.wired: list[str] = []
         self._world()
         self._options()
@@ -94,7 +96,7 @@ class _Validation:
             self.plant = None
             return
         try:
-            self.cpu = CPU(ex.tag_table(), None, CPUConfig(**ex.cpu))
+            self.cpu = controller_for(None, ex.tag_table(), **ex.cpu)
         except (PlcError, TypeError) as exc:
             self.add(home, f"the I/O table, data blocks or CPU options are wrong: {exc}")
             return

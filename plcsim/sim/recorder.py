@@ -1,4 +1,4 @@
-"""What the trace records from a CPU, and the fast per-scan row getter.
+"""What the trace records from a controller, and the fast per-scan row getter.
 
 By default: every input, output and memory tag, every scalar member of a data block, each timer's
 Q and ET, each counter's CV, QU and QD. Clock and system memory bits are left out unless the
@@ -17,7 +17,7 @@ from collections import Counter
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from plcsim.controllers.s7.cpu import CLOCK_BITS, CPU, SYSTEM_BITS
+from plcsim.controllers.protocol import Controller
 from plcsim.controllers.s7.instructions import block_of
 from plcsim.core.errors import UnknownTagError, did_you_mean
 from plcsim.core.observers import Subscribers
@@ -26,16 +26,13 @@ from plcsim.tags.values import PlcStruct
 from plcsim.trace.facade import BLOCK, Trace
 from plcsim.trace.rows import UNPACKABLE
 
-_SYSTEM_NAMES = {name for _, name, _ in CLOCK_BITS} | {name for _, name in SYSTEM_BITS}
-
-
 def _type_name(dtype: Any) -> str:
     if isinstance(dtype, ElementaryType):
         return {"bool": "bool", "real": "real"}.get(dtype.kind, "int")
     return "int"
 
 
-def default_signals(cpu: CPU) -> list[str]:
+def default_signals(cpu: Controller) -> list[str]:
     """The signals traced when none are chosen."""
     used: set[str] = set()
     if cpu.loaded is not None:
@@ -45,7 +42,7 @@ def default_signals(cpu: CPU) -> list[str]:
         value = cpu.t.__dict__[entry.name]
         if entry.name.startswith("%"):
             continue
-        if entry.name in _SYSTEM_NAMES and entry.name not in used:
+        if entry.name in cpu.system_tags and entry.name not in used:
             continue
         block = block_of(value)
         if isinstance(entry.member.type, ElementaryType):
@@ -69,7 +66,7 @@ def _struct_members(value: PlcStruct, path: str, depth: int = 2) -> list[str]:
 
 
 class Recorder:
-    """Writes one trace row per OB1 scan (and per interrupt execution) from a CPU.
+    """Writes one trace row per OB1 scan (and per interrupt execution) from a controller.
 
     Args:
         cpu: the CPU to observe.
@@ -82,7 +79,7 @@ class Recorder:
 
     def __init__(
         self,
-        cpu: CPU,
+        cpu: Controller,
         signals: Sequence[str] | None = None,
         *,
         changes_only: bool = False,
@@ -158,7 +155,7 @@ class Recorder:
             hook.remove(subscriber)
         self._subscriptions = []
 
-    def on_scan(self, cpu: CPU) -> None:
+    def on_scan(self, cpu: Controller) -> None:
         values = self.row(cpu.t.__dict__, cpu.image_in)
         if self.changes_only:
             if values == self._last:
@@ -166,7 +163,7 @@ class Recorder:
             self._last = values
         self.trace.add_row(cpu.scan_start_ns, cpu.scan_end_ns, cpu.scan_task_number, values)
 
-    def _fast_on_scan(self) -> Callable[[CPU], None]:
+    def _fast_on_scan(self) -> Callable[[Controller], None]:
         """:meth:`on_scan` for every-row recording, with :meth:`~plcsim.trace.rows.RunLengthRows.add` written out:
         the hot path of a run."""
         rows = self.trace.row_sink()
@@ -174,7 +171,7 @@ class Recorder:
         packed_row = _compile_getter(self._sources, sample=self._sample, into=(rows.pack_values, self._sampled))
         pack_head, row, add, d = rows.pack_head, self.row, rows.add, self.cpu.t.__dict__
 
-        def on_scan(cpu: CPU) -> None:
+        def on_scan(cpu: Controller) -> None:
             try:
                 values = packed_row(d, cpu.image_in)
                 heads.append(pack_head(cpu.scan_start_ns, cpu.scan_end_ns, cpu.scan_task_number))
@@ -190,7 +187,7 @@ class Recorder:
 
         return on_scan
 
-    def on_task(self, cpu: CPU, task: str, start_ns: int, end_ns: int) -> None:
+    def on_task(self, cpu: Controller, task: str, start_ns: int, end_ns: int) -> None:
         values = self.row(cpu.t.__dict__, cpu.image_in)
         if self.changes_only:
             if values == self._last:
@@ -198,7 +195,7 @@ class Recorder:
             self._last = values
         self.trace.add_row(start_ns, end_ns, self._number(task), values)
 
-    def on_cut(self, cpu: CPU, task: str, start_ns: int) -> None:
+    def on_cut(self, cpu: Controller, task: str, start_ns: int) -> None:
         """The row of an execution a power cut interrupted: what its networks did is kept (retentive
         tags keep it through the restart, so a check must see it); it ends at the cut, and its outputs
         are what the modules drive from then on (off)."""

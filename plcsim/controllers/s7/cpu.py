@@ -78,6 +78,9 @@ class CPU(TaskRunner, HostAccess):
     modules drive from :attr:`outputs` (all off in STOP).
     """
 
+    system_tags = frozenset(name for _, name, _ in CLOCK_BITS) | frozenset(name for _, name in SYSTEM_BITS)
+    """The clock and system memory bits (``Clock_1Hz``, ``FirstScan`` ...): traced only where a program uses them."""
+
     def __init__(
         self,
         tags: TagTable | Mapping[str, Any] | None = None,

@@ -93,6 +93,8 @@ class TecomatCPU:
     """
 
     family = "Tecomat NS950"
+    system_tags: frozenset[str] = frozenset()
+    """The Tecomat's system registers (S) are no tags: nothing to leave out of the default trace."""
     VERBS = verbs.VERBS
     """The scenario verbs this controller brings (:mod:`plcsim.controllers.tecomat.verbs`)."""
     interrupt_sources = verbs.SOURCES
