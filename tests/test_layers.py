@@ -144,7 +144,9 @@ def test_no_import_runs_up_the_layers():
         str(i)
         for i in IMPORTS
         if package_of(i.target) is None
-        or (package_of(i.source) is not None and LAYERS.index(package_of(i.target)) > LAYERS.index(package_of(i.source)))
+        or (
+            package_of(i.source) is not None and LAYERS.index(package_of(i.target)) > LAYERS.index(package_of(i.source))
+        )
     ]
     assert upward == [], "imports that run up the layers:\n" + "\n".join(upward)
 

@@ -13,8 +13,8 @@ from pathlib import Path
 from typing import Any
 
 from plcsim.check import Check
-from plcsim.controllers.loaded import SourceProgram
 from plcsim.controllers.choice import controller_for
+from plcsim.controllers.loaded import SourceProgram
 from plcsim.core.errors import ConfigurationError, ExerciseError, defined_at
 from plcsim.exercise.validation import validate
 from plcsim.frontends import read_program

@@ -1,8 +1,8 @@
 """Reading a program file as Python does: bytes, an optional UTF-8 BOM, a PEP 263 coding line.
 
 A file that is not in the encoding it declares (most often a Windows-1250 file with Slovak or Czech
-letters saved by an old editor) is a :class:`~plcsim.core.errors.ProgramFileError` naming the file, the line, the byte and
-the encoding tried, with the fix.
+letters saved by an old editor) is a :class:`~plcsim.core.errors.ProgramFileError` naming the file, the line,
+the byte and the encoding tried, with the fix.
 
 >>> decode_program(b"\\xef\\xbb\\xbfdef OB1(t):\\n    pass\\n", "lab.py").splitlines()[0]
 'def OB1(t):'

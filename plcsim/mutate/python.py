@@ -43,8 +43,8 @@ from typing import TYPE_CHECKING, Any
 
 from plcsim.controllers.s7.instructions import BLOCKS, EdgeTrigger
 from plcsim.core.errors import PlcError
-from plcsim.frontends.python.typecheck import Typing
 from plcsim.frontends.python.program import Program
+from plcsim.frontends.python.typecheck import Typing
 from plcsim.mutate.mutant import Mutant, preset_steps
 from plcsim.tags.table import TagTable
 from plcsim.tags.types import Bool

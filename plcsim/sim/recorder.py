@@ -26,6 +26,7 @@ from plcsim.tags.values import PlcStruct
 from plcsim.trace.facade import BLOCK, Trace
 from plcsim.trace.rows import UNPACKABLE
 
+
 def _type_name(dtype: Any) -> str:
     if isinstance(dtype, ElementaryType):
         return {"bool": "bool", "real": "real"}.get(dtype.kind, "int")

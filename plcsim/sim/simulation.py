@@ -52,7 +52,8 @@ class Simulation:
     """Run a CPU against a plant on one clock.
 
     Args:
-        cpu: the CPU (any :class:`~plcsim.controllers.protocol.Controller`: the S7-1200, the Tecomat), its program loaded.
+        cpu: the CPU (any :class:`~plcsim.controllers.protocol.Controller`: the S7-1200, the Tecomat), its
+            program loaded.
         plant: the machine (None: PLC only, inputs driven by the scenario or by hand).
         wiring: a :class:`Wiring`, or the wires to build one.
         scenario: the operator's actions and the faults.

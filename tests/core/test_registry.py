@@ -224,7 +224,10 @@ def test_in_a_session_whose_working_folder_is_on_the_path_the_installed_course_i
 
 def test_a_shadowing_module_the_session_imported_itself_is_named_by_its_file(tmp_path):
     (tmp_path / "exercises.py").write_text("EXERCISE = None\n")
-    code = "import sys; sys.path.insert(0, ''); import exercises\nfrom plcsim.exercise import catalog\ncatalog.get('4.3.1')\n"
+    code = (
+        "import sys; sys.path.insert(0, ''); import exercises\nfrom plcsim.exercise import catalog\n"
+        "catalog.get('4.3.1')\n"
+    )
     done = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert done.returncode != 0
     message = " ".join(done.stderr.split())

@@ -1,6 +1,6 @@
-"""The punching-machine exercises 6.3.1–6.3.5 beyond what tests/course/test_exercises.py and tests/course/test_seeds.py grade:
-the KS1/KS2 plant option against the textbook's contradiction, determinism of a PUNCH run, and the truth the
-checks read from the plant's events."""
+"""The punching-machine exercises 6.3.1–6.3.5 beyond what tests/course/test_exercises.py and
+tests/course/test_seeds.py grade: the KS1/KS2 plant option against the textbook's contradiction, determinism of a
+PUNCH run, and the truth the checks read from the plant's events."""
 
 from __future__ import annotations
 

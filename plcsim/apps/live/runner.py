@@ -1,7 +1,7 @@
 """Pacing a live session to the wall clock, and the page's commands: the one place that reads the clock.
 
-A :class:`Runner` owns a :class:`~plcsim.apps.live.session.LiveSession` and a thread. Every frame (20 ms of wall time) it
-advances the simulation by the wall time passed × the speed (×0.1 … ×10), or as far as 20 ms of computing allows
+A :class:`Runner` owns a :class:`~plcsim.apps.live.session.LiveSession` and a thread. Every frame (20 ms of wall time)
+it advances the simulation by the wall time passed × the speed (×0.1 … ×10), or as far as 20 ms of computing allows
 ("as fast as possible"), and takes a snapshot of the state for the page. The page's commands (a press, a pause, a
 speed) run under the same lock, between two chunks, so each one lands on a step boundary. The wall clock decides
 only *how far* each chunk goes; the session's trace depends on the actions and their instants alone.

@@ -1,7 +1,8 @@
 """The core of a live session, without a server: the student's actions applied at simulated instants and recorded.
 
-A live session runs one :class:`~plcsim.sim.simulation.Simulation` in chunks. Between chunks the simulation stands at a step
-boundary ``t``; an action the student takes there is recorded at ``t`` and queued as a scenario action due at ``t``:
+A live session runs one :class:`~plcsim.sim.simulation.Simulation` in chunks. Between chunks the simulation stands at
+a step boundary ``t``; an action the student takes there is recorded at ``t`` and queued as a scenario action due at
+``t``:
 the step starting at ``t`` applies it (after the scenario's own actions due then, in the order they were taken).
 The recording (:class:`~plcsim.apps.live.recording.Recording`) therefore replays to the same trace, bit for bit. Nothing
 here reads the wall clock: the server says how far to advance (see :mod:`plcsim.apps.live.server`).

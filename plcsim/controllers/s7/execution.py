@@ -152,7 +152,8 @@ class TaskRunner:
             self._run_cyclic(until_ns, scan_target)
 
     def _run_preemptive(self, until_ns: int, scan_target: int | None) -> None:
-        """Run OB1 and the interrupts, which pre-empt between networks (the timing model of :mod:`plcsim.controllers.s7.cpu`)."""
+        """Run OB1 and the interrupts, which pre-empt between networks (the timing model of
+        :mod:`plcsim.controllers.s7.cpu`)."""
         stack = self._stack
         ob1 = self._ob1
         while self.mode == RUN:

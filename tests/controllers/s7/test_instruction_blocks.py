@@ -1,5 +1,5 @@
-"""One description per instance type (:data:`plcsim.controllers.s7.instructions.BLOCKS`): the compiler's typing, the host
-access, the recorder and the student reference all read it, so none of them can drift from the others."""
+"""One description per instance type (:data:`plcsim.controllers.s7.instructions.BLOCKS`): the compiler's typing,
+the host access, the recorder and the student reference all read it, so none of them can drift from the others."""
 
 from __future__ import annotations
 
