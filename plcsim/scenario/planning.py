@@ -13,7 +13,7 @@ from typing import Any
 
 from plcsim.core.errors import defined_at
 from plcsim.core.literals import format_ns, to_ns
-from plcsim.scenario.verbs import Action, ScenarioError, _parse
+from plcsim.scenario.verbs import Action, ScenarioError, parse_at_line
 
 
 def _flatten(items: Iterable[Any]) -> list[Action]:
@@ -35,7 +35,7 @@ class Scenario:
         self.name = name
         self.actions = _flatten(actions)
         self.defined_at = defined_at()
-        self.duration_ns = _parse(lambda d: to_ns(d, "duration"), duration, f"scenario {name!r}")
+        self.duration_ns = parse_at_line(lambda d: to_ns(d, "duration"), duration, f"scenario {name!r}")
         self.description = description
         if self.duration_ns <= 0:
             raise ScenarioError(

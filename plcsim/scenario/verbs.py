@@ -89,7 +89,7 @@ class Trigger:
 
 def held(signal: str, duration: str | int = 0, value: Any = True) -> Trigger:
     """Trigger when a plant sensor has had ``value`` (default: actuated) for ``duration``."""
-    return Trigger(signal=signal, value=value, for_ns=_parse(TimeSpec.parse, duration, f"held({signal!r})").lo_ns)
+    return Trigger(signal=signal, value=value, for_ns=parse_at_line(TimeSpec.parse, duration, f"held({signal!r})").lo_ns)
 
 
 def after_event(kind: str, subject: str | None = None) -> Trigger:
@@ -199,7 +199,7 @@ VERB_CAPABILITY = {
 """The plant capability each of plcsim's verbs needs (a verb on a rig that lacks it is refused at load time)."""
 
 
-def _parse(parse: Any, value: Any, what: str) -> Any:
+def parse_at_line(parse: Any, value: Any, what: str) -> Any:
     """``parse(value)``, an error in it reported at the instructor's line."""
     try:
         return parse(value)
@@ -210,8 +210,8 @@ def _parse(parse: Any, value: Any, what: str) -> Any:
 def _action(verb: str, target: str, t: Any, when: Trigger | None, delay: Any = 0, **args: Any) -> Action:
     if (t is None) == (when is None):
         raise ScenarioError(f"{defined_at()}: {verb} {target}: give exactly one of t='2s' or when=held(...)")
-    spec = None if t is None else _parse(TimeSpec.parse, t, f"{verb} {target}")
-    delay_spec = _parse(TimeSpec.parse, delay, f"{verb} {target}: delay")
+    spec = None if t is None else parse_at_line(TimeSpec.parse, t, f"{verb} {target}")
+    delay_spec = parse_at_line(TimeSpec.parse, delay, f"{verb} {target}: delay")
     return Action(verb, target, spec, when, delay_spec, args, defined_at())
 
 
@@ -238,7 +238,7 @@ def press(button: str, t: Any = None, *, hold: Any = None, when: Trigger | None 
                 None,
                 None,
                 TimeSpec(0, 0),
-                {"after": actions[0], "hold": _parse(TimeSpec.parse, hold, f"press {button}: hold")},
+                {"after": actions[0], "hold": parse_at_line(TimeSpec.parse, hold, f"press {button}: hold")},
                 defined_at(),
             )
         )
