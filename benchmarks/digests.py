@@ -1,0 +1,47 @@
+"""Group ``digests``: has a change altered what any shipped solution does? (a check, not a timing)
+
+Figure ``solutions_trace_digest``: every shipped solution of every exercise, run in every scenario on the
+seeds 0 and 7, gives one line ``exercise solution seed scenario trace-digest scans mode error plant-error``;
+the value is the sha256 of all the lines. A refactoring that must not change behaviour (a move, a split)
+prints the same value before and after, bit for bit; ``--quick`` runs the first two exercises on seed 0.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from collections.abc import Iterator
+
+from benchmarks.harness import Figure, Settings, figure, progress
+
+SEEDS = (0, 7)
+
+
+def lines(quick: bool) -> Iterator[str]:
+    """One line per (solution, seed, scenario) run, in the catalogue's order."""
+    import exercises
+    from plcsim.core.errors import PlcError
+    from plcsim.grading import run_scenarios
+
+    chosen = exercises.all_exercises()[:2] if quick else exercises.all_exercises()
+    for ex in chosen:
+        for solution in ex.solutions:
+            for seed in SEEDS[:1] if quick else SEEDS:
+                try:
+                    runs, _ = run_scenarios(ex, solution.program(), seed=seed)
+                except PlcError as exc:
+                    yield f"{ex.number} {solution.name} {seed} LOAD-ERROR {type(exc).__name__} {exc}"
+                    continue
+                for r in runs:
+                    yield (
+                        f"{ex.number} {solution.name} {seed} {r.scenario} {r.trace.digest()} {r.scans} "
+                        f"{r.cpu_mode} {r.cpu_error} {r.plant_error}"
+                    )
+
+
+def run(settings: Settings) -> Iterator[Figure]:
+    progress("digests: every shipped solution in every scenario")
+    every = list(lines(settings.quick))
+    digest = hashlib.sha256("\n".join(every).encode()).hexdigest()
+    yield figure(
+        "solutions_trace_digest", digest, "sha256", runs=len(every), seeds=list(SEEDS[:1] if settings.quick else SEEDS)
+    )
