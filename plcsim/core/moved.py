@@ -114,6 +114,11 @@ def new_home(old: str) -> tuple[str, ...] | None:
     return None
 
 
+def _was_package(old: str) -> bool:
+    """Whether ``old`` had submodules of its own that moved (``plcsim.profiles`` had ``.s7``)."""
+    return any(name.startswith(old + ".") for name in MODULES)
+
+
 class _Split(types.ModuleType):
     """An old module split into several, or an old package whose ``__init__`` became a module (it keeps
     a ``__path__`` so that its old submodules import): each name is looked up in the new modules."""
@@ -121,7 +126,7 @@ class _Split(types.ModuleType):
     def __init__(self, name: str, homes: Sequence[str]) -> None:
         super().__init__(name, f"Moved: its names are in {', '.join(homes)}.")
         self._homes = tuple(homes)
-        if any(old.startswith(name + ".") for old in MODULES):
+        if _was_package(name):
             self.__path__: list[str] = []
 
     def __getattr__(self, name: str) -> Any:
@@ -156,8 +161,7 @@ class _OldPaths(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         )
         # the import system hands out what sys.modules holds after this call: the real module
         name = module.__name__
-        was_package = any(old.startswith(name + ".") for old in MODULES)
-        whole = len(homes) == 1 and not was_package
+        whole = len(homes) == 1 and not _was_package(name)
         sys.modules[name] = importlib.import_module(homes[0]) if whole else _Split(name, homes)
 
 
