@@ -95,7 +95,9 @@ def _parser() -> argparse.ArgumentParser:
     )
     run.add_argument("--rrd", metavar="OUT.rrd", help="write a rerun recording (open it with: rerun OUT.rrd)")
     run.add_argument("--plot", metavar="OUT.png", help="write a timing diagram of the run")
-    run.add_argument("--trace", metavar="OUT.npz", help="write the trace as numpy columns")
+    run.add_argument(
+        "--trace", metavar="OUT.npz", help="write the trace as named numpy columns: np.load(F)['table']['S1']"
+    )
     run.add_argument("--signals", metavar="A,B,C", help="signals for --plot (default: inputs and outputs)")
     run.add_argument("--spawn-viewer", action="store_true", help="open the rerun viewer on the recording")
     run.add_argument("--cycle", metavar="TIME", help="OB1 cycle time, e.g. 1ms or 100ms (overrides the exercise)")
