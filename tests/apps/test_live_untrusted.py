@@ -120,3 +120,26 @@ def test_a_toml_scenario_cannot_name_an_undeclared_property_either(tmp_path):
     scenario, seed = load_scenario_file(path, base=target.base, rig_verbs=target.verbs())
     with pytest.raises(ScenarioError, match=r"no part property 'size'; valid: color, colour, colour_raw"):
         target.simulation(SORT_REFERENCE, scenario, seed=seed)
+
+
+@pytest.mark.parametrize("target", ["PANEL", "4.3.7"])
+def test_a_saved_scenario_longer_than_the_target_allows_is_refused(tmp_path, capsys, target):
+    """``ended = "10 000 h"`` would replay without bound: refused unless ``--seconds`` bounds the run."""
+    from plcsim.apps.cli import EXIT_USAGE, main
+
+    if target == "PANEL":
+        program = tmp_path / "lamp.py"
+        program.write_text("def OB1(t):\n    t.LED = t.TL\n", encoding="utf-8")
+    else:
+        from exercises import get
+
+        program = get(target).reference.path
+    path = tmp_path / "endless.toml"
+    path.write_text(f"[session]\ntarget = '{target}'\nseed = 1\nended = '10 000 h'\n", encoding="utf-8")
+    argv = ["run", target, "--program", str(program), "--scenario", str(path)]
+    assert main(argv) == EXIT_USAGE
+    said = " ".join(capsys.readouterr().err.split())
+    assert f"{path}: the scenario lasts 36000000 s" in said and "may last 3600 s" in said, said
+    assert "--seconds" in said
+    assert main([*argv, "--seconds", "0.05"]) != EXIT_USAGE  # the teacher bounds the run: 50 ms
+    assert "for 0.05 s simulated" in capsys.readouterr().out
