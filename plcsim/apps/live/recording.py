@@ -1,5 +1,10 @@
 """A live session written down as a scenario, and read back: ``.toml`` (exact) or ``.py`` (the shipped format).
 
+``.toml`` is data: written by a TOML writer, read by :mod:`tomllib`, every name checked against the rig's
+vocabulary. ``.py`` is Python, run when it is read: trusted code, like an exercise file (its values are written as
+literals and its keywords as plain names, so that a saved session runs nothing a page sent; a file from elsewhere
+may hold anything). Take a page's or a student's scenario as ``.toml``.
+
 Each click of a live session becomes one scenario action at the simulated instant it was applied, so the
 session replays bit for bit: same program, seed and actions give the same trace digest.
 
@@ -276,7 +281,8 @@ def load_scenario_file(
 
     ``.toml``: a live recording (:meth:`Recording.to_toml`); ``base(name)`` gives its base scenario, ``rig_verbs``
     the verbs its rig and controllers bring.
-    ``.py``: a file defining ``SCENARIO`` (and optionally ``SEED``), as :meth:`Recording.to_python` writes.
+    ``.py``: a file defining ``SCENARIO`` (and optionally ``SEED``), as :meth:`Recording.to_python` writes; it is
+    run as Python, so only a trusted one (yours, an instructor's) may be given.
     """
     path = Path(path)
     if not path.is_file():
