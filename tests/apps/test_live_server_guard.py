@@ -96,3 +96,24 @@ def test_saving_is_a_post_with_the_sessions_token(panel, tmp_path):
     assert not saved.exists()
     status, body = _http(panel, "POST", "/api/save", {"X-Plcsim-Token": panel.token})
     assert status == 200 and json.loads(body)["path"] == str(saved) and saved.is_file()
+
+
+def test_a_message_that_is_no_command_is_answered_not_raised():
+    from plcsim.apps.live import LiveSession
+    from plcsim.apps.live.runner import Runner
+
+    runner = Runner(LiveSession("PANEL", PANEL_DEMO))
+    for message in ([1, 2], "press", None, {"op": "do", "verb": "press", "target": "TL", "args": [1]}):
+        assert runner.command(message)["type"] == "error"
+    assert runner.session.recorded == []
+
+
+def test_text_that_is_no_json_is_answered_and_the_socket_stays_open(panel):
+    with _ws(panel, origin=f"http://127.0.0.1:{panel.port}", token=panel.token) as ws:
+        assert json.loads(ws.recv(timeout=10))["type"] == "layout"
+        ws.send("{not json")
+        ws.send(json.dumps({"op": "digest"}))
+        kinds: list[str] = []
+        while "digest" not in kinds:  # the state frames in between do not count
+            kinds += [kind for kind in [json.loads(ws.recv(timeout=10))["type"]] if kind != "state"]
+        assert kinds == ["error", "digest"], kinds

@@ -103,7 +103,11 @@ def make_app(runner: Runner, token: str, served: list[str]) -> Any:
         sender = asyncio.create_task(send_frames())
         try:
             while True:
-                message = json.loads(await ws.receive_text())
+                try:
+                    message = json.loads(await ws.receive_text())
+                except ValueError as exc:
+                    await ws.send_text(json.dumps({"type": "error", "message": f"not a JSON command: {exc}"}))
+                    continue
                 reply = await asyncio.to_thread(runner.command, message)
                 if reply is not None:
                     await ws.send_text(json.dumps(reply))
