@@ -84,6 +84,7 @@ def test_reading_the_scenario_writes_nothing(panel, tmp_path):
     assert status == 200 and "[session]" in text
     status, text = _http(panel, "GET", "/api/scenario.py")
     assert status == 200 and "SCENARIO = Scenario(" in text
+    assert _http(panel, "GET", "/api/scenario.exe")[0] == 404
     assert not (tmp_path / "saved.toml").exists()
 
 

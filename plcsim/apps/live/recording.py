@@ -263,7 +263,7 @@ class Recording:
     # -- files ---------------------------------------------------------------------------------------
 
     def save(self, path: str | Path) -> Path:
-        """Write the recording: ``.toml`` or ``.py`` by the suffix."""
+        """Write the recording: ``.toml`` or ``.py`` (Python: replaying it runs it) by the suffix."""
         path = Path(path)
         if path.suffix not in (".toml", ".py"):
             raise PlcError(f"{path}: save a live session as .toml (exact replay) or .py (a scenario to paste)")

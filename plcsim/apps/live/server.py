@@ -73,9 +73,12 @@ def make_app(runner: Runner, token: str, served: list[str]) -> Any:
 
     async def recording(request: Any) -> Any:
         """The recording so far as text (``.toml`` or ``.py``); it writes nothing."""
+        kind = request.path_params["kind"]
+        if kind not in ("toml", "py"):
+            return PlainTextResponse("the recording is /api/scenario.toml or /api/scenario.py", status_code=404)
         with runner.lock:
             rec = runner.session.recording()
-            text = rec.to_toml() if request.path_params["kind"] == "toml" else rec.to_python()
+            text = rec.to_toml() if kind == "toml" else rec.to_python()
         return PlainTextResponse(text, media_type="text/plain")
 
     async def save(request: Any) -> Any:
