@@ -488,14 +488,14 @@ def _grade(args: argparse.Namespace) -> int:
             out = Path(args.json)
             out.mkdir(parents=True, exist_ok=True)
             for r in reports:
-                r.to_json(out / f"{r.student}.json")
+                r.to_json(out / f"{r.file_stem}.json")
         if args.junit:
             Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
             write_junit(reports, args.junit, name=f"plcsim {exercise.number}")
             console.print(f"JUnit report: {args.junit}", markup=False)
         if args.gradescope:
             for r in reports:
-                write_gradescope(r, Path(args.gradescope) / r.student / "results.json", visibility=visibility)
+                write_gradescope(r, Path(args.gradescope) / r.file_stem / "results.json", visibility=visibility)
             console.print(f"Gradescope results: {args.gradescope}/<student>/results.json", markup=False)
         return _exit_code(reports)
     if args.no_sandbox:

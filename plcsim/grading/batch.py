@@ -23,7 +23,7 @@ from plcsim.core import version
 from plcsim.core.errors import ConfigurationError
 from plcsim.exercise.model import Exercise
 from plcsim.grading.grader import grade_sandboxed
-from plcsim.grading.report import Report
+from plcsim.grading.report import Report, file_stem
 from plcsim.grading.run import chosen_scenarios
 from plcsim.grading.sandbox.limits import Limits
 from plcsim.grading.scoring import failure_report
@@ -33,8 +33,9 @@ EXPORT_DIRS = ("rrd_dir", "plots_dir", "traces_dir")
 
 
 def per_student(folder: str | Path | None, submission: Path) -> Path | None:
-    """A student's own folder below ``folder`` (named like the submission's file, without ``.py``)."""
-    return None if folder is None else Path(folder) / (submission.stem or "submission")
+    """A student's own folder below ``folder`` (named like the submission's file, without ``.py``; never
+    outside ``folder``: see :func:`~plcsim.grading.report.file_stem`)."""
+    return None if folder is None else Path(folder) / file_stem(submission)
 
 
 @dataclass(frozen=True)
