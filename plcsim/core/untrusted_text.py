@@ -78,6 +78,21 @@ def visible_cut(text: str, limit: int, *, newlines: bool = True) -> str:
     return shown if kept == len(text) else f"{shown}… [{len(text) - kept:,} more characters cut]"
 
 
+def clip(text: str, limit: int) -> str:
+    """``text``, or if it is longer than ``limit`` its head and how many characters were cut, at most
+    ``limit`` characters in all: a message a bounded channel can carry (the grading child's result).
+
+    >>> clip("a.py, line 1: " + "x" * 100, 60)
+    'a.py, line 1: xxxxxxxxxxxxxxxxxxx… [81 more characters cut]'
+    """
+    text = str(text)
+    if len(text) <= limit:
+        return text
+    note = f"… [{len(text):,} more characters cut]"
+    head = limit - len(note)
+    return f"{text[:head]}… [{len(text) - head:,} more characters cut]"
+
+
 def _kept(text: str, shown: str, newlines: bool) -> int:
     """How many characters of ``text`` the escaped prefix ``shown`` shows in full."""
     kept = length = 0
