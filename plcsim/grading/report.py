@@ -151,7 +151,7 @@ class Report:
 
 
 def file_stem(submission: str | Path) -> str:
-    """A submission's file name without its suffix, as the name of a file or folder the grader writes
+    r"""A submission's file name without its suffix, as the name of a file or folder the grader writes
     (``alice.json``, ``gs/alice/``): control characters escaped, never ``.``, ``..`` or hidden (the file
     ``...py`` has the stem ``..``).
 

@@ -39,3 +39,104 @@ def test_an_il_file_neither_utf8_nor_cp1250_is_named_not_a_crash(ex1, tmp_path, 
         "program error",
         f"{path}, line 2: this file is not text in UTF-8 or cp1250 (byte 0x81 in column 11); save it as UTF-8",
     )
+
+
+def shadowing_numpy(folder, marker) -> str:
+    """A submission saved as ``numpy.py``: imported instead of numpy, it leaves ``marker`` and fails."""
+    return (
+        f"import pathlib\npathlib.Path({str(marker)!r}).write_text('imported')\n"
+        f"raise SystemExit('the submissions folder was imported from: {folder}')\n"
+    )
+
+
+def test_python_m_plcsim_in_the_submissions_folder_imports_no_submission(ex1, tmp_path):
+    """``cd submissions && python -m plcsim grade ...``: ``-m`` puts the current folder first on sys.path; the
+    grader and its children import nothing from it (the submission saved as numpy.py is graded, not run)."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    subs, marker = tmp_path / "subs", tmp_path / "imported"
+    subs.mkdir()
+    (subs / "numpy.py").write_text(shadowing_numpy(subs, marker), encoding="utf-8")
+    (subs / "ok.py").write_bytes(ex1.reference.path.read_bytes())
+    root = Path(__file__).resolve().parents[2]  # this checkout's plcsim, exercises and plants
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    done = subprocess.run(
+        [sys.executable, "-m", "plcsim", "grade", "4.3.1", ".", "--jobs", "2"],
+        cwd=subs,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert not marker.exists(), done.stderr[-2000:]
+    assert "✓ ok.py: 3/3" in done.stdout, done.stdout + done.stderr[-2000:]
+    assert "✗ numpy.py: 0/3  subset violation" in done.stdout
+    assert done.returncode == 1
+
+
+def test_a_grading_child_never_imports_from_the_submissions_folder(ex1, tmp_path, monkeypatch):
+    """A notebook in the submissions folder: the folder is the current one and on sys.path; the child's
+    path holds neither."""
+    subs, marker = tmp_path / "subs", tmp_path / "imported"
+    subs.mkdir()
+    (subs / "numpy.py").write_text(shadowing_numpy(subs, marker), encoding="utf-8")
+    (subs / "ok.py").write_bytes(ex1.reference.path.read_bytes())
+    monkeypatch.chdir(subs)
+    monkeypatch.syspath_prepend(str(subs))
+    monkeypatch.setattr("sys.path", ["", *__import__("sys").path])
+    report = grade_sandboxed(ex1, "ok.py")
+    assert (report.error_kind, report.score) == (None, 3.0), report.error
+    assert not marker.exists()
+
+
+TOGGLES_EVERY_SCAN = "def OB1(t):\n    n = 0\n    while n < 10000:\n        n += 1\n        t.LED = not t.LED\n"
+
+
+def test_a_submission_over_the_exercises_budget_is_too_slow_in_every_report_format(ex1, tmp_path, monkeypatch):
+    """The budget is fitted to the reference (measured once per batch); over it is "too slow", told apart
+    from a time limit and a crash in the terminal, JSON, JUnit, the gradebook and Gradescope."""
+    import csv
+    import io
+    import json
+    from xml.etree import ElementTree as ET
+
+    from rich.console import Console
+
+    from plcsim.grading.batch import grade_batch
+    from plcsim.grading.report import gradescope_results, write_gradebook, write_junit
+    from plcsim.grading.sandbox import limits
+    from plcsim.grading.terminal import print_report
+
+    monkeypatch.setattr(limits, "FLOOR_S", 3)  # the 4.3.1 reference costs far less than a second
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (subs / "ok.py").write_bytes(ex1.reference.path.read_bytes())
+    (subs / "slow.py").write_text(TOGGLES_EVERY_SCAN, encoding="utf-8")
+    ok, slow = grade_batch(ex1, [subs / "ok.py", subs / "slow.py"])
+    assert (ok.error_kind, ok.score) == (None, 3.0)
+    assert slow.error_kind == "too slow"
+    assert slow.error.startswith("too slow for this exercise: it used more than ")
+    assert "× the reference's CPU time (the reference 0." in slow.error and slow.error.endswith("the budget 3 s)")
+    buffer = io.StringIO()
+    print_report(slow, Console(file=buffer, width=200, color_system=None))
+    assert "too slow: 4.3.1" in buffer.getvalue()
+    assert json.loads(slow.to_json())["error_kind"] == "too slow"
+    assert ET.fromstring(write_junit([ok, slow])).find(".//error").get("type") == "too slow"
+    rows = list(csv.reader(write_gradebook([ok, slow], tmp_path / "g.csv").open(encoding="utf-8")))
+    assert rows[2][5].startswith("too slow: too slow for this exercise")
+    assert [t["name"] for t in gradescope_results(slow)["tests"]] == ["too slow"]
+
+
+def test_an_exercise_sets_its_own_budget(ex1, tmp_path):
+    from dataclasses import replace
+
+    from plcsim.grading.budget import fitted_limits
+    from plcsim.grading.sandbox.limits import Budget, Limits
+
+    assert fitted_limits(replace(ex1, cpu_budget_s=2.5), Limits(), seed=1).budget == Budget(3)
+    fitted = fitted_limits(ex1, Limits(), seed=1)
+    assert fitted.budget.cpu_seconds == 10 and 0 < fitted.budget.reference_cpu_s < 1  # the floor binds
+    assert (fitted.cpu_limit, Limits().cpu_limit) == (10, 60)
