@@ -140,3 +140,17 @@ def test_an_exercise_sets_its_own_budget(ex1, tmp_path):
     fitted = fitted_limits(ex1, Limits(), seed=1)
     assert fitted.budget.cpu_seconds == 10 and 0 < fitted.budget.reference_cpu_s < 1  # the floor binds
     assert (fitted.cpu_limit, Limits().cpu_limit) == (10, 60)
+
+
+def test_a_two_million_line_il_file_is_too_slow_not_a_stalled_batch(tmp_path, monkeypatch):
+    """The IL assembler is linear, and what it still costs is bounded by the exercise's budget."""
+    from plcsim.grading.batch import grade_batch
+    from plcsim.grading.sandbox import limits
+
+    monkeypatch.setattr(limits, "FLOOR_S", 2)
+    tecomat = get("T-01")
+    (tmp_path / "ok.il").write_bytes(tecomat.reference.path.read_bytes())
+    (tmp_path / "huge.il").write_text("LD X0.0\nWR Y0.0\n" * 1_000_000, encoding="utf-8")
+    ok, huge = grade_batch(tecomat, [tmp_path / "ok.il", tmp_path / "huge.il"])
+    assert ok.error_kind is None and ok.score == ok.max_score
+    assert huge.error_kind == "too slow" and huge.error.endswith("the budget 2 s)")
