@@ -213,7 +213,10 @@ def main(argv: list[str] | None = None) -> int:
         from rich.console import Console
         from rich.text import Text
 
-        Console(stderr=True).print(Text.assemble(("error:", "bold red"), f" {exc}"), highlight=False)
+        from plcsim.core.untrusted_text import for_terminal
+
+        shown = for_terminal(str(exc), newlines=True)  # it may quote a program's text
+        Console(stderr=True).print(Text.assemble(("error:", "bold red"), f" {shown}"), highlight=False)
         return EXIT_USAGE
 
 
@@ -266,6 +269,7 @@ def _run(args: argparse.Namespace) -> int:
     from rich.text import Text
 
     from plcsim.check import evaluate_all
+    from plcsim.core.untrusted_text import for_terminal
     from plcsim.frontends import read_program
     from plcsim.grading.terminal import print_run_summary
 
@@ -332,7 +336,7 @@ def _run(args: argparse.Namespace) -> int:
     if saved is not None:  # the live page shows the same digest for the same session
         console.print(f"seed {args.seed}, trace digest {sim.trace.digest()[:16]}")
     if error is not None:
-        console.print(Text.assemble(("the run stopped:", "bold red"), f" {error}"))
+        console.print(Text.assemble(("the run stopped:", "bold red"), f" {for_terminal(str(error), newlines=True)}"))
     if args.rrd:
         path = Path(args.rrd)
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -373,11 +377,15 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def _print_verdicts(results: list[Any], console: Any) -> None:
+    from rich.text import Text
+
+    from plcsim.core.untrusted_text import for_terminal
+
     for check, verdict in results:
-        mark = "[green]✓[/]" if verdict.passed else "[red]✗[/]"
-        console.print(
-            f"  {mark} {check.title}" + ("" if verdict.passed else f"\n      {verdict.message}"), highlight=False
-        )
+        mark = ("✓", "green") if verdict.passed else ("✗", "red")
+        message = for_terminal(verdict.message, newlines=True).replace("\n", "\n      ")
+        said = "" if verdict.passed else f"\n      {message}"
+        console.print(Text.assemble("  ", mark, f" {for_terminal(check.title)}{said}"), highlight=False)
 
 
 def _rig_simulation(args: argparse.Namespace, scenario: Any = None) -> Any:

@@ -174,8 +174,8 @@ def print_run_summary(sim: Any, wall_s: float, console: Console | None = None, *
     if shown:
         console.print(f"[bold]events[/] ({len(shown)}; first {min(events, len(shown))}):")
         for e in shown[:events]:
-            console.print(f"  {e}", highlight=False)
+            console.print(Text(f"  {_one_line(str(e))}"), highlight=False)
     if cpu.error:
-        console.print(Text.assemble(("the CPU stopped:", "red"), f" {cpu.error}"))
+        console.print(Text.assemble(("the CPU stopped:", "red"), f" {_one_line(str(cpu.error))}"))
     for w in cpu.warnings:
-        console.print(Text.assemble(("warning:", "yellow"), f" {w}"))
+        console.print(Text.assemble(("warning:", "yellow"), f" {_one_line(w)}"))

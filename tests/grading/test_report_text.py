@@ -204,3 +204,14 @@ def test_a_batch_with_hostile_labels_and_file_names_reports_them_escaped(tmp_pat
     assert sorted(p.name for p in out.iterdir()) == ["grades.csv", "gs", "json", "junit.xml"]  # nothing beside
     for path in [*js.iterdir(), *gs.rglob("*.json")]:
         json.loads(path.read_bytes().decode("utf-8"))
+
+
+def test_plcsim_run_prints_a_hostile_label_in_its_error_as_escapes(tmp_path, capsys):
+    from plcsim.apps.cli import EXIT_USAGE, main
+
+    path = tmp_path / "evil.py"
+    path.write_text(JUMPS_TO_NOWHERE, encoding="utf-8")
+    assert main(["run", "4.3.1", "--program", str(path)]) == EXIT_USAGE
+    captured = capsys.readouterr()
+    assert "OB1:\\x1b[2J\\x1b[H" in "".join(captured.err.split())  # shown, whatever the width
+    assert rendered_unsafely(captured.out + captured.err) == []
