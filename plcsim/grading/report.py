@@ -220,6 +220,9 @@ def gradescope_results(report: Report, *, visibility: str = "visible") -> dict[s
         ),
         "visibility": visibility,
         "stdout_visibility": "hidden",
+        "output_format": "text",  # shown as text, never as Markdown or HTML: a message may quote the program
+        "test_output_format": "text",
+        "test_name_format": "text",
         "tests": tests,
         "extra_data": {
             "max_score": report.max_score,

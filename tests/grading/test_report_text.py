@@ -215,3 +215,8 @@ def test_plcsim_run_prints_a_hostile_label_in_its_error_as_escapes(tmp_path, cap
     captured = capsys.readouterr()
     assert "OB1:\\x1b[2J\\x1b[H" in "".join(captured.err.split())  # shown, whatever the width
     assert rendered_unsafely(captured.out + captured.err) == []
+
+
+def test_gradescope_shows_every_output_and_name_as_text_never_markup():
+    results = gradescope_results(hostile_reports(HOSTILE["html"])[0])
+    assert (results["output_format"], results["test_output_format"], results["test_name_format"]) == ("text",) * 3
