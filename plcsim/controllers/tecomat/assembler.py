@@ -74,6 +74,8 @@ class _Assembler:
                 )
         self.raw: list[Raw] = []
         self.defs: dict[str, tuple[str, str, int, int]] = {}
+        self.data = bytearray()
+        """The program's #data so far (grown in place: a copy per #data line would be quadratic)."""
         self.constants: dict[str, int] = {}
         """The value of each #def that is a constant, evaluated once when it is read (not for every item)."""
         self.regs: list[tuple[str, str, str, int, int, int]] = []
@@ -99,6 +101,7 @@ class _Assembler:
         if self.pending_labels:
             name, line, col = self.pending_labels[0]
             raise self.fail(line, col, f"the label {name} marks no instruction; put it before one")
+        self.asm.data = bytes(self.data)
         self._declare()
         self.decoder.decode(self.raw)
         return self.asm
@@ -272,7 +275,8 @@ class _Assembler:
             raise self.fail(lineno, column, f"write #{key} {width} name = item, item, ...")
         self._name(lineno, column, name)
         values: list[int] = []
-        limit = TABLE_MAX[width] if key == "table" else MAX_DATA // (2 if width == "word" else 1)
+        size = 2 if width == "word" else 1
+        limit = TABLE_MAX[width] if key == "table" else (MAX_DATA - len(self.data)) // size
         for item in items.split(","):
             match = _ITEM.match(item.strip())
             text_value, repeat = (match.group(1), int(match.group(2))) if match else (item.strip(), 1)
@@ -285,11 +289,13 @@ class _Assembler:
                     lineno, column, f"table item {item.strip()!r} does not fit a {width} (0..{ITEM_MAX[width]})"
                 )
             if len(values) + repeat > limit:
+                if key == "data" and self.data:  # MAX_DATA bounds the whole program's data
+                    raise self.fail(lineno, column, f"#data {name}: the program's #data would pass {MAX_DATA} bytes")
                 raise self.fail(lineno, column, f"#{key} {name}: more than {limit} items")
             values += [value] * repeat
         if key == "data":
-            offset = len(self.asm.data)
-            self.asm.data += b"".join(v.to_bytes(2 if width == "word" else 1, "little") for v in values)
+            offset = len(self.data)
+            self.data += b"".join(v.to_bytes(size, "little") for v in values)
             self.asm.symbols[name.lower()] = Symbol(name, Operand("D", width, offset), None, lineno, "#data")
             return
         if not 1 <= len(values) <= TABLE_MAX[width]:

@@ -35,3 +35,15 @@ def evaluations(monkeypatch, defs: int, items: int) -> int:
 def test_the_defs_are_evaluated_once_not_once_per_data_item(monkeypatch, size):
     n = evaluations(monkeypatch, size, size)
     assert n <= 2 * size + 3 * size  # a def once (and once more as a symbol), each item's three terms
+
+
+def test_the_data_of_the_whole_program_is_bounded_not_each_data_line():
+    """MAX_DATA bounds the program's #data in all, as its docstring says, not each line (two million lines
+    of 64 KB each would otherwise take 128 GB)."""
+    one = "#data byte A = 0[40000]\nLD X0.0\nWR Y0.0\n"
+    assert len(assembler.assemble(one, "one.il").data) == 40_000
+    two = "#data byte A = 0[40000]\n#data byte B = 0[40000]\nLD X0.0\nWR Y0.0\n"
+    with pytest.raises(
+        assembler.AssemblyError, match=r"two.il, line 2, .*#data B: the program's #data would pass 65536 bytes"
+    ):
+        assembler.assemble(two, "two.il")
