@@ -103,8 +103,10 @@ def test_a_submission_over_the_exercises_budget_is_too_slow_in_every_report_form
     import csv
     import io
     import json
+    from pathlib import Path
     from xml.etree import ElementTree as ET
 
+    import jsonschema
     from rich.console import Console
 
     from plcsim.grading.batch import grade_batch
@@ -125,7 +127,10 @@ def test_a_submission_over_the_exercises_budget_is_too_slow_in_every_report_form
     buffer = io.StringIO()
     print_report(slow, Console(file=buffer, width=200, color_system=None))
     assert "too slow: 4.3.1" in buffer.getvalue()
-    assert json.loads(slow.to_json())["error_kind"] == "too slow"
+    data = json.loads(slow.to_json())
+    assert data["error_kind"] == "too slow"
+    schema = json.loads((Path(__file__).parents[2] / "docs" / "report.schema.json").read_text(encoding="utf-8"))
+    jsonschema.validate(data, schema)  # the published schema knows the outcome
     assert ET.fromstring(write_junit([ok, slow])).find(".//error").get("type") == "too slow"
     rows = list(csv.reader(write_gradebook([ok, slow], tmp_path / "g.csv").open(encoding="utf-8")))
     assert rows[2][5].startswith("too slow: too slow for this exercise")
