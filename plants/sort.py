@@ -69,6 +69,11 @@ class Sort(TopViewPlant):
     … Piest3_Farba3, Kompresor."""
 
     VERBS = {"set_ambient": SET_AMBIENT, "fail_compressor": FAIL_COMPRESSOR}
+    PART_PROPERTIES = {
+        **TopViewPlant.PART_PROPERTIES,
+        "colour": "1 white, 2 red, 3 blue: what the colour sensor reads (and the part is drawn in)",
+        "colour_raw": "the colour sensor's mean reading of the part, raw 0..27648 (instead of a colour)",
+    }
 
     def __init__(self, *, seed: int = 0) -> None:
         self.belt = TopBelt("D1", "D1_VPRED", (0.0, -HALF_WIDTH, BELT_LENGTH, HALF_WIDTH), speed=50.0)

@@ -217,6 +217,8 @@ class TopViewPlant:
     view = "top"
     CAPABILITIES = frozenset({PARTS, QUIESCENCE, SENSOR_SHIFT, OBSERVABLES})
     VERBS: dict[str, RigVerb] = {}
+    PART_PROPERTIES: dict[str, str] = {"color": "the part's colour as drawn: (r, g, b), 0..255"}
+    """The properties a scenario may give a part (a rig adds to a copy of it)."""
     PART_EVENTS = frozenset({"part placed", "part removed"})
 
     def __init__(

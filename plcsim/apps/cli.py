@@ -81,7 +81,8 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument(
         "--scenario",
         metavar="NAME",
-        help="which scenario of the exercise (default: the first), or a saved live session (.toml, .py)",
+        help="which scenario of the exercise (default: the first), or a saved live session: .toml, or .py (a .py "
+        "file is run as Python: trusted code only, like an exercise file; prefer .toml for a page's or a student's)",
     )
     run.add_argument("--seconds", type=float, metavar="N", help="simulated seconds (default: the scenario's)")
     run.add_argument("--seed", type=int, help="seed of placement noise and timing (default 1, or the saved session's)")
@@ -95,7 +96,9 @@ def _parser() -> argparse.ArgumentParser:
     )
     run.add_argument("--rrd", metavar="OUT.rrd", help="write a rerun recording (open it with: rerun OUT.rrd)")
     run.add_argument("--plot", metavar="OUT.png", help="write a timing diagram of the run")
-    run.add_argument("--trace", metavar="OUT.npz", help="write the trace as numpy columns")
+    run.add_argument(
+        "--trace", metavar="OUT.npz", help="write the trace as named numpy columns: np.load(F)['table']['S1']"
+    )
     run.add_argument("--signals", metavar="A,B,C", help="signals for --plot (default: inputs and outputs)")
     run.add_argument("--spawn-viewer", action="store_true", help="open the rerun viewer on the recording")
     run.add_argument("--cycle", metavar="TIME", help="OB1 cycle time, e.g. 1ms or 100ms (overrides the exercise)")
@@ -163,7 +166,11 @@ def _add_live_parser(sub: Any) -> None:
     live.add_argument("--scenario", metavar="NAME", help="start from this scenario of the exercise (default: none)")
     live.add_argument("--seed", type=int, default=1, help="seed of placement noise and timing (default 1)")
     live.add_argument("--port", type=int, default=8765, help="local port of the page (default 8765; 0: any free one)")
-    live.add_argument("--save-scenario", metavar="OUT.toml|OUT.py", help="save the session as a scenario here")
+    live.add_argument(
+        "--save-scenario",
+        metavar="OUT.toml|OUT.py",
+        help="save the session as a scenario here (.toml replays exactly; .py is Python, run by `plcsim run`)",
+    )
     live.add_argument("--rrd", metavar="OUT.rrd", help="write the session's rerun recording when it ends")
     live.add_argument(
         "--speed", default="1", metavar="X", help="simulated s per wall s, 0.1 ... 10, or max (default 1)"
@@ -403,9 +410,18 @@ def _saved_scenario(args: argparse.Namespace) -> Any:
         return None
     from plcsim.apps.live.build import Target
     from plcsim.apps.live.recording import load_scenario_file
+    from plcsim.core.literals import format_ns
 
     base = None if is_rig(args.target) else _exercise_scenario(args.target)
-    scenario, seed = load_scenario_file(args.scenario, base=base, rig_verbs=Target.find(args.target).verbs())
+    target = Target.find(args.target)
+    scenario, seed = load_scenario_file(args.scenario, base=base, rig_verbs=target.verbs())
+    limit = target.replay_limit_ns()
+    if args.seconds is None and scenario.duration_ns > limit:  # a file must not make the run go on without bound
+        raise PlcError(
+            f"{args.scenario}: the scenario lasts {format_ns(scenario.duration_ns)}; a saved scenario on "
+            f"{target.name} may last {format_ns(limit)} (an hour, or the exercise's longest scenario); "
+            f"run it for N seconds with --seconds N"
+        )
     args.seed = args.seed if args.seed is not None else (seed if seed is not None else 1)
     return scenario
 

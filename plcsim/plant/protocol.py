@@ -25,6 +25,10 @@ A plant declares its **event vocabulary**: ``EVENTS`` (every kind it can emit) a
 ``event_subjects()`` (every name its events can be about, a part's id aside). An exercise whose check
 or scenario waits for an event its rig never emits is refused when it is loaded.
 
+A plant that handles parts declares the **properties** a scenario may give a part it places (``place("p1",
+at="OS1", colour=2)``) in ``PART_PROPERTIES``, a mapping of each name to what it means (none if it declares none):
+a name outside it is refused when the scenario is loaded, or when a live session would record it.
+
 A rig may bring its own **scenario verbs** (``set_colour``, ``jam_piston``): ``VERBS`` maps each name
 to a :class:`plcsim.plant.verbs.RigVerb`, which builds the action and names the plant method that
 carries it out, so that adding one needs no edit in ``plcsim``.
