@@ -161,3 +161,18 @@ def test_a_two_million_line_il_file_is_too_slow_not_a_stalled_batch(tmp_path, mo
     ok, huge = grade_batch(tecomat, [tmp_path / "ok.il", tmp_path / "huge.il"])
     assert ok.error_kind is None and ok.score == ok.max_score
     assert huge.error_kind == "too slow" and huge.error.startswith("too slow for this exercise: ")
+
+
+@pytest.mark.parametrize("mode", ["confined", "portable"])
+def test_too_slow_is_told_on_both_sandbox_paths(ex1, tmp_path, monkeypatch, mode):
+    """The budget binds on the POSIX path (RLIMIT_CPU) and on the portable one (the watchdog), and the
+    absolute limit beside it stays a time limit."""
+    from plcsim.grading.sandbox.limits import Budget, Limits
+
+    monkeypatch.setenv("PLCSIM_SANDBOX", mode)
+    path = tmp_path / "slow.py"
+    path.write_text(TOGGLES_EVERY_SCAN, encoding="utf-8")
+    slow = grade_sandboxed(ex1, path, limits=Limits(budget=Budget(1, 0.05)))
+    assert (slow.error_kind, slow.error) == ("too slow", Budget(1, 0.05).too_slow())
+    capped = grade_sandboxed(ex1, path, limits=Limits(cpu_seconds=1, budget=Budget(10, 0.05)))
+    assert (capped.error_kind, capped.error) == ("time limit", "the submission used more than 1 s of CPU time")
