@@ -76,8 +76,6 @@ class ChildOutcome:
     message: str = ""
     notes: list[str] = field(default_factory=list)
     """The guards this system lacks (see :func:`gaps`)."""
-    cpu_s: float = 0.0
-    """The CPU seconds the child and what it started used."""
 
 
 _PREPARING = threading.Lock()
@@ -141,7 +139,7 @@ def run_child(
     finally:
         _cleanup(scratch, cgroup)
     outcome = _interpret(buffer, problem, stopped, status, cpu_s, expected, seed, limits)
-    outcome.notes, outcome.cpu_s = gaps(cgroup, portable), cpu_s
+    outcome.notes = gaps(cgroup, portable)
     return outcome
 
 
