@@ -220,7 +220,10 @@ def main(argv: list[str] | None = None) -> int:
         from rich.console import Console
         from rich.text import Text
 
-        Console(stderr=True).print(Text.assemble(("error:", "bold red"), f" {exc}"), highlight=False)
+        from plcsim.core.untrusted_text import for_terminal
+
+        shown = for_terminal(str(exc), newlines=True)  # it may quote a program's text
+        Console(stderr=True).print(Text.assemble(("error:", "bold red"), f" {shown}"), highlight=False)
         return EXIT_USAGE
 
 
@@ -273,6 +276,7 @@ def _run(args: argparse.Namespace) -> int:
     from rich.text import Text
 
     from plcsim.check import evaluate_all
+    from plcsim.core.untrusted_text import for_terminal
     from plcsim.frontends import read_program
     from plcsim.grading.terminal import print_run_summary
 
@@ -339,7 +343,7 @@ def _run(args: argparse.Namespace) -> int:
     if saved is not None:  # the live page shows the same digest for the same session
         console.print(f"seed {args.seed}, trace digest {sim.trace.digest()[:16]}")
     if error is not None:
-        console.print(Text.assemble(("the run stopped:", "bold red"), f" {error}"))
+        console.print(Text.assemble(("the run stopped:", "bold red"), f" {for_terminal(str(error), newlines=True)}"))
     if args.rrd:
         path = Path(args.rrd)
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -380,11 +384,15 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def _print_verdicts(results: list[Any], console: Any) -> None:
+    from rich.text import Text
+
+    from plcsim.core.untrusted_text import for_terminal
+
     for check, verdict in results:
-        mark = "[green]✓[/]" if verdict.passed else "[red]✗[/]"
-        console.print(
-            f"  {mark} {check.title}" + ("" if verdict.passed else f"\n      {verdict.message}"), highlight=False
-        )
+        mark = ("✓", "green") if verdict.passed else ("✗", "red")
+        message = for_terminal(verdict.message, newlines=True).replace("\n", "\n      ")
+        said = "" if verdict.passed else f"\n      {message}"
+        console.print(Text.assemble("  ", mark, f" {for_terminal(check.title)}{said}"), highlight=False)
 
 
 def _rig_simulation(args: argparse.Namespace, scenario: Any = None) -> Any:
@@ -504,14 +512,14 @@ def _grade(args: argparse.Namespace) -> int:
             out = Path(args.json)
             out.mkdir(parents=True, exist_ok=True)
             for r in reports:
-                r.to_json(out / f"{r.student}.json")
+                r.to_json(out / f"{r.file_stem}.json")
         if args.junit:
             Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
             write_junit(reports, args.junit, name=f"plcsim {exercise.number}")
             console.print(f"JUnit report: {args.junit}", markup=False)
         if args.gradescope:
             for r in reports:
-                write_gradescope(r, Path(args.gradescope) / r.student / "results.json", visibility=visibility)
+                write_gradescope(r, Path(args.gradescope) / r.file_stem / "results.json", visibility=visibility)
             console.print(f"Gradescope results: {args.gradescope}/<student>/results.json", markup=False)
         return _exit_code(reports)
     if args.no_sandbox:
