@@ -84,12 +84,19 @@ class TopPart:
 
 
 class SpotSensor:
-    """A reflex or through-beam sensor seen from above: True while a part covers its spot (a circle)."""
+    """A reflex or through-beam sensor seen from above: True while a part covers its spot (a circle).
+
+    ``sees``: the part property it detects (an inspection sensor, ``sees="bad"``): it is True only while a part whose
+    property is truthy covers the spot, and the others pass unseen (no event either). Default: every part.
+    """
 
     EVENTS = frozenset({"part entered", "part left"})
 
-    def __init__(self, name: str, x: float, y: float, radius: float = 3.0, doc: str = "") -> None:
+    def __init__(
+        self, name: str, x: float, y: float, radius: float = 3.0, doc: str = "", *, sees: str | None = None
+    ) -> None:
         self.name, self.x, self.y, self.radius, self.doc = name, float(x), float(y), float(radius), doc
+        self.sees = sees
         self._sketch = Sketch(self._draw)
 
     def specs(self) -> list[SignalSpec]:
@@ -114,6 +121,8 @@ class SpotSensor:
 
     def enter(self, host: Any, part: TopPart) -> None:
         pid = part.id
+        if self.sees is not None and not part.props.get(self.sees):
+            return
         if pid not in self.parts:
             self.parts[pid] = None
             host.sensors[self.name] = True

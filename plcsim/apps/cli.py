@@ -244,7 +244,7 @@ def _show(args: argparse.Namespace) -> int:
     from plcsim.exercise.catalog import get
     from plcsim.grading.terminal import print_exercise
 
-    print_exercise(get(args.exercise), solutions=not args.no_solutions)
+    print_exercise(get(args.exercise), solutions=not args.no_solutions, named=_as_typed(args.exercise))
     return 0
 
 
@@ -262,6 +262,7 @@ def _reference(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     from rich.console import Console
+    from rich.markup import escape
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
     from rich.text import Text
 
@@ -367,9 +368,17 @@ def _run(args: argparse.Namespace) -> int:
     _print_verdicts(results, console)
     console.print(
         f"[bold]{points:g} / {total:g}[/] points, {passed}/{len(results)} checks passed  "
-        f"(grade every scenario with: plcsim grade {exercise.number} FILE.py)"
+        f"(grade every scenario with: plcsim grade {escape(_as_typed(args.target))} FILE.py)"
     )
     return 0 if passed == len(results) else EXIT_FAILED
+
+
+def _as_typed(name: str) -> str:
+    """An exercise as the user named it, quoted for a shell: the form a hint repeats (a file-loaded exercise's
+    number is not found by number)."""
+    import shlex
+
+    return shlex.quote(name)
 
 
 def _print_verdicts(results: list[Any], console: Any) -> None:

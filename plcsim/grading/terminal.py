@@ -6,6 +6,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from rich.console import Console
+from rich.markup import escape
 from rich.panel import Panel
 from rich.table import Table
 from rich.text import Text
@@ -97,9 +98,10 @@ def print_exercise_list(exercises: Sequence[Any], console: Console | None = None
     console.print(table)
 
 
-def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool = True) -> None:
+def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool = True, named: str = "") -> None:
     """An exercise's task, I/O table, data blocks, scenarios, checks and (unless ``solutions`` is False:
-    a handout for students) the programs shipped with it."""
+    a handout for students) the programs shipped with it. ``named``: how the command line named it (an
+    exercise file's path), used in the hints; default its number."""
     console = console or Console()
     console.print(
         Panel(
@@ -134,7 +136,9 @@ def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool =
         where = f"  [dim]({', '.join(c.scenarios)})[/]" if c.scenarios else ""
         console.print(f"  • {c.name}{where}")
     if solutions:
-        console.print(f"[bold]Shipped programs[/] (grade one with: plcsim grade {ex.number} --solution NAME)")
+        console.print(
+            f"[bold]Shipped programs[/] (grade one with: plcsim grade {escape(named or ex.number)} --solution NAME)"
+        )
         for s in ex.solutions:
             console.print(Text(f"  • {s.name} [{s.kind}]: {s.explanation}"))
     if ex.notes:
