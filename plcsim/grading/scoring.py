@@ -139,7 +139,7 @@ def _restrict_hint(gc: Any, scenarios: list[str], scenario: str) -> str:
     others = [s for s in scenarios if s != scenario and (gc.scenarios is None or s in gc.scenarios)]
     return (
         f"; a correct program gave this check nothing to check in scenario {scenario!r}: if that scenario cannot "
-        f"show it, apply the check only where it can, only({gc.name!r} check, {', '.join(map(repr, others))})"
+        f"show it, apply the check only where it can: only(check, {', '.join(map(repr, others))}) in the exercise"
     )
 
 

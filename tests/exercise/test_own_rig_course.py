@@ -56,7 +56,7 @@ def test_a_check_a_scenario_cannot_apply_fails_the_reference_naming_only(reject)
     assert failure.message == (
         "expected every bad of 'part in bin' reject = 1; there was nothing to measure; a correct program gave this "
         "check nothing to check in scenario 'one good part': if that scenario cannot show it, apply the check only "
-        "where it can, only('only bad parts in the reject bin' check, 'one bad part', 'three parts')"
+        "where it can: only(check, 'one bad part', 'three parts') in the exercise"
     )
 
 
