@@ -33,7 +33,7 @@ import pymunk
 
 from plants.components import chipmunk, draw
 from plants.components.collide import CT_BEAM, CT_PART, PART_CAT, STOP_CAT
-from plants.components.component import Assembly, Carrier, Component, zone
+from plants.components.component import Assembly, Carrier, Component, ZoneSensor, zone
 from plants.components.sketch import Sketch
 from plants.components.workpiece import WorkpieceSpec
 from plcsim.plant import (
@@ -286,6 +286,19 @@ class TopViewPlant:
         self._cp_step, self._cp_space = chipmunk.stepper(self.space)
         self._fresh = True  # a body was added: pymunk's own step checks it once
         self.assembly.reset(self)
+        self._check_zones()
+
+    def _check_zones(self) -> None:
+        """Refuse a sensor shape the collision callbacks could not report to (made without :func:`zone`)."""
+        for shape in self.space.shapes:
+            if shape.collision_type == CT_BEAM and not isinstance(getattr(shape, "owner", None), ZoneSensor):
+                owner = getattr(shape, "owner", None)
+                what = "no owner" if owner is None else f"the owner {type(owner).__name__}, which lacks enter/leave"
+                raise TypeError(
+                    f"{self.name}: a sensor zone in the space has {what}; make sensor zones with "
+                    f"plants.components.zone(host, owner, shape), the owner having enter(host, part) and "
+                    f"leave(host, part_id) (the ZoneSensor protocol)"
+                )
 
     def quiescent(self) -> bool:
         """True when nothing moves and no component is busy: a step only advances the clock."""

@@ -63,6 +63,31 @@ def test_a_component_lacking_a_member_is_named_with_it():
     Assembly([piston])  # a whole one is accepted
 
 
+def test_a_sensor_zone_made_by_hand_without_an_owner_is_refused_when_the_rig_resets():
+    from plants.components.collide import CT_BEAM
+
+    class HandMade(Beam):
+        def _attach(self, host):
+            shape = pymunk.Circle(host.space.static_body, 3.0, (self.x, self.y))
+            shape.sensor, shape.collision_type = True, CT_BEAM  # no owner: the callbacks could not tell it
+            host.space.add(shape)
+            self.shape = shape
+
+    class Rig(ShortBelt):
+        def __init__(self):
+            TopViewPlant.__init__(
+                self,
+                "HAND",
+                components=[HandMade("S9", 50.0, -20.0, 20.0)],
+                stations=[],
+                table=(0.0, -30.0, 100.0, 30.0),
+                workpiece=WorkpieceSpec(),
+            )
+
+    with pytest.raises(TypeError, match=r"HAND: a sensor zone in the space has no owner; make sensor zones with "):
+        Rig()
+
+
 def test_a_sensor_zone_whose_owner_cannot_be_told_is_refused():
     class Mute:
         name = "B9"
