@@ -268,7 +268,7 @@ def _show(args: argparse.Namespace) -> int:
     from plcsim.exercise.catalog import get
     from plcsim.grading.terminal import print_exercise
 
-    print_exercise(get(args.exercise), solutions=not args.no_solutions, named=_as_typed(args.exercise))
+    print_exercise(get(args.exercise), solutions=not args.no_solutions)
     return 0
 
 

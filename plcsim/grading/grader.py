@@ -28,7 +28,7 @@ from plcsim.grading.export import export
 from plcsim.grading.report import Report
 from plcsim.grading.run import chosen_scenarios, load_error_kind, run_scenarios
 from plcsim.grading.sandbox.limits import Limits
-from plcsim.grading.scoring import evaluate, failure_report, ships_as_correct
+from plcsim.grading.scoring import evaluate, failure_report
 
 
 def grade(
@@ -54,7 +54,7 @@ def grade(
         failure_report(report, load_error_kind(exc), str(exc), exercise)
     else:
         report.warnings = list(runs[0].warnings) if runs else []
-        evaluate(exercise, runs, analysis, report, correct=from_file and ships_as_correct(exercise, submission))
+        evaluate(exercise, runs, analysis, report)
         export(exercise, runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir)
     return _finish(report, started)
 
@@ -104,7 +104,7 @@ def grade_sandboxed(
         return _finish(failure_report(report, load_error_kind(exc), str(exc), exercise), started)
     try:
         report.warnings += list(outcome.runs[0].warnings) if outcome.runs else []
-        evaluate(exercise, outcome.runs, analysis, report, correct=ships_as_correct(exercise, path))
+        evaluate(exercise, outcome.runs, analysis, report)
         export(exercise, outcome.runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir)
     except Exception as exc:  # noqa: BLE001 - our own bug: reported as the grader's, not the student's
         report.checks, report.runs = [], []

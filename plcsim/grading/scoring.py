@@ -25,9 +25,7 @@ class GraderError(Exception):
     """A check of the exercise failed to evaluate: the instructor's or the grader's bug."""
 
 
-def evaluate(
-    exercise: Exercise, runs: Sequence[RunResult], analysis: Any, report: Report, *, correct: bool = False
-) -> Report:
+def evaluate(exercise: Exercise, runs: Sequence[RunResult], analysis: Any, report: Report) -> Report:
     """Evaluate the exercise's checks on the runs (static checks once, on ``analysis``) into ``report``.
 
     A run that ended before its scenario did fails its run-time checks: a partial trace proves nothing.
@@ -35,10 +33,11 @@ def evaluate(
     (:mod:`plcsim.check.exercised`): 0 points. A check that raises is a grader error (its own outcome),
     never a point lost by the student.
 
-    ``correct``: the program is one the exercise ships as correct (:func:`ships_as_correct`); a check it fails because
-    the run gave it nothing to check is then the exercise's mistake, and the message says how to apply the check only
-    in the scenarios that can show it.
+    A program the exercise ships as correct (:func:`ships_as_correct`, the report's file) that fails a check because
+    the run gave it nothing to check shows the exercise's mistake: the message says how to apply the check only in
+    the scenarios that can show it.
     """
+    correct = ships_as_correct(exercise, report.submission)
     durations = {s.name: s.duration_ns for s in exercise.scenarios}
     graded = [exercise.scenario(run.scenario) for run in runs]
     activity = Activity.of((run.trace for run in runs), written_by_scenario=scenario_writes(graded))
@@ -125,11 +124,11 @@ def _check(
     return result, not verdict.passed and verdict.nothing_to_check and not static
 
 
-def ships_as_correct(exercise: Exercise, program: Any) -> bool:
-    """Whether ``program`` (a path) is the exercise's reference or a correct alternative it ships."""
+def ships_as_correct(exercise: Exercise, program: str) -> bool:
+    """Whether the file ``program`` is the exercise's reference or a correct alternative it ships."""
     try:
         path = Path(program).resolve()
-    except TypeError:
+    except (TypeError, ValueError, OSError):
         return False
     return any(s.kind != "wrong" and Path(s.path).resolve() == path for s in exercise.solutions)
 

@@ -98,10 +98,9 @@ def print_exercise_list(exercises: Sequence[Any], console: Console | None = None
     console.print(table)
 
 
-def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool = True, named: str = "") -> None:
+def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool = True) -> None:
     """An exercise's task, I/O table, data blocks, scenarios, checks and (unless ``solutions`` is False:
-    a handout for students) the programs shipped with it. ``named``: how the command line named it (an
-    exercise file's path), used in the hints; default its number."""
+    a handout for students) the programs shipped with it."""
     console = console or Console()
     console.print(
         Panel(
@@ -136,8 +135,10 @@ def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool =
         where = f"  [dim]({', '.join(c.scenarios)})[/]" if c.scenarios else ""
         console.print(f"  • {c.name}{where}")
     if solutions:
+        from plcsim.exercise.catalog import command_name
+
         console.print(
-            f"[bold]Shipped programs[/] (grade one with: plcsim grade {escape(named or ex.number)} --solution NAME)"
+            f"[bold]Shipped programs[/] (grade one with: plcsim grade {escape(command_name(ex))} --solution NAME)"
         )
         for s in ex.solutions:
             console.print(Text(f"  • {s.name} [{s.kind}]: {s.explanation}"))
