@@ -33,8 +33,6 @@ from __future__ import annotations
 
 from typing import Any
 
-import pymunk
-
 from plants.components.bins import Bins
 from plants.components.colour_sensor import ColourSensor
 from plants.components.compressor import Compressor
@@ -134,11 +132,6 @@ class Sort(TopViewPlant):
         if colour in RGB:
             kw.setdefault("color", RGB[colour])
         return super().place(station, **kw)
-
-    def support_at(self, x: float, y: float) -> pymunk.Body:
-        """A part placed on the belt rides on it."""
-        x0, y0, x1, y1 = self.belt.area
-        return self.belt.body if x0 <= x <= x1 and y0 <= y <= y1 else self.space.static_body
 
     def set_ambient(self, name: str, offset: float = 0.0) -> None:
         """Condition (rig verb ``set_ambient``): ambient light adds ``offset`` raw units to the colour readings."""

@@ -7,6 +7,8 @@
     plcsim grade 4.3.7 my_alarm.py --json out/report.json --junit out/report.xml
     plcsim grade 4.3.7 submissions/ --jobs 2 --gradebook out/grades.csv --junit out/grades.xml
     plcsim mutate 4.3.7 --seeds 3 --jobs 2 --json out/mutants.json
+    plcsim check-exercise my_course/runon.py --seeds 3
+    plcsim draw SORT -o out/sort.png
 
 Exit codes: 0 every check passed, 1 a submission failed (or did not run), 2 a usage error,
 3 a grade is void because of the grader or the exercise (a check that raised).
@@ -151,7 +153,27 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("-v", "--verbose", action="store_true", help="also show why passed checks passed")
     _add_mutate_parser(sub)
     _add_live_parser(sub)
+    _add_instructor_parsers(sub)
     return p
+
+
+def _add_instructor_parsers(sub: Any) -> None:
+    checker = sub.add_parser(
+        "check-exercise",
+        help="check an exercise's own programs: the reference passes on every seed, each wrong one fails its fails=",
+        description="Grade every program an exercise ships on seeds 1..N (in this process: they are the "
+        "instructor's): the reference and the correct alternatives must pass every check on every seed, each wrong "
+        "solution must fail the checks its fails= names. Exit code 1 if one does not; run it on a course in CI.",
+    )
+    checker.add_argument("exercise", nargs="+", help="exercise files, folders of them, numbers or slugs")
+    checker.add_argument("--seeds", type=int, default=3, metavar="N", help="grade on seeds 1..N (default 3)")
+    drawer = sub.add_parser(
+        "draw",
+        help="draw a rig (or an exercise's rig) as a PNG: its layout, the drawing the recordings use",
+        description="Draw a rig at rest, as the recordings draw it: belts, sensors, pistons, bins, stations.",
+    )
+    drawer.add_argument("rig", help=f"a rig ({', '.join(rig_names()) or 'none'}) or an exercise (number, file)")
+    drawer.add_argument("-o", "--output", metavar="OUT.png", required=True, help="the PNG to write")
 
 
 def _add_live_parser(sub: Any) -> None:
@@ -214,6 +236,8 @@ def main(argv: list[str] | None = None) -> int:
             "grade": _grade,
             "mutate": _mutate,
             "live": _live,
+            "check-exercise": _check_exercise,
+            "draw": _draw,
         }
         return commands[args.command](args)
     except PlcError as exc:
@@ -272,6 +296,7 @@ def _reference(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     from rich.console import Console
+    from rich.markup import escape
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
     from rich.text import Text
 
@@ -378,9 +403,17 @@ def _run(args: argparse.Namespace) -> int:
     _print_verdicts(results, console)
     console.print(
         f"[bold]{points:g} / {total:g}[/] points, {passed}/{len(results)} checks passed  "
-        f"(grade every scenario with: plcsim grade {exercise.number} FILE.py)"
+        f"(grade every scenario with: plcsim grade {escape(_as_typed(args.target))} FILE.py)"
     )
     return 0 if passed == len(results) else EXIT_FAILED
+
+
+def _as_typed(name: str) -> str:
+    """An exercise as the user named it, quoted for a shell: the form a hint repeats (a file-loaded exercise's
+    number is not found by number)."""
+    import shlex
+
+    return shlex.quote(name)
 
 
 def _print_verdicts(results: list[Any], console: Any) -> None:
@@ -610,6 +643,52 @@ def _exit_code(reports: list[Any]) -> int:
     if any(r.grader_failed for r in reports):
         return EXIT_GRADER
     return 0 if all(r.passed for r in reports) else EXIT_FAILED
+
+
+def _check_exercise(args: argparse.Namespace) -> int:
+    from rich.console import Console
+    from rich.text import Text
+
+    from plcsim.apps.check_exercise import check_exercise, print_exercise_check
+    from plcsim.exercise.catalog import get, is_path, load_path
+
+    if args.seeds < 1:
+        raise PlcError("--seeds must be at least 1")
+    console = Console()
+    exercises, broken = [], []
+    for name in args.exercise:
+        if is_path(name):
+            loaded, unloaded = load_path(name)
+            exercises += loaded
+            broken += unloaded
+        else:
+            exercises.append(get(name))
+    for bad in broken:
+        console.print(Text.assemble(("not loaded: ", "bold red"), str(bad)))
+    seeds = range(1, args.seeds + 1)
+    ok = not broken
+    for exercise in exercises:
+        results = check_exercise(exercise, seeds)
+        print_exercise_check(exercise, results, console)
+        ok = ok and all(r.ok for r in results)
+    return 0 if ok else EXIT_FAILED
+
+
+def _draw(args: argparse.Namespace) -> int:
+    from plcsim.trace.drawing import save_rig_drawing
+
+    if is_rig(args.rig):
+        plant = rig(args.rig)()
+    else:
+        from plcsim.exercise.catalog import get
+
+        exercise = get(args.rig)
+        if exercise.rig is None:
+            raise PlcError(f"exercise {exercise.number} has no rig to draw (it runs on the CPU alone)")
+        plant = exercise.rig()
+    Path(args.output).parent.mkdir(parents=True, exist_ok=True)
+    print(f"drawing of {plant.name}: {save_rig_drawing(plant, args.output)}")
+    return 0
 
 
 def _mutate(args: argparse.Namespace) -> int:

@@ -6,6 +6,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from rich.console import Console
+from rich.markup import escape
 from rich.panel import Panel
 from rich.table import Table
 from rich.text import Text
@@ -155,7 +156,11 @@ def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool =
         where = f"  [dim]({', '.join(c.scenarios)})[/]" if c.scenarios else ""
         console.print(f"  • {c.name}{where}")
     if solutions:
-        console.print(f"[bold]Shipped programs[/] (grade one with: plcsim grade {ex.number} --solution NAME)")
+        from plcsim.exercise.catalog import command_name
+
+        console.print(
+            f"[bold]Shipped programs[/] (grade one with: plcsim grade {escape(command_name(ex))} --solution NAME)"
+        )
         for s in ex.solutions:
             console.print(Text(f"  • {s.name} [{s.kind}]: {s.explanation}"))
     if ex.notes:

@@ -228,6 +228,19 @@ class Operated(Protocol):
         """The operator sets a button or switch (a sensor with ``operator=True``)."""
 
 
+def missing_members(obj: Any, protocol: type) -> list[str]:
+    """The members of ``protocol`` (a ``Protocol`` class) that ``obj`` lacks, by name, in declaration order.
+
+    >>> class Conveyor:
+    ...     name = "belt"
+    >>> missing_members(Conveyor(), Plant)[:3]
+    ['view', 'signals', 'sensors']
+    """
+    wanted = [m for m in getattr(protocol, "__annotations__", {})]
+    wanted += [m for m, v in vars(protocol).items() if callable(v) and not m.startswith("_")]
+    return [m for m in dict.fromkeys(wanted) if not hasattr(obj, m)]
+
+
 def capable(plant: Any, capability: str) -> bool:
     """Whether ``plant`` declares ``capability`` (False for no plant).
 

@@ -73,6 +73,33 @@ class TimeSpec:
 
 
 @dataclass(frozen=True)
+class OneOf:
+    """A part property drawn with the scenario's seed from a few values (``place(..., bad=one_of(True, False))``),
+    so that each grading seed gives another sequence of parts."""
+
+    values: tuple[Any, ...]
+
+    def draw(self, rng: random.Random) -> Any:
+        return self.values[rng.randrange(len(self.values))]
+
+    def __repr__(self) -> str:
+        return f"one_of({', '.join(map(repr, self.values))})"
+
+
+def one_of(*values: Any) -> OneOf:
+    """A part property drawn from ``values`` with the scenario's seed, once per placement and run.
+
+    >>> import random
+    >>> bad = one_of(True, False)
+    >>> bad, [bad.draw(random.Random(seed)) for seed in range(6)]
+    (one_of(True, False), [False, True, True, True, True, False])
+    """
+    if not values:
+        raise ScenarioError(f"{defined_at()}: one_of() needs at least one value to draw from")
+    return OneOf(tuple(values))
+
+
+@dataclass(frozen=True)
 class Trigger:
     """Wait for the plant: a sensor held at a value for a time, or a plant event."""
 
@@ -331,7 +358,8 @@ def place(
 
     ``offset_mm`` and ``angle_deg`` fix the pose error, or draw it from a range with the scenario's seed:
     ``place("p1", at="table", offset_mm=(0, 15), angle_deg=(-15, 15))`` (what the offset means is the rig's:
-    along the belt, or away from a fence).
+    along the belt, or away from a fence). A property may be drawn with the seed too:
+    ``place("p1", at="S1", bad=one_of(True, False))`` (the ``part placed`` event then carries the value drawn).
     """
     for name in properties:
         check_property_name(name, f"place {part}")
