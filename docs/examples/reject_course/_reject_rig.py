@@ -35,6 +35,11 @@ RED, GREEN = (215, 45, 40), (60, 160, 70)  # how bad and good parts are drawn
 class Reject(TopViewPlant):
     """REJECT: sensors S1, S2, B1 (True = a part there; B1: a bad part); actuators D1 (belt), Y1 (piston)."""
 
+    PART_PROPERTIES = {
+        **TopViewPlant.PART_PROPERTIES,
+        "bad": "True for a part to reject: B1 sees it, the bins report it, it is drawn red",
+    }
+
     def __init__(self, *, seed: int = 0) -> None:
         super().__init__(
             "REJECT",
