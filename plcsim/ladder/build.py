@@ -41,6 +41,10 @@ from plcsim.tags.types import Bool, StructType
 
 _BOXES = {box: block for block in BLOCKS.values() for box in block.boxes}
 _EDGE_CONTACTS = {"P", "N"}
+_BOX_OUTPUTS = {"CTU": ("Q", "CV"), "CTD": ("Q", "CV"), "CTUD": ("QU", "QD", "CV")} | {
+    timer: ("Q", "ET") for timer in BLOCKS["IEC_TIMER"].boxes
+}
+"""A box's output pins as the manual draws them, the one the rung continues from first."""
 _COMPARE = {ast.Eq: "==", ast.NotEq: "<>", ast.Lt: "<", ast.LtE: "<=", ast.Gt: ">", ast.GtE: ">="}
 _ARITHMETIC = {ast.Add: "ADD", ast.Sub: "SUB", ast.Mult: "MUL", ast.Div: "DIV", ast.FloorDiv: "DIV", ast.Mod: "MOD"}
 _BOOL_FUNCTIONS = frozenset(f.name for f in FUNCTIONS.values() if f.returns_bool and not f.needs_cpu)
@@ -325,7 +329,7 @@ class _NetworkReader:
                     raise NotLadder(f"the box's {pin} calls an instruction with an effect")
             feed = self.contacts(args[rung_pin], first=True)
             pins = tuple((p, self.operand(v), v) for p, v in args.items() if p != rung_pin)
-            outputs = tuple(m.name for m in block.members if m.name not in params and m.name not in ("Stat_Bit", "CLK"))
+            outputs = _BOX_OUTPUTS.get(method, ("Q",))
             assert isinstance(func, ast.Attribute)
             shown = self.operand(func.value)
             return [*feed, Box(method, shown, rung_pin, pins, outputs, call, func.value)]
