@@ -75,7 +75,7 @@ def build_ladder(program: Program, table: TagTable | None = None) -> list[Block]
             comment = "\n".join(doc.strip().splitlines()[1:]).strip()
             reader = _NetworkReader(func, typing, lines, set(program.functions))
             block.networks.append(
-                Network(number, spec.name, spec.title, comment, spec.label, reader.parts(), func.lineno)
+                Network(number, spec.name, spec.title, comment, spec.label, reader.parts(), func.lineno, reader.root)
             )
         blocks.append(block)
     return blocks

@@ -166,6 +166,8 @@ class Network:
     label: str | None
     parts: list[Part]
     lineno: int
+    root: str = "t"
+    """The network's parameter that holds the tags (``def name(t)``)."""
 
     @property
     def rungs(self) -> list[Rung]:

@@ -9,11 +9,13 @@ True
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from plcsim.core.errors import ConfigurationError
 from plcsim.frontends.python.program import Program
 from plcsim.ladder.build import build_ladder
 from plcsim.ladder.model import Block, Network
+from plcsim.ladder.monitor import PowerFlow
 from plcsim.ladder.svg import Flow, Values, render_svg
 from plcsim.tags.table import TagTable
 
@@ -49,6 +51,11 @@ class Ladder:
         titles = [b.name for b in self.blocks]
         title = self.title + (f" — {', '.join(titles)}" if titles else "")
         return render_svg(self.networks(names), title, flow, values)
+
+    def monitor(self, tags: Any, names: set[str] | None = None) -> str:
+        """The picture with power flow for the CPU's tags now (``cpu.t``), as TIA's online view shows it."""
+        flow = PowerFlow(self.networks(names), tags, self.program.constants)
+        return self.svg(flow, flow.value, names)
 
     def png(self, flow: Flow | None = None, values: Values | None = None, zoom: float = 1.5) -> bytes:
         """The same picture as PNG (for reports); needs the optional package resvg-py."""
