@@ -210,6 +210,10 @@ class LadderSvg:
 
         def draw(out: list[str], x: int, y: int) -> None:
             power_in, power_out = self._flow(item)
+            kind = "contact" if isinstance(item, Contact) else "coil"
+            lit_now = power_out if isinstance(item, Contact) else power_in
+            state = "" if lit_now is None else f' data-power="{str(bool(lit_now)).lower()}"'
+            out.append(f'<g class="{kind}" data-operand="{html.escape(tag_of(item.operand))}"{state}>')
             mid = x + cell // 2
             left, right = mid - 11, mid + 11
             before = self._colour_value(power_in)
@@ -236,6 +240,7 @@ class LadderSvg:
                 if power_in:
                     out.append(f'<circle class="lit" cx="{mid}" cy="{y}" r="5" fill="{POWER}" opacity="0.35"/>')
             out.append(_operand(mid, y - 16, item.operand))
+            out.append("</g>")
 
         return Drawing(cell, ROW + (10 if isinstance(item, Contact) and item.memory else 0), draw)
 

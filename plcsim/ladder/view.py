@@ -49,7 +49,7 @@ class Ladder:
     def svg(self, flow: Flow | None = None, values: Values | None = None, names: set[str] | None = None) -> str:
         """The picture as SVG text; ``flow``/``values`` colour it as TIA's online view does."""
         titles = [b.name for b in self.blocks]
-        title = self.title + (f" — {', '.join(titles)}" if titles else "")
+        title = " — ".join(p for p in (self.title, ", ".join(titles)) if p)
         return render_svg(self.networks(names), title, flow, values)
 
     def monitor(self, tags: Any, names: set[str] | None = None) -> str:

@@ -89,7 +89,9 @@ class Trigger:
 
 def held(signal: str, duration: str | int = 0, value: Any = True) -> Trigger:
     """Trigger when a plant sensor has had ``value`` (default: actuated) for ``duration``."""
-    return Trigger(signal=signal, value=value, for_ns=parse_at_line(TimeSpec.parse, duration, f"held({signal!r})").lo_ns)
+    return Trigger(
+        signal=signal, value=value, for_ns=parse_at_line(TimeSpec.parse, duration, f"held({signal!r})").lo_ns
+    )
 
 
 def after_event(kind: str, subject: str | None = None) -> Trigger:

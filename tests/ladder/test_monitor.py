@@ -32,7 +32,7 @@ def test_power_flows_through_the_timer_rung_while_the_belt_runs_and_stops_at_ope
     assert flow(d1) == (True, True) and flow(not_s2) == (True, True)
     assert flow(ton) == (True, False) and flow(alarm) == (False, False)  # 2 s of 10: Q not yet
     assert flow.value('"TON_A"', "ET") == "T#2.002s"
-    (parallel, reset) = stop.rungs[0].series.items
+    parallel, _ = stop.rungs[0].series.items
     assert flow(parallel) == (True, False)
 
 

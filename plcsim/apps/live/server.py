@@ -45,7 +45,7 @@ def make_app(runner: Runner) -> Any:
     """The Starlette application serving ``runner``'s session."""
     require_server()
     from starlette.applications import Starlette
-    from starlette.responses import FileResponse, JSONResponse, PlainTextResponse
+    from starlette.responses import FileResponse, JSONResponse, PlainTextResponse, Response
     from starlette.routing import Mount, Route, WebSocketRoute
     from starlette.staticfiles import StaticFiles
     from starlette.websockets import WebSocketDisconnect
@@ -61,6 +61,13 @@ def make_app(runner: Runner) -> Any:
         saved = runner.save()
         kind = request.path_params["kind"]
         return PlainTextResponse(saved["toml" if kind == "toml" else "python"], media_type="text/plain")
+
+    async def ladder(_request: Any) -> Any:
+        with runner.lock:
+            svg = runner.session.ladder_svg()
+        if svg is None:
+            return PlainTextResponse("this program has no ladder view", status_code=404)
+        return Response(svg, media_type="image/svg+xml", headers={"Cache-Control": "no-store"})
 
     async def stream(ws: Any) -> None:
         await ws.accept()
@@ -94,6 +101,7 @@ def make_app(runner: Runner) -> Any:
             Route("/", index),
             Route("/api/layout", layout),
             Route("/api/scenario.{kind:str}", recording),
+            Route("/api/ladder.svg", ladder),
             WebSocketRoute("/ws", stream),
             Mount("/static", StaticFiles(directory=STATIC), name="static"),
         ]

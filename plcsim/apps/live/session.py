@@ -88,6 +88,9 @@ class LiveSession:
         self._base_count = len(self.sim.scenario.actions)  # type: ignore[union-attr]
         self.verbs: dict[str, RigVerb] = {**getattr(self.sim.cpu, "VERBS", {}), **rig_verbs(plant)}
         """The verbs this run's rig and controller bring (``set_ambient``, ``interrupt``), besides the scenario's."""
+        self.extra_watch: list[str] = []
+        """Tags the student added to the watch table (a click on a contact in the Program card)."""
+        self._ladder: Any = None
 
     # -- time ------------------------------------------------------------------------------------------
 
@@ -276,6 +279,23 @@ class LiveSession:
             "dt_ns": sim.dt_ns,
         }
 
+    def ladder_svg(self) -> str | None:
+        """The program's ladder with the power flow of the CPU's state now (the Program card); None for a
+        program that is no Python (an instruction list has no ladder)."""
+        if not isinstance(self.program, Program):
+            return None
+        if self._ladder is None:
+            from plcsim.ladder.view import Ladder
+
+            self._ladder = Ladder(self.program, self.sim.cpu.base_table, title="")
+        return self._ladder.monitor(self.sim.cpu.t)
+
+    def watch(self, tag: str) -> None:
+        """Add a tag to the watch table (it must be readable: a typo is refused with the nearest names)."""
+        _read(self.sim.cpu, tag)
+        if tag not in self.sim.trace.names and tag not in self.extra_watch:
+            self.extra_watch.append(tag)
+
     def _verb_json(self, verb: RigVerb) -> dict[str, Any]:
         """A rig's or a controller's verb as the page offers it: its caption, what its target may be (empty:
         typed, e.g. a time of day; ``parts``: a part on the machine) and the arguments its phrase names."""
@@ -305,7 +325,7 @@ class LiveSession:
             "error": self.error,
             "dynamic": [drawable_json(d) for d in (plant.dynamic_drawables() if plant is not None else [])],
             "sensors": {k: _jsonable(v) for k, v in (plant.sensors.items() if plant is not None else ())},
-            "watch": {name: _jsonable(_read(cpu, name)) for name in sim.trace.names},
+            "watch": {name: _jsonable(_read(cpu, name)) for name in [*sim.trace.names, *self.extra_watch]},
             "io": {k: _jsonable(v) for k, v in (*cpu.inputs.items(), *cpu.outputs.items())},
             "forces": {k: _jsonable(v) for k, v in cpu.forces.items()},
             "faults": sorted(sim.wiring.faults) if sim.wiring is not None else [],
