@@ -39,6 +39,8 @@ def print_report(report: Any, console: Console | None = None, *, verbose: bool =
         console.print(Text.assemble(_mark(c.status), " ", (f"{c.scenario}: {c.check}", "bold"), f"\n    {c.message}"))
         if c.diagram:
             console.print(Text(f"    timing diagram: {c.diagram}"))
+        if c.ladder:
+            console.print(Text(f"    ladder at that scan: {c.ladder}"))
     if verbose:
         for c in report.checks:
             if c.passed:

@@ -31,6 +31,7 @@ from plcsim.ladder.model import (
     Rung,
     Series,
 )
+from plcsim.ladder.snapshot import TraceTags
 from plcsim.tags.values import PlcArray, PlcStruct
 
 Power = bool | None
@@ -46,6 +47,8 @@ class _ReadOnly:
 
     def __getattr__(self, name: str) -> Any:
         value = self._value
+        if isinstance(value, TraceTags):
+            return getattr(value, name)
         if block_of(value) is not None:
             return getattr(value, value.trace_source(name))
         return _wrap(getattr(value, name))
@@ -55,6 +58,8 @@ class _ReadOnly:
 
 
 def _wrap(value: Any) -> Any:
+    if isinstance(value, TraceTags):
+        return value
     return _ReadOnly(value) if isinstance(value, PlcStruct | PlcArray) or block_of(value) is not None else value
 
 
@@ -76,6 +81,13 @@ class PowerFlow:
     def value(self, instance: str, pin: str) -> str | None:
         """A box pin's value now (``ET`` as ``T#1s200ms``, ``CV`` as a number)."""
         owner = self.instances.get(instance)
+        if isinstance(owner, TraceTags) and pin:
+            recorded = owner.member(pin)
+            if recorded is None or pin in ("PT", "PV"):
+                return None
+            if pin == "ET":
+                return "T#" + format_ns(int(recorded) * 1_000_000).replace(" ", "")
+            return ("TRUE" if recorded else "FALSE") if isinstance(recorded, bool) else str(recorded)
         if owner is None or block_of(owner) is None or not pin:
             return None
         member = block_of(owner).member(pin)  # type: ignore[union-attr]
@@ -130,11 +142,15 @@ class PowerFlow:
                 power = True if any(r is True for r in results) else None if None in results else False
             elif isinstance(item, Box):
                 owner = self._eval(item.instance_source, env)
-                inner = owner._value if isinstance(owner, _ReadOnly) else None
-                if inner is not None:
+                first = item.outputs[0] if item.outputs else "Q"
+                if isinstance(owner, _ReadOnly) and block_of(owner._value) is not None:
+                    inner = owner._value
                     self.instances[item.instance] = inner
-                    first = item.outputs[0] if item.outputs else "Q"
                     power = bool(getattr(inner, inner.trace_source(first)))
+                elif isinstance(owner, TraceTags):
+                    self.instances[item.instance] = owner
+                    q = owner.member(first)
+                    power = None if q is None else bool(q)
                 else:
                     power = None
             elif isinstance(item, Fork):

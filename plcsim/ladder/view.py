@@ -16,6 +16,7 @@ from plcsim.frontends.python.program import Program
 from plcsim.ladder.build import build_ladder
 from plcsim.ladder.model import Block, Network
 from plcsim.ladder.monitor import PowerFlow
+from plcsim.ladder.snapshot import TraceTags
 from plcsim.ladder.svg import Flow, Values, render_svg
 from plcsim.tags.table import TagTable
 
@@ -55,6 +56,12 @@ class Ladder:
     def monitor(self, tags: Any, names: set[str] | None = None) -> str:
         """The picture with power flow for the CPU's tags now (``cpu.t``), as TIA's online view shows it."""
         flow = PowerFlow(self.networks(names), tags, self.program.constants)
+        return self.svg(flow, flow.value, names)
+
+    def at_trace(self, trace: Any, t_ns: int, names: set[str] | None = None) -> str:
+        """The picture with the power flow of the scan a trace recorded at ``t_ns`` (what was not
+        recorded is drawn unmonitored)."""
+        flow = PowerFlow(self.networks(names), TraceTags(trace, t_ns), self.program.constants)
         return self.svg(flow, flow.value, names)
 
     def png(self, flow: Flow | None = None, values: Values | None = None, zoom: float = 1.5) -> bytes:
