@@ -283,12 +283,24 @@ class LiveSession:
         """The program's ladder with the power flow of the CPU's state now (the Program card); None for a
         program that is no Python (an instruction list has no ladder)."""
         if not isinstance(self.program, Program):
-            return None
+            return self._il_svg()
         if self._ladder is None:
             from plcsim.ladder.view import Ladder
 
             self._ladder = Ladder(self.program, self.sim.cpu.base_table, title="")
         return self._ladder.monitor(self.sim.cpu.t)
+
+    def _il_svg(self) -> str | None:
+        """An instruction list with A0/A1 per line of the last pass (STL monitoring), or None."""
+        text = getattr(self.program, "text", None)
+        if text is None or getattr(self.sim.cpu, "machine", None) is None:
+            return None
+        from plcsim.ladder.il import IlMonitor, render_il_svg
+
+        if self._ladder is None:
+            self._ladder = IlMonitor(self.sim.cpu)
+            self._ladder.attach()
+        return render_il_svg(self._ladder.lines(text), Path(getattr(self.program, "filename", "")).name)
 
     def watch(self, tag: str) -> None:
         """Add a tag to the watch table (it must be readable: a typo is refused with the nearest names)."""
