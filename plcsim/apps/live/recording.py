@@ -66,9 +66,10 @@ _CALLS: dict[str, tuple[str, tuple[tuple[str, str], ...], tuple[tuple[str, str],
     "stop_cpu": ("stop_cpu", (), ()),
     "start_cpu": ("start_cpu", (), ()),
     "power_cycle": ("power_cycle", (), ()),
+    "download": ("download", (("program", "program"),), (("file", "file"),)),
 }
 """How each verb a live session can record is written as a call of :mod:`plcsim.scenario.verbs`."""
-_NO_TARGET = {"stop_cpu", "start_cpu", "power_cycle"}
+_NO_TARGET = {"stop_cpu", "start_cpu", "power_cycle", "download"}
 _PLACE_ARGS = {"station", "noise", "offset_mm", "angle_deg"}
 """The arguments of ``place`` that are not the part's properties."""
 LIVE_ORIGIN = "live session action {n}"
@@ -310,8 +311,8 @@ def _toml(value: Any) -> str:
         return "true" if value else "false"
     if isinstance(value, (int, float)):
         return repr(value)
-    if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, str):  # a basic string: a program's text keeps its lines as \n
+        return json.dumps(value, ensure_ascii=False).replace("\x7f", "\\u007f")
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(_toml(v) for v in value) + "]"
     raise PlcError(f"a live recording cannot hold {value!r} ({type(value).__name__})")

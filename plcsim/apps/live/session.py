@@ -91,6 +91,7 @@ class LiveSession:
         self.extra_watch: list[str] = []
         """Tags the student added to the watch table (a click on a contact in the Program card)."""
         self._ladder: Any = None
+        self._program_mtime = Path(self.program_file).stat().st_mtime_ns if self.program_file else None
 
     # -- time ------------------------------------------------------------------------------------------
 
@@ -290,6 +291,47 @@ class LiveSession:
             self._ladder = Ladder(self.program, self.sim.cpu.base_table, title="")
         return self._ladder.monitor(self.sim.cpu.t)
 
+    # -- downloads ----------------------------------------------------------------------------------------
+
+    def program_changed(self) -> bool:
+        """Whether the program file was saved since the session loaded (or last downloaded) it."""
+        if self.program_file is None:
+            return False
+        try:
+            return Path(self.program_file).stat().st_mtime_ns != self._program_mtime
+        except OSError:
+            return False
+
+    def download(self, text: str | None = None) -> Action:
+        """Download the program file as it is now (or ``text``) into the running CPU, as TIA Portal does:
+        STOP, load, RUN, the machine running on. The program is compiled first: an error names the file and
+        line and nothing changes. The download is an action of the scenario, with the program's text, so
+        that the saved session replays bit for bit."""
+        if not isinstance(self.program, Program):
+            raise PlcError("only a Python program (.py) can be downloaded into a running session")
+        name = self.program_file or "<live program>"
+        if text is None:
+            if self.program_file is None:
+                raise PlcError("this session's program is no file: give the program's text")
+            text = Path(self.program_file).read_text(encoding="utf-8")
+            self._program_mtime = Path(self.program_file).stat().st_mtime_ns
+        program = Program(text, name)  # refuses what does not read, naming the line
+        cpu = self.sim.cpu
+        from plcsim.controllers.s7.cpu import CPU
+
+        dry = CPU(cpu.base_table, program, config=cpu.config, start=False)
+        missing = [n for n in self.sim.trace.names if n.split(".")[0].split("[")[0] not in dry.t.__dict__]
+        missing = [n for n in missing if self.sim.trace.kinds.get(n) != "analog"]
+        if missing:
+            raise PlcError(
+                f"{name}: the new program no longer declares {', '.join(missing)}, which this session's trace "
+                f"records; keep the declaration (or end the session and start a new one)"
+            )
+        action = self._take("download", "CPU", {"program": text, "file": Path(name).name}, self.now)
+        self.program = program
+        self._ladder = None
+        return action
+
     def _il_svg(self) -> str | None:
         """An instruction list with A0/A1 per line of the last pass (STL monitoring), or None."""
         text = getattr(self.program, "text", None)
@@ -335,6 +377,7 @@ class LiveSession:
             "mode": cpu.mode,
             "scans": cpu.scan_count,
             "error": self.error,
+            "program_changed": self.program_changed(),
             "dynamic": [drawable_json(d) for d in (plant.dynamic_drawables() if plant is not None else [])],
             "sensors": {k: _jsonable(v) for k, v in (plant.sensors.items() if plant is not None else ())},
             "watch": {name: _jsonable(_read(cpu, name)) for name in [*sim.trace.names, *self.extra_watch]},

@@ -16,7 +16,8 @@ function connect() {
   ws.onmessage = (event) => {
     const m = JSON.parse(event.data);
     ({ layout: buildLayout, state: render, error: (r) => toast(r.message, true), saved: onSaved,
-       ended: onEnded, digest: (r) => showDigest(r), graded: showChecks })[m.type]?.(m);
+       ended: onEnded, digest: (r) => showDigest(r), graded: showChecks,
+       downloaded: (r) => toast(`downloaded ${r.file}: STOP, load, RUN at ${(r.t_ns / 1e9).toFixed(3)} s`) })[m.type]?.(m);
   };
 }
 function send(message) {
@@ -302,6 +303,8 @@ function render(s) {
   list("diagnostics", s.diagnostics); list("events", s.events); list("actions", s.actions);
   const err = $("error"); err.classList.toggle("hidden", !s.error); err.textContent = s.error || "";
   refreshLadder(`${s.t_ns}/${s.actions.length}/${s.mode}`);
+  $("program-changed").classList.toggle("hidden", !s.program_changed);
+  $("download").classList.toggle("on", !!s.program_changed);
   page.onFrame?.(s); // a hook for the browser test: called after each frame is drawn
 }
 // the moving shapes are kept and updated in place (a shape under the pointer stays the same element)
@@ -343,6 +346,7 @@ $("cpu-stop").onclick = () => send({ op: "do", verb: "stop_cpu" });
 $("cpu-run").onclick = () => send({ op: "do", verb: "start_cpu" });
 $("cpu-power").onclick = () => send({ op: "do", verb: "power_cycle" });
 $("save").onclick = () => send({ op: "save" });
+$("download").onclick = () => send({ op: "download" });
 $("grade").onclick = () => send({ op: "grade" });
 $("end").onclick = () => { if (confirm("End the session? It is saved as a scenario.")) send({ op: "end" }); };
 window.addEventListener("keydown", (e) => {
