@@ -146,7 +146,9 @@ def _parser() -> argparse.ArgumentParser:
         "--rrd", metavar="DIR", help="write a rerun recording per scenario into DIR (a batch: DIR/<student>/)"
     )
     grade.add_argument(
-        "--plots", metavar="DIR", help="write a timing diagram and the ladder of the scan per failed check into DIR (a batch: DIR/<student>/)"
+        "--plots",
+        metavar="DIR",
+        help="write a timing diagram and the ladder at that scan per failed check into DIR (a batch: DIR/<student>/)",
     )
     grade.add_argument(
         "--jobs", type=int, default=1, metavar="N", help="grade N submissions at a time (batch: threads or workers)"
