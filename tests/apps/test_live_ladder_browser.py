@@ -68,3 +68,34 @@ def test_the_program_card_shows_the_machine_s_program(browser, tmp_path, target,
         panel.stop()
     assert errors == []
     assert networks == len(get(target).reference.program().tasks["OB1"].networks)
+
+
+def test_a_saved_program_file_is_offered_for_download_and_runs_without_ending_the_session(browser, tmp_path):  # noqa: F811
+    import os
+
+    from plcsim.apps.live.server import open_live
+
+    program = tmp_path / "lamp.py"
+    program.write_text(PANEL_DEMO, encoding="utf-8")
+    panel = open_live("PANEL", program, port=0)
+    try:
+        page = browser.new_page(viewport={"width": 1400, "height": 1000})
+        errors: list[str] = []
+        page.on("pageerror", lambda exc: errors.append(str(exc)))
+        page.goto(panel.url)
+        page.wait_for_selector(COIL, timeout=10_000)
+        assert page.locator("#program-changed.hidden").count() == 1
+        program.write_text("def OB1(t):\n    t.LED = not t.TL\n", encoding="utf-8")
+        os.utime(program, ns=(1, 1))
+        page.wait_for_selector("#program-changed:not(.hidden)", timeout=10_000)
+        page.click("#download")
+        page.wait_for_function(f"document.querySelector('{COIL}')?.dataset.power === 'true'", timeout=10_000)
+        page.wait_for_selector("#program-changed.hidden", state="attached", timeout=10_000)
+        assert page.get_attribute(CONTACT, "data-power") == "true"  # now an NC contact: TL released, it passes
+        assert page.locator(f"{CONTACT} line").count() == 5  # the NC contact's slash: two wires, two bars, one slash
+        page.screenshot(path=str(tmp_path / "after-download.png"))
+        actions = page.evaluate("window.plcsimLive.state.actions")
+    finally:
+        panel.stop()
+    assert errors == []
+    assert any(a.startswith("download the program lamp.py") for a in actions)
