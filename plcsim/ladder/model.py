@@ -113,8 +113,6 @@ class Fork:
 
 
 Element = Contact | Compare | FunctionContact | Invert | Parallel | Box | Coil | Operation | CallCoil | Fork
-OUTPUTS = (Coil, Operation, CallCoil, Fork)
-"""The elements that end a path."""
 
 
 @dataclass(frozen=True)
@@ -184,14 +182,3 @@ class Block:
 
     name: str
     networks: list[Network] = field(default_factory=list)
-
-
-def walk(series: Series):
-    """Every element of a series, depth first, left to right and top to bottom (the order LAD runs)."""
-    for item in series.items:
-        yield item
-        if isinstance(item, Parallel | Fork):
-            for branch in item.branches:
-                yield from walk(branch)
-        elif isinstance(item, Invert):
-            yield from walk(item.inner)
