@@ -110,7 +110,8 @@ class LadderSvg:
                 drawing = self.series(part.series)
                 top = y
                 rail_h = max(drawing.height, ROW)
-                out.append(_line(MARGIN, top, MARGIN, top + rail_h, INK, 3))
+                rail = POWER if self.flow is not None else INK  # the left rail always carries power
+                out.append(_line(MARGIN, top, MARGIN, top + rail_h, rail, 3))
                 drawing.draw(out, MARGIN, top + ROW // 2)
                 width = max(width, MARGIN + drawing.width + MARGIN)
                 y += rail_h + 8
