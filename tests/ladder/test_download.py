@@ -41,6 +41,7 @@ def test_a_download_swaps_the_logic_mid_run_and_the_saved_session_replays_bit_fo
     sim = Target.find("PANEL").simulation(Program(LAMP, str(program)), again.scenario(), seed=again.seed)
     sim.run()
     assert sim.trace.digest() == session.sim.trace.digest()
+    assert session.replay().trace.digest() == session.sim.trace.digest()  # from the program it started with
 
 
 def test_a_program_that_does_not_compile_is_refused_with_its_line_and_the_cpu_runs_on(tmp_path):

@@ -78,6 +78,8 @@ class LiveSession:
         self.program: SourceProgram = (
             read_program(program) if _is_file(program) else Program(str(program), "<live program>")
         )
+        self.first_program = self.program
+        """The program the session started with (a replay starts from it; downloads are actions)."""
         self.sim = self.target.simulation(self.program, open_ended(self.name, self.base), seed=seed)
         self.sim.run(until=self.sim.now)  # the outputs as the run starts, as a replay's first step sees them
         self.recorded: list[Action] = []
@@ -214,7 +216,7 @@ class LiveSession:
     def replay(self, recording: Recording | None = None) -> Simulation:
         """Run ``recording`` (default: this session's, up to now) afresh and return the finished simulation."""
         rec = recording or self.recording()
-        sim = self.target.simulation(self.program, rec.scenario(self.base), seed=rec.seed)
+        sim = self.target.simulation(self.first_program, rec.scenario(self.base), seed=rec.seed)
         sim.run()
         return sim
 
