@@ -47,7 +47,10 @@ def export(
                     result.diagram = _diagram(run, result, Path(plots_dir) / f"{stem}-{_slug(result.check)}.png")
                     if isinstance(program, Program):
                         path = Path(plots_dir) / f"{stem}-{_slug(result.check)}-ladder.svg"
-                        result.ladder = _ladder(program, exercise, run, result, path)
+                        try:
+                            result.ladder = _ladder(program, exercise, run, result, path)
+                        except Exception as exc:  # noqa: BLE001 - a picture that fails must never change a grade
+                            report.warnings.append(f"no ladder for {result.check}: {type(exc).__name__}: {exc}")
 
 
 def _slug(text: str) -> str:
