@@ -66,7 +66,8 @@ class IlMonitor:
 def render_il_svg(rows: list[tuple[int, str, tuple[int, int] | None]], title: str = "") -> str:
     """The listing with A0 and A1 beside each line that ran (green where A0 is non-zero: its RLO is 1)."""
     line_h, top = 17, 36 if title else 14
-    width = 120 + 8 * max((len(text) for _, text, _ in rows), default=20) + 220
+    col = 70 + int(7.3 * max((len(text) for _, text, _ in rows), default=20)) + 24
+    width = col + 120
     height = top + line_h * (len(rows) + 1) + 10
     out = [
         f'<svg xmlns="http://www.w3.org/2000/svg" class="il" width="{width}" height="{height}" '
@@ -74,10 +75,9 @@ def render_il_svg(rows: list[tuple[int, str, tuple[int, int] | None]], title: st
     ]
     if title:
         out.append(f'<text x="12" y="22" font-size="14" font-weight="bold">{html.escape(title)}</text>')
-    col = width - 200
     y = top + 12
     out.append(f'<text x="{col}" y="{y}" font-size="11" fill="#666">A0</text>')
-    out.append(f'<text x="{col + 90}" y="{y}" font-size="11" fill="#666">A1</text>')
+    out.append(f'<text x="{col + 60}" y="{y}" font-size="11" fill="#666">A1</text>')
     for number, text, values in rows:
         y += line_h
         out.append(f'<text x="12" y="{y}" font-size="11" fill="#999" style="{MONO}">{number:4d}</text>')
@@ -90,7 +90,7 @@ def render_il_svg(rows: list[tuple[int, str, tuple[int, int] | None]], title: st
             out.append(
                 f'<g class="il-line" data-line="{number}" data-a0="{a0}">'
                 f'<text x="{col}" y="{y}" font-size="12" fill="{colour}" style="{MONO}">{a0:04X}</text>'
-                f'<text x="{col + 90}" y="{y}" font-size="12" fill="#444" style="{MONO}">{a1:04X}</text></g>'
+                f'<text x="{col + 60}" y="{y}" font-size="12" fill="#444" style="{MONO}">{a1:04X}</text></g>'
             )
     out.append("</svg>")
     return "".join(out)

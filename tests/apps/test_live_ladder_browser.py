@@ -99,3 +99,22 @@ def test_a_saved_program_file_is_offered_for_download_and_runs_without_ending_th
         panel.stop()
     assert errors == []
     assert any(a.startswith("download the program lamp.py") for a in actions)
+
+
+def test_an_instruction_list_shows_its_lines_with_the_accumulator(browser, tmp_path):  # noqa: F811
+    from exercises import get
+    from plcsim.apps.live.server import open_live
+
+    panel = open_live("T-01", get("T-01").reference.path, port=0)
+    try:
+        page = browser.new_page(viewport={"width": 1400, "height": 1000})
+        errors: list[str] = []
+        page.on("pageerror", lambda exc: errors.append(str(exc)))
+        page.goto(panel.url)
+        page.wait_for_selector("#ladder svg.il g.il-line", timeout=10_000)
+        lines = page.locator("#ladder g.il-line").count()
+        page.screenshot(path=str(tmp_path / "il-program-card.png"))
+    finally:
+        panel.stop()
+    assert errors == []
+    assert lines == 4  # LD, OR, ANC, WR: every instruction of the pass, none of the declarations

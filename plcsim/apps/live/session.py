@@ -384,7 +384,7 @@ class LiveSession:
             "sensors": {k: _jsonable(v) for k, v in (plant.sensors.items() if plant is not None else ())},
             "watch": {name: _jsonable(_read(cpu, name)) for name in [*sim.trace.names, *self.extra_watch]},
             "io": {k: _jsonable(v) for k, v in (*cpu.inputs.items(), *cpu.outputs.items())},
-            "forces": {k: _jsonable(v) for k, v in cpu.forces.items()},
+            "forces": {k: _jsonable(v) for k, v in getattr(cpu, "forces", {}).items()},
             "faults": sorted(sim.wiring.faults) if sim.wiring is not None else [],
             "parts": parts,
             "diagnostics": [f"{format_ns(e.time_ns)}  {e.event}: {e.message}" for e in list(cpu.diagnostics)[-40:]],
@@ -431,9 +431,12 @@ def _check_value(current: Any, value: Any, tag: str) -> None:
 
 
 def _read(cpu: Any, name: str) -> Any:
+    """A traced value as the watch table shows it: the S7's ``read`` (never refreshing a timer); a controller
+    without one (the Tecomat) by its symbols' values at the last cycle's end."""
+    reader = getattr(cpu, "read", None)
     try:
-        return cpu.read(name)
-    except PlcError:
+        return reader(name) if reader is not None else getattr(cpu.t, name)
+    except (PlcError, AttributeError):
         return None
 
 

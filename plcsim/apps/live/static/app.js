@@ -304,6 +304,7 @@ function render(s) {
   const err = $("error"); err.classList.toggle("hidden", !s.error); err.textContent = s.error || "";
   refreshLadder(`${s.t_ns}/${s.actions.length}/${s.mode}`);
   $("program-changed").classList.toggle("hidden", !s.program_changed);
+  page.showDownload();
   $("download").classList.toggle("on", !!s.program_changed);
   page.onFrame?.(s); // a hook for the browser test: called after each frame is drawn
 }
@@ -347,6 +348,7 @@ $("cpu-run").onclick = () => send({ op: "do", verb: "start_cpu" });
 $("cpu-power").onclick = () => send({ op: "do", verb: "power_cycle" });
 $("save").onclick = () => send({ op: "save" });
 $("download").onclick = () => send({ op: "download" });
+page.showDownload = () => $("download").classList.toggle("hidden", !String(page.layout?.program || "").endsWith(".py"));
 $("grade").onclick = () => send({ op: "grade" });
 $("end").onclick = () => { if (confirm("End the session? It is saved as a scenario.")) send({ op: "end" }); };
 window.addEventListener("keydown", (e) => {
