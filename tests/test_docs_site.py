@@ -19,6 +19,7 @@ PAGES = {
     "instructions/index.html": ["IEC_TIMER", "CTUD", "Bool"],
     "writing-an-exercise/index.html": ["Scenario", "EXERCISE"],
     "grading-sandbox/index.html": ["PLCSIM_SANDBOX=portable", "Landlock"],
+    "ladder/index.html": ["plcsim ladder mine.py", "Program card", "text box"],
     "tecomat/index.html": ["plcsim grade T-01 mine.il", "event_enable_byte", "little-endian"],
     "pytest-plugin/index.html": ["plcsim_run", "--plcsim-exercise"],
     "reference/check/index.html": [

@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from plcsim.core import version
-from plcsim.core.errors import PlcError
+from plcsim.core.errors import ConfigurationError, PlcError
 from plcsim.core.registry import is_rig, rig, rig_names
 
 EXIT_FAILED = 1
@@ -59,6 +59,25 @@ def _parser() -> argparse.ArgumentParser:
     show.add_argument("exercise", help="textbook number (4.3.6), slug, or an exercise file")
     show.add_argument(
         "--no-solutions", action="store_true", help="leave the shipped programs out (for a handout to students)"
+    )
+    show.add_argument(
+        "--ladder",
+        nargs="?",
+        const="reference",
+        metavar="SOLUTION",
+        help="draw a shipped solution (default: the reference) as LAD networks, as the textbook's figures show it",
+    )
+    show.add_argument("-o", "--output", metavar="OUT.svg", help="with --ladder: where to write it (.svg or .png)")
+
+    ladder = sub.add_parser(
+        "ladder",
+        help="draw a .py program as LAD networks (SVG, or PNG)",
+        description="Draw each network of a Python program as ladder rungs, as the course and TIA Portal show them.",
+    )
+    ladder.add_argument("file", help="the program (.py)")
+    ladder.add_argument("-o", "--output", metavar="OUT.svg", help="where to write it (.svg or .png); default FILE.svg")
+    ladder.add_argument(
+        "--exercise", metavar="EXERCISE", help="the exercise whose tags the program uses (tells coils from MOVEs)"
     )
 
     reference = sub.add_parser(
@@ -132,7 +151,9 @@ def _parser() -> argparse.ArgumentParser:
         "--rrd", metavar="DIR", help="write a rerun recording per scenario into DIR (a batch: DIR/<student>/)"
     )
     grade.add_argument(
-        "--plots", metavar="DIR", help="write a timing diagram per failed check into DIR (a batch: DIR/<student>/)"
+        "--plots",
+        metavar="DIR",
+        help="write a timing diagram and the ladder at that scan per failed check into DIR (a batch: DIR/<student>/)",
     )
     grade.add_argument(
         "--jobs", type=int, default=1, metavar="N", help="grade N submissions at a time (batch: threads or workers)"
@@ -231,6 +252,7 @@ def main(argv: list[str] | None = None) -> int:
         commands = {
             "list": _list,
             "show": _show,
+            "ladder": _ladder,
             "reference": _reference,
             "run": _run,
             "grade": _grade,
@@ -278,7 +300,45 @@ def _show(args: argparse.Namespace) -> int:
     from plcsim.exercise.catalog import get
     from plcsim.grading.terminal import print_exercise
 
-    print_exercise(get(args.exercise), solutions=not args.no_solutions)
+    exercise = get(args.exercise)
+    if args.ladder:
+        from plcsim.ladder.view import Ladder
+
+        solution = exercise.solution(args.ladder)
+        if solution.path.suffix != ".py":
+            raise ConfigurationError(
+                f"{solution.path.name} is an instruction list; the ladder view draws Python programs (.py)"
+            )
+        picture = Ladder.from_file(solution.path, exercise.tag_table())
+        picture.title = f"{exercise.number} {exercise.title}: {solution.name}"
+        default = f"{exercise.number.replace('.', '_')}-{solution.name}.svg"
+        return _write_ladder(picture, Path(args.output or default))
+    print_exercise(exercise, solutions=not args.no_solutions)
+    return 0
+
+
+def _ladder(args: argparse.Namespace) -> int:
+    from plcsim.ladder.view import Ladder
+
+    table = None
+    if args.exercise:
+        from plcsim.exercise.catalog import get
+
+        table = get(args.exercise).tag_table()
+    path = Path(args.file)
+    if path.suffix != ".py":
+        raise ConfigurationError(f"{path}: the ladder view draws Python programs (.py); an .il program is a list")
+    return _write_ladder(Ladder.from_file(path, table), Path(args.output or path.with_suffix(".svg").name))
+
+
+def _write_ladder(picture: Any, out: Path) -> int:
+    """Write a ladder picture as SVG or PNG (by the file's suffix) and say where."""
+    out.parent.mkdir(parents=True, exist_ok=True)
+    if out.suffix.lower() == ".png":
+        out.write_bytes(picture.png())
+    else:
+        out.write_text(picture.svg(), encoding="utf-8")
+    print(f"wrote {out}")
     return 0
 
 
@@ -314,7 +374,7 @@ def _run(args: argparse.Namespace) -> int:
         sim = _rig_simulation(args, saved)
         scenario_name = saved.name if saved else None
     else:
-        from plcsim.core.errors import ConfigurationError, did_you_mean
+        from plcsim.core.errors import did_you_mean
         from plcsim.exercise.catalog import get
 
         try:

@@ -56,7 +56,7 @@ def grade(
     else:
         report.warnings = list(runs[0].warnings) if runs else []
         evaluate(exercise, runs, analysis, report)
-        export(exercise, runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir)
+        export(exercise, runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir, program=program)
     return _finish(report, started)
 
 
@@ -108,7 +108,10 @@ def grade_sandboxed(
     try:
         report.warnings += list(outcome.runs[0].warnings) if outcome.runs else []
         evaluate(exercise, outcome.runs, analysis, report)
-        export(exercise, outcome.runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir)
+        drawn = _python_program(Path(path)) if plots_dir is not None else None
+        export(
+            exercise, outcome.runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir, program=drawn
+        )
     except Exception as exc:  # noqa: BLE001 - our own bug: reported as the grader's, not the student's
         report.checks, report.runs = [], []
         failure_report(report, "grader error", f"{type(exc).__name__}: {exc}", exercise)
@@ -137,3 +140,16 @@ def parent_analysis(exercise: Exercise, path: Path) -> Any:
         return analyse(exercise.tag_table()) if analyse is not None else None
     table = program.declare_into(exercise.tag_table())
     return program.compile(table).analysis
+
+
+def _python_program(path: Path) -> Any:
+    """The submission read as a Python program for its ladder picture (parsed and checked here, never run;
+    None for another language or a file that does not read)."""
+    if path.suffix != ".py":
+        return None
+    from plcsim.frontends.python.program import Program
+
+    try:
+        return Program.from_file(path)
+    except PlcError:
+        return None

@@ -49,6 +49,8 @@ class CheckResult:
     window: tuple[int, int] | None = None
     diagram: str | None = None
     status: str = ""
+    ladder: str | None = None
+    """The ladder of the networks writing the check's signals at the scan where it failed, if written."""
 
     def __post_init__(self) -> None:
         if not self.status:

@@ -46,6 +46,8 @@ def print_report(report: Any, console: Console | None = None, *, verbose: bool =
         console.print(Text.assemble(_mark(c.status), " ", (name, "bold"), f"\n    {_indented(c.message)}"))
         if c.diagram:
             console.print(Text(f"    timing diagram: {_one_line(c.diagram)}"))
+        if c.ladder:
+            console.print(Text(f"    ladder at that scan: {_one_line(c.ladder)}"))
     if verbose:
         for c in report.checks:
             if c.passed:

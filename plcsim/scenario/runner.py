@@ -29,7 +29,7 @@ from plcsim.trace.facade import Trace, TraceEvent
 POSE_NOISE_MM = 5.0
 POSE_NOISE_DEG = 5.0
 PART_VERBS = {"remove", "jam", "unjam", "knock_off"}
-STATE_VERBS = PART_VERBS | {"place", "stop_cpu", "start_cpu", "power_cycle"}
+STATE_VERBS = PART_VERBS | {"place", "stop_cpu", "start_cpu", "power_cycle", "download"}
 """Verbs whose failure can depend on the run (a part gone, a station taken): recorded, not raised."""
 
 
@@ -216,6 +216,12 @@ class ActionRunner:
             cpu.start()
         elif verb == "power_cycle":
             cpu.power_cycle()
+        elif verb == "download":
+            load = getattr(cpu, "download", None)
+            if load is None:
+                raise ScenarioError(f"{type(cpu).__name__} takes no download in a scenario")
+            load(args["program"], args.get("file") or "<downloaded program>")
+            detail = args.get("file") or ""
         else:  # pragma: no cover - the constructors make only the verbs above
             raise ScenarioError(f"unknown action {verb!r}")
         return detail

@@ -174,6 +174,7 @@ class Action:
             "stop_cpu": "switch the CPU to STOP",
             "start_cpu": "switch the CPU to RUN",
             "power_cycle": "power the CPU off and on",
+            "download": f"download the program {self.args.get('file') or ''}".rstrip(),
         }.get(self.verb, self.verb)
 
     def names(self) -> list[tuple[str, str]]:
@@ -211,7 +212,7 @@ TARGET_ROLES = {
     "free_motor": "motor",
 }
 """What the target of each verb names (the verbs on the CPU have none)."""
-VERBS = (*TARGET_ROLES, "place", "stop_cpu", "start_cpu", "power_cycle")
+VERBS = (*TARGET_ROLES, "place", "stop_cpu", "start_cpu", "power_cycle", "download")
 """Every verb of plcsim's own (the kinds of the scenario's trace events, with ``action failed`` and the rig's verbs)."""
 
 VERB_CAPABILITY = {
@@ -456,3 +457,12 @@ def start_cpu(t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> 
 def power_cycle(t: Any = None, *, when: Trigger | None = None, delay: Any = 0) -> Action:
     """Power the CPU off and on (retain tags survive)."""
     return _action("power_cycle", "CPU", t, when, delay)
+
+
+def download(program: str, t: Any = None, *, file: str = "", when: Trigger | None = None, delay: Any = 0) -> Action:
+    """Download a changed program into the running CPU: STOP, load, RUN, as TIA Portal's download does; the
+    tags that keep their name and type keep their values (a download without reinitialization), the machine
+    keeps running. ``program`` is the program's whole text (a replay needs no file); ``file`` names it."""
+    if not isinstance(program, str) or not program.strip():
+        raise ScenarioError(f"{defined_at()}: download needs the program's text")
+    return _action("download", "CPU", t, when, delay, program=program, file=file)

@@ -126,6 +126,8 @@ class Simulation:
         self.paused = False
         self.fast_forward = fast_forward
         self._diag_last = cpu.diagnostics[-1] if cpu.diagnostics else None
+        self._downloads = getattr(cpu, "downloads", 0)
+        """The CPU's download count the recorder is attached for (a download builds new tags to read)."""
         if scenario is not None:
             self._check_scenario(scenario)
         self.actions = ActionRunner(scenario, self.rng, plant, cpu, self.wiring, self.trace)
@@ -244,6 +246,10 @@ class Simulation:
                 if t >= actions.next_due:
                     actions.apply_due(t)
                     self._frame_still = False  # an operator's action may change the picture of a still machine
+                    if getattr(cpu, "downloads", 0) != self._downloads:  # a scenario's download: read the new tags
+                        self._downloads = cpu.downloads
+                        self.recorder.detach()
+                        self.recorder.attach()
                 if wiring is not None:
                     wiring.step_inputs(inputs, t)
                 run_cpu(t + dt)

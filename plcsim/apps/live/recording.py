@@ -73,9 +73,10 @@ _CALLS: dict[str, tuple[str, tuple[tuple[str, str], ...], tuple[tuple[str, str],
     "stop_cpu": ("stop_cpu", (), ()),
     "start_cpu": ("start_cpu", (), ()),
     "power_cycle": ("power_cycle", (), ()),
+    "download": ("download", (("program", "program"),), (("file", "file"),)),
 }
 """How each verb a live session can record is written as a call of :mod:`plcsim.scenario.verbs`."""
-_NO_TARGET = {"stop_cpu", "start_cpu", "power_cycle"}
+_NO_TARGET = {"stop_cpu", "start_cpu", "power_cycle", "download"}
 _PLACE_ARGS = {"station", "noise", "offset_mm", "angle_deg"}
 """The arguments of ``place`` that are not the part's properties."""
 LIVE_ORIGIN = "live session action {n}"

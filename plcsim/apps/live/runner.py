@@ -138,6 +138,13 @@ class Runner:
         self.speed = None if value is None else float(value)
         self._owed_ns = 0.0
 
+    def _op_download(self, _m: dict[str, Any]) -> dict[str, Any]:
+        action = self.session.download()
+        return {"type": "downloaded", "file": action.args.get("file", ""), "t_ns": self.session.now}
+
+    def _op_watch(self, m: dict[str, Any]) -> None:
+        self.session.watch(str(m.get("target", "")))
+
     def _op_digest(self, _m: dict[str, Any]) -> dict[str, Any]:
         return {"type": "digest", "t_ns": self.session.now, "digest": self.session.sim.trace.digest()}
 

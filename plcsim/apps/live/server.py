@@ -56,7 +56,7 @@ def make_app(runner: Runner, token: str, served: list[str]) -> Any:
     require_server()
     from starlette.applications import Starlette
     from starlette.middleware import Middleware
-    from starlette.responses import HTMLResponse, JSONResponse, PlainTextResponse
+    from starlette.responses import HTMLResponse, JSONResponse, PlainTextResponse, Response
     from starlette.routing import Mount, Route, WebSocketRoute
     from starlette.staticfiles import StaticFiles
     from starlette.websockets import WebSocketDisconnect
@@ -86,6 +86,13 @@ def make_app(runner: Runner, token: str, served: list[str]) -> Any:
         if not secrets.compare_digest(request.headers.get(TOKEN_HEADER, ""), token):
             return PlainTextResponse(f"saving needs the session's token in {TOKEN_HEADER}", status_code=403)
         return JSONResponse(await asyncio.to_thread(runner.save))
+
+    async def ladder(_request: Any) -> Any:
+        with runner.lock:
+            svg = runner.session.ladder_svg()
+        if svg is None:
+            return PlainTextResponse("this program has no ladder view", status_code=404)
+        return Response(svg, media_type="image/svg+xml", headers={"Cache-Control": "no-store"})
 
     async def stream(ws: Any) -> None:
         if not secrets.compare_digest(ws.query_params.get("token", ""), token):
@@ -127,6 +134,7 @@ def make_app(runner: Runner, token: str, served: list[str]) -> Any:
             Route("/api/layout", layout),
             Route("/api/scenario.{kind:str}", recording),
             Route("/api/save", save, methods=["POST"]),
+            Route("/api/ladder.svg", ladder),
             WebSocketRoute("/ws", stream),
             Mount("/static", StaticFiles(directory=STATIC), name="static"),
         ],
