@@ -292,7 +292,7 @@ def _list(args: argparse.Namespace) -> int:
         loaded, broken = list(all_exercises()), list(broken_exercises())
         print_exercise_list(loaded)
     for bad in broken:  # the message is text, not markup: "DATA.arr[2]" must print as it is
-        Console(stderr=True).print(f"[bold red]not loaded:[/] {escape(str(bad))}", highlight=False)
+        Console(stderr=True).print(f"[bold red]not loaded:[/] {escape(str(bad))}", highlight=False, soft_wrap=True)
     return EXIT_USAGE if broken else 0
 
 

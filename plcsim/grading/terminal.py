@@ -11,6 +11,7 @@ from rich.panel import Panel
 from rich.table import Table
 from rich.text import Text
 
+from plcsim.core.console_table import print_records
 from plcsim.core.literals import format_ns
 from plcsim.core.untrusted_text import for_terminal
 
@@ -110,15 +111,13 @@ LIST_TITLE = "plcsim exercises (STU textbook, chapter 4.3)"
 
 
 def print_exercise_list(exercises: Sequence[Any], console: Console | None = None, *, title: str = LIST_TITLE) -> None:
-    console = console or Console()
-    table = Table(title=Text(title))
-    for col in ("number", "slug", "title", "rig", "scenarios", "solutions"):
-        table.add_column(col)
+    rows = []
     for ex in exercises:
         rig = ex.plant_name or (ex.rig().name if ex.rig is not None else "-")
         sols = ", ".join(s.name for s in ex.solutions)
-        table.add_row(ex.number, ex.slug, ex.title, rig, str(len(ex.scenarios)), sols)
-    console.print(table)
+        rows.append([ex.number, ex.slug, ex.title, rig, str(len(ex.scenarios)), sols])
+    columns = ["number", "slug", "title", "rig", "scenarios", "solutions"]
+    print_records(console or Console(), columns, rows, title=title)
 
 
 def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool = True) -> None:
