@@ -96,7 +96,11 @@ def _parser() -> argparse.ArgumentParser:
         "target", help=f"an exercise (4.3.7, or an exercise file) or a rig ({', '.join(rig_names()) or 'none'})"
     )
     which = run.add_mutually_exclusive_group()
-    which.add_argument("--program", metavar="FILE", help="the PLC program to run (.py; .il for the Tecomat)")
+    which.add_argument(
+        "--program",
+        metavar="FILE",
+        help="the PLC program to run (.py; .il for the Tecomat); on a bare rig, none runs it by hand, outputs off",
+    )
     which.add_argument("--reference", action="store_true", help="run the exercise's shipped reference solution")
     which.add_argument("--solution", metavar="NAME", help="run a shipped solution by name (see `plcsim show`)")
     run.add_argument(
@@ -205,7 +209,9 @@ def _add_live_parser(sub: Any) -> None:
         "(--save-scenario) and `plcsim run TARGET --program FILE --scenario SAVED` replays it bit for bit.",
     )
     live.add_argument("target", help="an exercise (4.3.7, a slug or an exercise file) or a rig (PANEL, CONV1 ...)")
-    live.add_argument("--program", metavar="FILE.py", required=True, help="the PLC program to run")
+    live.add_argument(
+        "--program", metavar="FILE.py", help="the PLC program to run (none: operate the rig by hand, outputs off)"
+    )
     live.add_argument("--scenario", metavar="NAME", help="start from this scenario of the exercise (default: none)")
     live.add_argument("--seed", type=int, default=1, help="seed of placement noise and timing (default 1)")
     live.add_argument("--port", type=int, default=8765, help="local port of the page (default 8765; 0: any free one)")
@@ -369,8 +375,6 @@ def _run(args: argparse.Namespace) -> int:
     exercise = None
     saved = _saved_scenario(args)
     if is_rig(args.target):
-        if not args.program:
-            raise PlcError(f"running the bare rig {args.target} needs --program FILE.py")
         sim = _rig_simulation(args, saved)
         scenario_name = saved.name if saved else None
     else:
@@ -492,7 +496,10 @@ def _rig_simulation(args: argparse.Namespace, scenario: Any = None) -> Any:
     from plcsim.apps.live.build import rig_simulation
     from plcsim.frontends import read_program
 
-    program = read_program(args.program)
+    from plcsim.apps.live.session import NO_PROGRAM
+    from plcsim.frontends.python.program import Program
+
+    program = read_program(args.program) if args.program else Program(NO_PROGRAM, "(no program)")
     return rig_simulation(rig(args.target)(), program, scenario, seed=args.seed, cycle=args.cycle, pacing=_pacing(args))
 
 
@@ -640,13 +647,14 @@ def _live(args: argparse.Namespace) -> int:
     from rich.console import Console
 
     from plcsim.apps.live.server import open_live
+    from plcsim.apps.live.session import NO_PROGRAM
 
     console = Console()
     if args.save_scenario and not args.save_scenario.endswith((".toml", ".py")):
         raise PlcError(f"--save-scenario {args.save_scenario}: save as .toml (exact replay) or .py (a scenario)")
     panel = open_live(
         args.target,
-        args.program,
+        args.program or NO_PROGRAM,
         scenario=args.scenario,
         seed=args.seed,
         port=args.port,

@@ -147,9 +147,21 @@ def test_run_a_bare_rig_with_a_program(tmp_path, capsys):
     assert "grade of this run" not in out  # a bare rig has no checks
 
 
-def test_run_a_bare_rig_needs_a_program(capsys):
-    assert main(["run", "CONV1"]) == EXIT_USAGE
-    assert "running the bare rig CONV1 needs --program FILE.py" in capsys.readouterr().err
+def test_run_a_bare_rig_without_a_program_operates_it_by_hand(tmp_path, capsys):
+    """A student explores a machine before writing a program: the rig runs with every output off, and a
+    saved session's presses and parts act on it."""
+    trace = tmp_path / "by-hand.npz"
+    assert main(["run", "CONV1", "--seconds", "2", "--trace", str(trace)]) == 0
+    assert "2000 scans, CPU RUN" in capsys.readouterr().out
+    assert not Trace.load(trace).column("D1").any()
+
+
+def test_live_without_a_program_runs_the_empty_one():
+    from plcsim.apps.live.session import NO_PROGRAM, LiveSession
+
+    session = LiveSession("CONV1", NO_PROGRAM)
+    session.advance(500_000_000)
+    assert session.sim.cpu.mode == "RUN" and session.sim.cpu.outputs["D1"] is False
 
 
 def test_run_in_real_time(capsys):

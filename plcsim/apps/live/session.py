@@ -43,6 +43,9 @@ from plcsim.sim.simulation import Simulation
 
 PANEL_DEMO = "def OB1(t):\n    t.LED = t.TL\n"
 """A one-line program for the PANEL rig: the lamp follows the button TL."""
+NO_PROGRAM = '"""No program yet: every output stays off, the rig is operated by hand."""\n\n\ndef OB1(t):\n    pass\n'
+"""The program of ``plcsim run RIG`` and ``plcsim live RIG`` without ``--program``: a student explores the
+machine by hand (buttons, parts, the watch table) before writing one."""
 
 FAULTS = {
     "stick": "stuck at",
