@@ -494,9 +494,8 @@ def _print_verdicts(results: list[Any], console: Any) -> None:
 
 def _rig_simulation(args: argparse.Namespace, scenario: Any = None) -> Any:
     from plcsim.apps.live.build import rig_simulation
-    from plcsim.frontends import read_program
-
     from plcsim.apps.live.session import NO_PROGRAM
+    from plcsim.frontends import read_program
     from plcsim.frontends.python.program import Program
 
     program = read_program(args.program) if args.program else Program(NO_PROGRAM, "(no program)")
