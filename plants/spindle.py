@@ -8,9 +8,10 @@ delay (30 ms) when it is switched off. The spindle follows the main contacts: +1
 the supply (event ``short circuit``; the spindle gets no torque while it lasts): the reason the chapter's
 CWCCW waits for KSMP to drop and then 0.2 s more before it switches SMN on.
 
-The operator panel has push-buttons ``START`` (spindle on, clockwise), ``REV`` (reverse) and ``STOP`` and a
-lamp ``ALARM``. The chapter's faults: a contact stuck (the scenario's ``stuck("KSMP", True)`` on the wire)
-and a contactor that never picks up (``jam_motor("SMN")``: its coil is switched, its contacts stay open).
+The operator panel has push-buttons ``START`` (spindle on, clockwise), ``REV`` (reverse) and ``STOP`` and
+lamps ``READY`` and ``ALARM``. The chapter's faults: a contact stuck (the scenario's ``stuck("KSMP", True)``
+on the wire) and a contactor that never picks up (``jam_motor("SMN")``: its coil is switched, its contacts
+stay open).
 
 >>> s = Spindle()
 >>> s.actuate("SMP", True)
@@ -33,7 +34,7 @@ PICK_UP_S, DROP_OUT_S = 0.040, 0.030
 RPM, TAU_S = 1000.0, 0.3
 CONTACTORS = {"SMP": ("KSMP", 1.0), "SMN": ("KSMN", -1.0)}
 """Coil -> (its feedback contact, the direction it drives the spindle)."""
-ORDER = ("START", "REV", "STOP", "KSMP", "KSMN", "SMP", "SMN", "ALARM")
+ORDER = ("START", "REV", "STOP", "KSMP", "KSMN", "SMP", "SMN", "READY", "ALARM")
 _NS = 1_000_000_000
 
 
@@ -50,7 +51,7 @@ class Spindle:
     ) -> None:
         self.name = name
         self.pick_up_ns, self.drop_out_ns = round(pick_up * _NS), round(drop_out * _NS)
-        self.panel = OperatorPanel(("START", "REV", "STOP"), (), ("ALARM",), origin=(0.0, 120.0))
+        self.panel = OperatorPanel(("START", "REV", "STOP"), (), ("READY", "ALARM"), origin=(0.0, 120.0))
         coil_doc = "contactor coil {}: its main and auxiliary contacts close {:g} ms after it is switched on"
         specs = {s.name: s for s in self.panel.specs()}
         for coil, (contact, _) in CONTACTORS.items():
@@ -90,7 +91,7 @@ class Spindle:
             self.panel.actuate(self, name, value)
             return
         if name not in CONTACTORS:
-            raise KeyError(f"{self.name} has no actuator {name!r} (actuators: SMP, SMN, ALARM)")
+            raise KeyError(f"{self.name} has no actuator {name!r} (actuators: SMP, SMN, READY, ALARM)")
         value = bool(value)
         if self.coils[name] == value:
             return

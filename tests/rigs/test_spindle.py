@@ -16,7 +16,7 @@ from plcsim.sim.wiring import NO
 
 
 def test_the_rig_keeps_the_plant_protocol():
-    assert check_plant(Spindle())["signals"] == 8
+    assert check_plant(Spindle())["signals"] == 9
 
 
 def test_a_contact_follows_its_coil_after_the_pick_up_and_drop_out_delays():
