@@ -10,7 +10,7 @@ on clockwise. The preparatory functions are a mechanism PREP of their own.
 
 from exercises._common import solution
 from exercises._mechanisms import mech_solution, spindle, spindle_io
-from plcsim.check import becomes, holds, never, off, rises, value
+from plcsim.check import all_of, becomes, holds, never, off, rises, value
 from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, jam_motor, press
 
@@ -21,6 +21,7 @@ ERROR_12 = "a spindle that never starts: BZH11 = 18 (12H) 10 s after START (to w
 READY_LATE = "READY stays off until KSMP closes"
 NOT_READY = "a spindle that never starts: READY stays off"
 NO_ERROR = "BZH11 stays 0 when the spindle starts"
+NO_SHORT = "SMP and SMN are never on together"
 
 EXERCISE = Exercise(
     number=NUMBER,
@@ -28,13 +29,13 @@ EXERCISE = Exercise(
     title="Start a mechanism and wait for it at most 10 s (PLC836 mechanisms PREP and CW)",
     title_sk="Spuštění mechanismu a čekání na jeho vykonání nejvýše 10 s",
     task=(
-        "Write two mechanisms (a .mech file, or MECHANISM() in Python). CW switches the spindle on clockwise: "
-        "switch SMN off, wait while its contact KSMN is closed, switch SMP on, wait until its contact KSMP "
-        "closes, end. PREP, started by the push-button START, switches the lamp READY off, starts CW (SMP is "
-        "on within 2 scans of the press) and waits until CW has ended, then switches READY on (within 2 "
-        "scans after KSMP closes, not before) and ends. If CW has not ended 10 s after the press, PREP stores 18 (12H, "
-        "error 4.12) in BZH11 (10 s after the press, to within 3 scans) and ends, leaving CW as it is and "
-        "READY off. A spindle that starts leaves BZH11 at 0."
+        "Write two mechanisms (a .mech file, or MECHANISM() in Python). CW switches the spindle on clockwise:"
+        " switch SMN off, wait while its contact KSMN is closed, switch SMP on, wait until its contact KSMP "
+        "closes, end (SMP and SMN are never on together). PREP, started by the push-button START, switches "
+        "the lamp READY off, starts CW (SMP is on within 2 scans of the press) and waits until CW has ended, "
+        "then switches READY on (within 2 scans after KSMP closes, not before) and ends. If CW has not ended "
+        "10 s after the press, PREP stores 18 (12H, error 4.12) in BZH11 (10 s after the press, to within 3 "
+        "scans) and ends, leaving CW as it is and READY off. A spindle that starts leaves BZH11 at 0."
     ),
     io=spindle_io("START", "start push-button", IO("READY", "lamp: the spindle has started", "Bool", "%Q0.2")),
     rig=spindle,
@@ -55,6 +56,7 @@ EXERCISE = Exercise(
     ],
     checks=[
         rises("SMP").within("2 scans").after(rises("START")).named(SMP_ON),
+        never(all_of("SMP", "SMN")).named(NO_SHORT),
         only(rises("READY").within("2 scans").after(rises("KSMP")).named(READY), "start"),
         only(holds(off("READY")).until(rises("KSMP")).named(READY_LATE), "start"),
         only(never(value("BZH11") != 0).named(NO_ERROR), "start"),
@@ -92,4 +94,8 @@ EXERCISE = Exercise(
         ),
     ],
     notes="D500 = 500 counts of 20 ms = 10 s (the chapter's own reading of its constant).",
+    spec_equivalent={
+        "line 16: EX → BEX": "BEX cuts the start of CW off the window of the wait without losing a scan, as the "
+        "chapter says it does; the 10 s then count from one scan earlier, within the 3 scans the task allows",
+    },
 )

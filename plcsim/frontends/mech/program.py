@@ -45,7 +45,7 @@ class MechProgram:
     """A ``.mech`` program as read: declares its mechanisms and memory cells, links into the S7 runtime."""
 
     def __init__(self, text: str, filename: str = "<mech>"):
-        self.filename = filename
+        self.filename, self.text = filename, text
         self.source: MechSource = parse(text, filename)
         self._order = self._declared_names()
 
