@@ -25,6 +25,7 @@ GROUPS: dict[str, str] = {  # group name -> module with run(settings)
     "recording": "benchmarks.recording",
     "live": "benchmarks.live",
     "tecomat": "benchmarks.tecomat",
+    "mechanisms": "benchmarks.mechanisms",
     "digests": "benchmarks.digests",
 }
 

@@ -14,7 +14,6 @@ declares its cells elsewhere); a name only read and declared nowhere is an error
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -27,18 +26,32 @@ from plcsim.controllers.loaded import (
     ProgramFacts,
     TaskSpec,
 )
-from plcsim.controllers.plc836.grammar import STATES, TIME_UNIT_MS, address, number, split_typed
+from plcsim.controllers.plc836.grammar import STATES, address, number, split_typed
 from plcsim.controllers.s7.instructions import FB_TYPES
-from plcsim.controllers.s7.instructions.mechanisms import HOLD, PASS, Mechanism
 from plcsim.core.errors import ProgramError, ProgramFileError, UnknownTagError, did_you_mean
+from plcsim.frontends.mech.codegen import (
+    BIT,
+    CELL,
+    CONST,
+    END,
+    FL,
+    INIT,
+    JUM,
+    LA,
+    LDR,
+    LINE,
+    LO,
+    LOD,
+    STATE,
+    STO,
+    TAG,
+    WR,
+    compile_functions,
+    segment_lines,
+)
 from plcsim.frontends.mech.parse import Instruction, MechSource, parse
 from plcsim.tags.table import TagTable
 from plcsim.tags.types import Bool, ElementaryType, Int
-
-# decoded operations (the interpreter's dispatch codes)
-LDR, LO, LA, WR, FL, LOD, STO, JUM, INIT, STATE, END = range(11)
-# operand kinds: a tag's value, a mechanism's bit, a constant, a DS cell, a mechanism's LINE
-TAG, BIT, CONST, CELL, LINE = range(5)
 
 
 class MechProgram:
@@ -106,9 +119,15 @@ class MechProgram:
 
     def link(self, target: LinkTarget) -> LoadedProgram:
         linker = _Linker(self.source, target)
+        segments = linker.segments()
+        cells = {id(data): f"area_{name}" for name, data in linker.areas.items()}
+        direct = frozenset(linker.bools - target.aliased)
+        bodies = [segment_lines(linker.decode(first, end, mech), mech, direct, cells) for first, end, mech in segments]
+        namespace: dict[str, Any] = {"store": target.hooks.store, "tick": target.hooks.tick, "regs": linker.regs}
+        namespace.update({cells[id(data)]: data for data in linker.areas.values()})
+        runs, whole = compile_functions(bodies, namespace, self.filename)
         networks, specs = [], []
-        for k, (first, last, mech) in enumerate(linker.segments(), 1):
-            run = linker.network(first, last, mech)
+        for k, ((first, last, mech), run) in enumerate(zip(segments, runs, strict=True), 1):
             lines = (self.source.body[first].line, self.source.body[last - 1].line)
             networks.append(LoadedNetwork(run, lines))
             title = f"mechanism {mech}" if mech else "logic"
@@ -117,7 +136,7 @@ class MechProgram:
         facts = ProgramFacts(
             frozenset(linker.reads), frozenset(linker.writes), frozenset(i.op for i in self.source.body)
         )
-        task = LoadedTask(spec, networks, None, facts.tags_read | facts.tags_written)
+        task = LoadedTask(spec, networks, whole, facts.tags_read | facts.tags_written)
         return LoadedProgram(self.filename, [task], facts)
 
 
@@ -290,100 +309,6 @@ class _Linker:
                     if code is None:
                         raise self.fail(ins, f"the error number {args[3]!r} must be a number such as 04 or 12H")
         return (STATE, kind, n, ins.line, *limit, label_pc, label, code)
-
-    # -- the interpreter -----------------------------------------------------------------------
-
-    def network(self, first: int, end: int, mech: str | None) -> Callable[[Any], None]:
-        ops = self.decode(first, end, mech)
-        store, store_member, tick = self.target.hooks.store, self.target.hooks.store_member, self.target.hooks.tick
-        regs, file = self.regs, self.file
-
-        def operand(d: dict[str, Any], kind: int, key: Any, extra: Any) -> Any:
-            if kind == TAG:
-                return d[key]
-            if kind == CONST:
-                return key
-            if kind == BIT:
-                return d[key].ACTIVE
-            if kind == LINE:
-                return d[key].LINE
-            data, offset = key
-            return data[offset] if extra == 1 else data[offset] | data[offset + 1] << 8
-
-        def execute(t: Any, d: dict[str, Any], pc: int, m: Mechanism | None) -> None:
-            rlo, dr = regs
-            size = len(ops)
-            while pc < size:
-                o = ops[pc]
-                code = o[0]
-                if code <= LA:
-                    v = d[o[2]] if o[1] == TAG else d[o[2]].ACTIVE
-                    if o[3]:
-                        v = not v
-                    rlo = v if code == LDR else (rlo or v) if code == LO else (rlo and v)
-                elif code in (FL, WR):
-                    value = o[4] if code == FL else rlo
-                    if o[1] == TAG:
-                        store(t, o[2], value)
-                    else:
-                        store_member(d[o[2]], "ACTIVE", value)
-                elif code == STATE:
-                    if m is None:  # pragma: no cover - the parser keeps states inside mechanisms
-                        raise ProgramError(f"{file}, line {o[3]}: a state outside a mechanism")
-                    limit = None if o[4] is None else operand(d, o[4], o[5], o[6]) * TIME_UNIT_MS
-                    result = m.state(o[1], o[2], o[3], bool(rlo), limit, o[8], o[9] or 0)
-                    if result == PASS:
-                        m.cont = pc + 1
-                        if m.iec:
-                            break
-                        pc += 1
-                        continue
-                    if result == HOLD:
-                        break
-                    if o[9] is not None:  # TIMEOUT: on to the error label (in this scan unless IEC)
-                        dr = o[9]
-                    m.cont = pc = o[7]
-                    if m.iec:
-                        break
-                    continue
-                elif code == JUM:
-                    if o[1] <= pc:
-                        tick()
-                    pc = o[1]
-                    continue
-                elif code == LOD:
-                    dr = operand(d, o[1], o[2], o[3])
-                elif code == STO:
-                    if o[1] == TAG:
-                        store(t, o[2], dr)
-                    else:
-                        data, offset = o[2]
-                        data[offset] = dr & 0xFF
-                        if o[3] == 2:
-                            data[offset + 1] = (dr >> 8) & 0xFF
-                elif code == INIT:
-                    d[o[1]].init()
-                elif code == END:
-                    break
-                pc += 1
-            regs[0], regs[1] = rlo, dr
-
-        if mech is None:
-
-            def run_logic(t: Any) -> None:
-                execute(t, t.__dict__, 0, None)
-
-            return run_logic
-
-        def run_mechanism(t: Any) -> None:
-            d = t.__dict__
-            m = d[mech]
-            if not m.begin():
-                return
-            execute(t, d, m.cont or 1, m)
-            m.end()
-
-        return run_mechanism
 
 
 def read_mech(path: Path) -> MechProgram:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import difflib
+import functools
 import inspect
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -137,9 +138,10 @@ class Block:
         """Member name -> type, for every member a program may read, in the manual's order."""
         return {m.name: m.type for m in self.members}
 
-    @property
+    @functools.cached_property
     def writable(self) -> frozenset[str]:
-        """Members a program may write directly (the rest are outputs the box computes)."""
+        """Members a program may write directly (the rest are outputs the box computes); computed once, as
+        every store into an instance member asks it."""
         return frozenset(m.name for m in self.members if m.writable)
 
     @property

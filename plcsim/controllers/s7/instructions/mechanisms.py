@@ -142,7 +142,7 @@ class Mechanism:
         """A program's or an HMI's write of ``ACTIVE`` (the only writable member)."""
         if key != "ACTIVE":
             raise PlcTypeError(f"{key} of {self!r} cannot be written by the program")
-        self.ACTIVE = Bool.coerce(value, f"{self._path}.ACTIVE")
+        self.ACTIVE = value if value is True or value is False else Bool.coerce(value, f"{self._path}.ACTIVE")
 
     # -- MECH_BEGIN / MECH_END / MECH_INIT --------------------------------------------------
 
