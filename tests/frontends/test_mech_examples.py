@@ -244,3 +244,57 @@ def test_contract_holds_in_the_one_step_per_scan_mode_too(example):
         drive(c, events, 12.0)
         digests.append(recorder.trace.digest())
     assert digests[0] == digests[1]
+
+
+SHARED = """
+MECH_BEGIN A
+LDR X
+TEX0 C,50,A_ERR
+JUM A_END
+A_ERR: FL 1,ALARM
+A_END:
+MECH_END A
+MECH_BEGIN B
+LOOP: TIM {counter},10
+JUM LOOP
+MECH_END B
+"""
+
+
+@pytest.mark.parametrize(("counter", "alarm"), [("C", False), ("-", True), ("D", True)])
+def test_a_counter_named_by_two_states_is_restarted_by_each_so_a_loop_can_starve_a_timeout(counter, alarm):
+    from plcsim import CPU, Tag
+    from plcsim.frontends.mech import MechProgram
+
+    c = CPU(tags={"X": Tag("%I0.0")}, program=MechProgram(SHARED.format(counter=counter), "shared.mech"))
+    c.write("A.ACTIVE", True)
+    c.write("B.ACTIVE", True)
+    c.run_until(ns(3.0))
+    # B's TIM restarts a counter it shares with A's TEX0 every 0.2 s: A's 1 s never runs out
+    assert c.t.ALARM is alarm and c.read("A.ACTIVE") is not alarm
+
+
+def test_goto_continues_in_another_step_from_the_next_scan():
+    from plcsim import CPU, Tag
+
+    program = """
+M = MECHANISM()
+N = Int()
+
+def m(t):
+    if t.M.begin():
+        if t.M.step(1):
+            t.N = t.N + 1
+            t.M.wait_until(t.X, timeout="10ms", error="AGAIN")
+        if t.M.error("AGAIN"):
+            t.M.goto(1)
+        t.M.end()
+
+OB1 = [m]
+"""
+    c = CPU(tags={"X": Tag("%I0.0")}, program=program)
+    c.write("M.ACTIVE", True)
+    c.scan(25)
+    # step 1's window runs in every scan; its time restarts at each goto: timeouts in the scans at 10 ms
+    # and 21 ms (entered again at 11 ms), so in the last scan (24 ms) it has waited 2 ms
+    assert c.read("M.ACTIVE") is True and c.read("M.STEP") == 1 and c.t.N == 25 and c.read("M.ET") == 2

@@ -1,4 +1,5 @@
-"""P-02 in the Python form: PREP starts CW, gives it one scan, then waits for it at most 10 s."""
+"""P-02 in the Python form: PREP starts CW, gives it one scan, then waits for it at most 10 s; CW retries a
+contactor that does not pick up (its steps 10 and 11, reached by goto from the error branch)."""
 
 PREP = MECHANISM()
 CW = MECHANISM()
@@ -32,7 +33,14 @@ def cw(t):
             t.CW.wait_while(t.KSMN)
         if t.CW.step(2):
             t.SMP = True
-            t.CW.wait_until(t.KSMP)
+            t.CW.wait_until(t.KSMP, timeout="2s", error="RETRY")
+        if t.CW.error("RETRY"):  # it did not pick up: off, 0.5 s, and again
+            t.SMP = False
+            t.CW.goto(10)
+        if t.CW.step(10):
+            t.CW.delay("500ms")
+        if t.CW.step(11):
+            t.CW.goto(2)
         t.CW.end()
 
 

@@ -140,7 +140,7 @@ def _block(
 
 
 def _state(o: tuple[Any, ...], pc: int, cells: Mapping[int, str]) -> list[str]:
-    _, kind, n, line, lkind, lkey, lextra, label_pc, label, code = o
+    _, kind, n, line, lkind, lkey, lextra, label_pc, label, code, counter = o
     if lkind is None:
         limit = "None"
     elif lkind == CONST:
@@ -148,7 +148,8 @@ def _state(o: tuple[Any, ...], pc: int, cells: Mapping[int, str]) -> list[str]:
     else:
         limit = f"{_value(lkind, lkey, lextra, cells)} * {TIME_UNIT_MS}"
     out = [
-        f"r = m.state({kind!r}, {n}, {line}, bool(rlo), {limit}, {label!r}, {code or 0})",
+        f"r = m.state({kind!r}, {n}, {line}, bool(rlo), {limit}, {label!r}, {code or 0}"
+        + (f", counters[{counter!r}])" if counter is not None else ")"),
         f"if r == {PASS}:",
         f"{_STEP}m.cont = pc = {pc + 1}",
         f"{_STEP}if iec:",

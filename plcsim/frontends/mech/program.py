@@ -124,6 +124,7 @@ class MechProgram:
         direct = frozenset(linker.bools - target.aliased)
         bodies = [segment_lines(linker.decode(first, end, mech), mech, direct, cells) for first, end, mech in segments]
         namespace: dict[str, Any] = {"store": target.hooks.store, "tick": target.hooks.tick, "regs": linker.regs}
+        namespace["counters"] = linker.counters
         namespace.update({cells[id(data)]: data for data in linker.areas.values()})
         runs, whole = compile_functions(bodies, namespace, self.filename)
         networks, specs = [], []
@@ -155,6 +156,9 @@ class _Linker:
         self.writes: set[str] = set()
         self.areas = {name: bytearray(size) for name, size in source.areas.items()}
         self.regs = [False, 0]  # RLO, DR: the CPU's registers, shared by every network
+        self.counters: dict[str, list[int]] = {}
+        """The named counters (``citac``) of the timed states, each ``[start ns]``, shared by every state
+        that names it; ``-`` or ``NIL`` gives a state a timer of its own."""
         known = target.table.entries
         self.bools = {
             n for n, e in known.items() if isinstance(e.member.type, ElementaryType) and e.member.type is Bool
@@ -295,9 +299,13 @@ class _Linker:
         op, args = ins.op, ins.args
         kind = {"TEX0": "EX0", "TEX1": "EX1"}.get(op, op)
         limit: tuple[Any, ...] = (None, None, None)
-        label_pc, label, code = -1, "", None
+        label_pc, label, code, counter = -1, "", None, None
         if op in ("TEX0", "TEX1", "TIM"):
-            typed, _ = split_typed(args[0])
+            typed, written = split_typed(args[0])
+            if written.upper() not in ("-", "NIL"):
+                where = address(written)
+                counter = written if where is None else f"{where[0]}+{where[1]}"
+                self.counters.setdefault(counter, [0])
             time_arg = args[1]
             if typed is not None:
                 time_arg = f"{typed}.{time_arg}"
@@ -308,7 +316,7 @@ class _Linker:
                     code = number(args[3]) if args[3] not in self.src.constants else self.src.constants[args[3]]
                     if code is None:
                         raise self.fail(ins, f"the error number {args[3]!r} must be a number such as 04 or 12H")
-        return (STATE, kind, n, ins.line, *limit, label_pc, label, code)
+        return (STATE, kind, n, ins.line, *limit, label_pc, label, code, counter)
 
 
 def read_mech(path: Path) -> MechProgram:

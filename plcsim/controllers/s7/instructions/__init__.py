@@ -60,7 +60,7 @@ MECHANISM = FBType(
     _mechanism,
     retain=False,
     doc="PLC836 step mechanism (members ACTIVE, STEP, ET, ERR, LINE); boxes begin, step, wait_until, "
-    "wait_while, delay, ex, bex, error, end, init, start.",
+    "wait_while, delay, ex, bex, error, goto, end, init, start.",
 )
 R_TRIG = FBType(
     "R_TRIG",
@@ -199,7 +199,20 @@ BLOCKS: dict[str, Block] = {
         Block(
             MECHANISM,
             Mechanism,
-            ("begin", "step", "wait_until", "wait_while", "delay", "ex", "bex", "error", "end", "init", "start"),
+            (
+                "begin",
+                "step",
+                "wait_until",
+                "wait_while",
+                "delay",
+                "ex",
+                "bex",
+                "error",
+                "goto",
+                "end",
+                "init",
+                "start",
+            ),
             _members(
                 "ACTIVE:Bool",
                 "STEP:Int",

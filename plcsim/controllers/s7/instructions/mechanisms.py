@@ -99,6 +99,7 @@ class Mechanism:
         "_held",
         "_moved",
         "_open",
+        "_evaluated",
     )
 
     def __init__(self, clock: Any, path: str = "", *, mode: str = PLC836):
@@ -125,7 +126,7 @@ class Mechanism:
         """The error label the last timeout jumped to, while the run is in that branch."""
         self._entered = 0
         self._entered_pass = 0
-        self._in_pass = self._held = self._moved = False
+        self._in_pass = self._held = self._moved = self._evaluated = False
         self._open = 0
 
     @property
@@ -199,6 +200,16 @@ class Mechanism:
         self._open = n
         return True
 
+    def goto(self, n: int) -> bool:
+        """JUM: go on in step ``n`` (its code runs in the next scan: a Python program runs top to bottom),
+        leaving an error branch. True."""
+        if self._in_pass and not self._held:
+            self.branch = None
+            self._enter(n)
+            self._held = True  # the rest of this pass is skipped: step n runs from the next scan
+            self._open = 0
+        return True
+
     def error(self, label: str) -> bool:
         """Whether this pass runs the error branch ``label`` (a timeout with ``error=label`` jumped here)."""
         if not self._in_pass or self._held or self.branch != label:
@@ -244,18 +255,35 @@ class Mechanism:
 
     # -- the shared core (the .mech front end calls it directly) -------------------------------
 
-    def state(self, kind: str, n: int, line: int, condition: bool, limit_ms: int | None, label: str, code: int) -> int:
+    def state(
+        self,
+        kind: str,
+        n: int,
+        line: int,
+        condition: bool,
+        limit_ms: int | None,
+        label: str,
+        code: int,
+        counter: list[int] | None = None,
+    ) -> int:
         """Evaluate state ``n`` (written at ``line``) of kind EX/EX0/EX1/BEX/TIM in this pass.
 
         EX0 blocks while ``condition`` is FALSE, EX1 while it is TRUE (the digit names the blocking
-        value); ``limit_ms`` is TEX's time (TIM's delay) and ``label``/``code`` its error exit.
-        Returns PASS (the mechanism is in step ``n + 1`` now), HOLD (the pass ends) or TIMEOUT
-        (``branch = label``, ``ERR = code``)."""
+        value); ``limit_ms`` is TEX's time (TIM's delay) and ``label``/``code`` its error exit. The time
+        counts from the scan the state was entered in, or on ``counter`` (a named ``citac`` of a
+        ``.mech`` file, ``[start ns]``): every state that names it restarts it when entered, whichever
+        mechanism it is in. Returns PASS (the mechanism is in step ``n + 1`` now), HOLD (the pass ends)
+        or TIMEOUT (``branch = label``, ``ERR = code``)."""
         now = self._clock.now
         if n != self.STEP:  # arrived by a jump (a .mech loop, or states inside an error branch)
             self._enter(n)
+        if not self._evaluated:  # reached for the first time: its time starts now (a scan after the
+            self._evaluated = True  # advance in the one-step-per-scan mode, in the same scan otherwise)
+            self._entered = now
+            if counter is not None:
+                counter[0] = now
         self.LINE = line
-        elapsed = (now - self._entered) // _NS_PER_MS
+        elapsed = (now - (self._entered if counter is None else counter[0])) // _NS_PER_MS
         self.ET = elapsed
         if kind == EX0:
             blocked = not condition
@@ -287,6 +315,7 @@ class Mechanism:
         self.ET = 0
         self._entered = now
         self._entered_pass = self._pass
+        self._evaluated = False
 
     def _leave(self) -> None:
         if self.STEP:
