@@ -101,3 +101,16 @@ def test_m07_a_contactor_that_never_picks_up_is_error_4_05(suffix):
 
 def test_both_forms_record_the_same_trace_on_the_rig():
     assert _reversal(".mech").trace.digest() == _reversal(".py").trace.digest()
+
+
+def test_checks_read_the_step_its_time_and_the_error_from_the_trace():
+    from plcsim.check import Context, becomes, falls, never, rises, value
+
+    ctx = Context.of(_reversal(".mech", stuck("KSMP", True, t="0ms")).trace)
+    assert becomes(value("CWCCW.ERR") == 4).within("1s + 2 scans").after(rises("CWCCW.ACTIVE")).evaluate(ctx).passed
+    # the last scan it waits has ET 999 ms; the next reaches 1 s, jumps to CW_ERR and ends (ET back to 0)
+    assert falls("CWCCW.ACTIVE").within("1 scan").after(becomes(value("CWCCW.ET") >= 999)).evaluate(ctx).passed
+    assert never(value("CWCCW.STEP") > 1).evaluate(ctx).passed  # it never got past the TEX1
+    ok = Context.of(_reversal(".py").trace)
+    assert becomes(value("CWCCW.STEP") == 3).within("1s").after(rises("CWCCW.ACTIVE")).evaluate(ok).passed
+    assert not never(value("CWCCW.STEP") > 1).evaluate(ok).passed
