@@ -130,3 +130,5 @@ def test_plcsim_list_profiles_shows_each_profile_with_its_front_ends(capsys, mon
     tecomat = next(line for line in out.splitlines() if "tecomat-ns950" in line)
     assert "Siemens S7-1200" in s7 and ".py (the Python subset)" in s7 and "big-endian" in out
     assert "Tecomat NS950" in tecomat and ".il (Tecomat NS950 instruction list)" in tecomat and "cold, warm" in tecomat
+    plc836 = next(line for line in out.splitlines() if line.lstrip("│ ").startswith("plc836"))
+    assert ".mech (PLC836 mechanisms)" in plc836

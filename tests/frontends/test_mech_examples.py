@@ -298,3 +298,40 @@ OB1 = [m]
     # step 1's window runs in every scan; its time restarts at each goto: timeouts in the scans at 10 ms
     # and 21 ms (entered again at 11 ms), so in the last scan (24 ms) it has waited 2 ms
     assert c.read("M.ACTIVE") is True and c.read("M.STEP") == 1 and c.t.N == 25 and c.read("M.ET") == 2
+
+
+OPPOSING = """
+LDR STOP
+LO SPSTOP
+WR SPSTOP
+MECH_BEGIN SPSTOP        ;spindle stop, the opposing mechanism of higher priority
+MECH_INIT CW             ;abort a start in progress; its outputs are ours to drive
+FL 0,SMP
+LDR KSMP
+EX1
+MECH_END SPSTOP
+MECH_BEGIN CW
+FL 1,SMP
+LDR KSMP
+EX0
+MECH_END CW
+"""
+
+
+def test_mech_init_from_an_opposing_mechanism_aborts_a_run_and_leaves_the_outputs_to_it():
+    from plcsim import CPU, Tag
+    from plcsim.frontends.mech import MechProgram
+
+    tags = {"STOP": Tag("%I0.0"), "KSMP": Tag("%I0.1"), "SMP": Tag("%Q0.0")}
+    c = CPU(tags=tags, program=MechProgram(OPPOSING, "opposing.mech"))
+    c.write("CW.ACTIVE", True)
+    c.scan(3)
+    assert c.read("CW.STEP") == 1 and c.t.SMP is True
+    c.set_input("STOP", True)
+    c.scan()
+    assert c.read("CW.ACTIVE") is False and c.read("CW.STEP") == 0 and c.read("CW.LINE") == 0
+    assert c.t.SMP is False and c.read("SPSTOP.ACTIVE") is False  # KSMP open: the stop passed at once
+    c.set_input("STOP", False)
+    c.write("CW.ACTIVE", True)
+    c.scan()
+    assert c.read("CW.STEP") == 1 and c.t.SMP is True  # a new run, from the top
