@@ -26,6 +26,7 @@ GROUPS: dict[str, str] = {  # group name -> module with run(settings)
     "live": "benchmarks.live",
     "ladder": "benchmarks.ladder",
     "tecomat": "benchmarks.tecomat",
+    "mechanisms": "benchmarks.mechanisms",
     "digests": "benchmarks.digests",
 }
 

@@ -14,6 +14,7 @@ from plants.panel import Panel
 from plants.punch import Punch
 from plants.slide import Slide
 from plants.sort import Sort
+from plants.spindle import Spindle
 from plcsim.core import registry
 
 
@@ -46,5 +47,6 @@ __all__ = [
     "Punch",
     "Slide",
     "Sort",
+    "Spindle",
     "StationOccupiedError",
 ]

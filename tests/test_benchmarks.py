@@ -40,5 +40,7 @@ def test_quick_benchmarks_print_one_json_figure_per_line():
     assert equivalence["plcsim_digest"] == equivalence["reference_digest"]
     assert figures["mutation_score_4.3.1"]["value"] == 1.0  # the one mutant of 4.3.1 is killed
     assert figures["tecomat_scans_per_s"]["value"] > 0 and figures["tecomat_scans_per_s"]["s7_scans_per_s"] > 0
+    for form in ("mech", "python"):  # the PLC836 mechanisms beside the S7 form of the same logic
+        assert figures[f"mechanisms_{form}_scans_per_s"]["s7_scans_per_s"] > 0
     digests = figures["solutions_trace_digest"]
     assert len(digests["value"]) == 64 and digests["runs"] > 0

@@ -22,6 +22,7 @@ PAGES = {
     "ladder/index.html": ["plcsim ladder mine.py", "Program card", "text box"],
     "tecomat/index.html": ["plcsim grade T-01 mine.il", "event_enable_byte", "little-endian"],
     "pytest-plugin/index.html": ["plcsim_run", "--plcsim-exercise"],
+    "mechanisms/index.html": ["MECHANISM()", "TEX0", "mechanism_mode", "20 ms a count"],
     "reference/check/index.html": [
         "rises",
         "within",

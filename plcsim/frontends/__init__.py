@@ -3,15 +3,16 @@
 A front end is described by a :class:`FrontEnd`: the suffix it reads, its reader, the CPU profile its
 programs are written for (:mod:`plcsim.controllers.profiles`) and its **contract program**, the self-holding motor of
 :data:`CONTRACT_TASK` in its language. ``.py`` (the Python subset, :class:`plcsim.frontends.python.program.Program`, on
-the S7-1200) and ``.il`` (the Tecomat instruction list, on the Tecomat NS950) are plcsim's own; another
+the S7-1200), ``.il`` (the Tecomat instruction list, on the Tecomat NS950) and ``.mech`` (the PLC836
+mechanisms, :mod:`plcsim.frontends.mech`, on the S7 runtime) are plcsim's own; another
 registers with :func:`register` (``register(".st", read_st, profile="s7-1200", contract=MOTOR_ST)``), or
 from another package through the entry-point group ``plcsim.frontends`` (:mod:`plcsim.core.registry`), and
 every tool that reads a program file through :func:`read_program` accepts it. The contract test
 (``tests/controllers/test_seam_contract.py``) runs every registered front end's contract program and asks for the
 Python one's trace digest, bit for bit.
 
->>> sorted(suffixes()), frontend_for(".il").profile
-(['.il', '.py'], 'tecomat-ns950')
+>>> sorted(suffixes()), frontend_for(".il").profile, frontend_for(".mech").profile
+(['.il', '.mech', '.py'], 'tecomat-ns950', 'plc836')
 """
 
 from __future__ import annotations
@@ -133,6 +134,21 @@ register(
     profile="tecomat-ns950",
     language="Tecomat NS950 instruction list",
     contract="LD START\nOR MOTOR\nANC STOP\nWR MOTOR\n",
+)
+
+
+def _read_mech(path: Path) -> SourceProgram:
+    from plcsim.frontends.mech import read_mech
+
+    return read_mech(path)
+
+
+register(
+    ".mech",
+    _read_mech,
+    profile="plc836",
+    language="PLC836 mechanisms",
+    contract="LDR START\nLO MOTOR\nLA -STOP\nWR MOTOR\n",
 )
 
 __all__ = [

@@ -3,7 +3,8 @@ solution and see whether the checks catch each one.
 
 The mutants come from the operators of the reference's language, chosen by its suffix in :data:`LANGUAGES`:
 :mod:`plcsim.mutate.python` for a Python program (S7), :mod:`plcsim.mutate.il` for a Tecomat instruction
-list (``.il``, loaded through the Tecomat front end); both are graded and classified alike.
+list (``.il``, loaded through the Tecomat front end), :mod:`plcsim.mutate.mech` for PLC836 mechanisms
+(``.mech``); all are graded and classified alike.
 
 Each mutant is graded with :func:`plcsim.grading.grader.grade` (in this process: the mutants derive from
 the trusted reference) on seeds 1..N. It is **killed** if some check fails on some seed that the
@@ -43,7 +44,7 @@ from plcsim.exercise.model import Exercise
 from plcsim.frontends.python.program import Program
 from plcsim.grading.grader import grade
 from plcsim.grading.report import Report
-from plcsim.mutate import il, python
+from plcsim.mutate import il, mech, python
 from plcsim.mutate.mutant import Mutant
 
 KILLED, SURVIVED, EXPLAINED, EQUIVALENT, STILLBORN = "killed", "survived", "explained", "equivalent", "stillborn"
@@ -65,6 +66,7 @@ class Language:
 LANGUAGES: dict[str, Language] = {
     ".py": Language("a Python (S7)", python.reference_mutants, python.load_mutant),
     ".il": Language("an instruction-list (Tecomat, .il)", il.reference_mutants, il.load_mutant),
+    ".mech": Language("a PLC836 mechanisms (.mech)", mech.reference_mutants, mech.load_mutant),
 }
 """The reference's suffix -> the operators of its language: a new language is one more line."""
 

@@ -240,7 +240,7 @@ def test_grade_a_folder_in_a_batch(tmp_path, capsys):
 
 def test_grade_an_empty_folder(tmp_path, capsys):
     assert main(["grade", "4.3.1", str(tmp_path)]) == EXIT_USAGE
-    assert f"no program files (.il, .py) in {tmp_path}" in capsys.readouterr().err
+    assert f"no program files (.il, .mech, .py) in {tmp_path}" in capsys.readouterr().err
 
 
 def test_the_installed_entry_point(tmp_path):

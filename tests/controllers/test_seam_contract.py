@@ -109,8 +109,16 @@ def test_the_tecomat_profile_describes_what_its_controller_runs():
     assert {"LD", "WR", "TON", "EOC", "CAL"} <= tecomat.instructions() and "MUL" not in tecomat.instructions()
 
 
+def test_the_plc836_profile_runs_on_the_s7_runtime_with_the_chapter_s_instructions():
+    plc836 = profiles.profile("PLC836")
+    assert plc836.controller == profiles.profile("s7-1200").controller
+    assert plc836.parse_address("BYTE.(CITAC+13)") == ("BYTE", "CITAC", 13)
+    assert {"MECH_BEGIN", "EX0", "TEX1", "TIM", "BEX", "LDR", "FL", "STO"} <= plc836.instructions()
+    assert [t.kind for t in plc836.triggers] == ["cyclic"]
+
+
 def test_an_unknown_profile_is_named_with_the_known_ones():
-    with pytest.raises(Exception, match=r"no CPU profile 's7-1500'.*profiles: s7-1200, tecomat-ns950"):
+    with pytest.raises(Exception, match=r"no CPU profile 's7-1500'.*profiles: plc836, s7-1200, tecomat-ns950"):
         profiles.profile("s7-1500")
 
 
@@ -122,3 +130,5 @@ def test_plcsim_list_profiles_shows_each_profile_with_its_front_ends(capsys, mon
     tecomat = next(line for line in out.splitlines() if "tecomat-ns950" in line)
     assert "Siemens S7-1200" in s7 and ".py (the Python subset)" in s7 and "big-endian" in out
     assert "Tecomat NS950" in tecomat and ".il (Tecomat NS950 instruction list)" in tecomat and "cold, warm" in tecomat
+    plc836 = next(line for line in out.splitlines() if line.lstrip("│ ").startswith("plc836"))
+    assert ".mech (PLC836 mechanisms)" in plc836

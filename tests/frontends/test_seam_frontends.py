@@ -134,7 +134,7 @@ def test_the_front_end_is_chosen_by_the_file_suffix(tmp_path: Path, il_suffix):
     (tmp_path / "led.py").write_text("def OB1(t):\n    t.LED = t.TLACIDLO\n")
     assert isinstance(read_program(tmp_path / "led.il"), TinyIL)
     assert isinstance(read_program(tmp_path / "led.py"), Program)
-    with pytest.raises(ProgramError, match=r"led\.st: no front end reads \.st; use \.il, \.py"):
+    with pytest.raises(ProgramError, match=r"led\.st: no front end reads \.st; use \.il, \.mech, \.py"):
         read_program(tmp_path / "led.st")
     assert ".il" in suffixes()
 

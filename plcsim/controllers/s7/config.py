@@ -52,6 +52,8 @@ class CPUConfig:
         input_writes: what a program storing into an input tag (%I) gets when it is loaded: ``warn``
             (a load warning naming the line; the store changes only the program's process image) or
             ``error`` (the program is refused).
+        mechanism_mode: how a MECHANISM advances: ``plc836`` (the chapter: every state whose condition
+            holds passes in the same scan) or ``iec`` (IEC 61131-3 SFC: at most one step per scan).
     """
 
     cycle: str | int = "1ms"
@@ -72,6 +74,7 @@ class CPUConfig:
     family: str = "S7-1200"
     memory: MemoryLayout = field(default_factory=MemoryLayout)
     input_writes: str = "warn"
+    mechanism_mode: str = "plc836"
 
     def __post_init__(self) -> None:
         try:
@@ -82,6 +85,8 @@ class CPUConfig:
             raise ConfigurationError(f"counter_overflow {self.counter_overflow!r}: use 'wrap' or 'saturate'")
         if self.input_writes not in ("warn", "error"):
             raise ConfigurationError(f"input_writes {self.input_writes!r}: use 'warn' or 'error'")
+        if self.mechanism_mode not in ("plc836", "iec"):
+            raise ConfigurationError(f"mechanism_mode {self.mechanism_mode!r}: use 'plc836' or 'iec'")
         if self.family not in ("S7-1200", "S7-1500"):
             raise ConfigurationError(f"family {self.family!r}: use 'S7-1200' or 'S7-1500'")
         self.cycle_ns = to_ns(self.cycle, "cycle")

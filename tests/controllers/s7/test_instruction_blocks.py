@@ -84,6 +84,7 @@ def test_writable_members_come_from_the_description():
         "IEC_COUNTER": ["CV", "PV"],
         "R_TRIG": [],
         "F_TRIG": [],
+        "MECHANISM": ["ACTIVE"],
     }
 
 
@@ -93,7 +94,7 @@ def test_the_student_reference_shows_each_description():
         section = page.split(f"### `{name}()`")[1].split("###")[0]
         members = re.search(r"Members: (.*)\. The trace records (.*) unless told otherwise\.", section)
         assert members is not None, name
-        assert re.findall(r"`(\w+)` (?:Bool|Time|the count type)", members.group(1)) == list(block.readable)
+        assert re.findall(r"`(\w+)` (?:Bool|Time|Int|the count type)", members.group(1)) == list(block.readable)
         assert re.findall(r"`(\w+)` [^,]*\(writable", members.group(1)) == sorted(
             block.writable, key=list(block.readable).index
         )

@@ -1,4 +1,5 @@
-"""The textbook's instructions: timers, counters, edges, math, conversion, MOVE, RD_LOC_T, jumps.
+"""The textbook's instructions: timers, counters, edges, math, conversion, MOVE, RD_LOC_T, jumps, and
+the PLC836 step mechanisms (seed 003).
 
 Function-block instance types are declared in a program (``TON_A = IEC_TIMER()``) and called as
 ``t.TON_A.TON(IN=..., PT="10s")``; the other instructions are functions (``P``, ``DIV``, ``MOVE``).
@@ -8,6 +9,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import difflib
+import functools
 import inspect
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -16,6 +18,7 @@ from typing import Any, Protocol
 from plcsim.controllers.s7.instructions.arithmetic import MATH_FUNCTIONS
 from plcsim.controllers.s7.instructions.counters import IecCounter
 from plcsim.controllers.s7.instructions.edges import EDGE_INSTRUCTIONS, EDGE_OPERANDS, EdgeTrigger, bind_edge
+from plcsim.controllers.s7.instructions.mechanisms import PLC836, Mechanism
 from plcsim.controllers.s7.instructions.system import JMP, RET, make_move, make_rd_loc_t
 from plcsim.controllers.s7.instructions.timers import PT, RT, IecTimer, TimerDialect
 from plcsim.core.clock import Clock
@@ -43,6 +46,21 @@ IEC_COUNTER = FBType(
     _counter,
     retain=True,
     doc="Counter instance (CU, CD, R, LD, QU, QD, PV, CV), retentive; boxes CTU, CTD, CTUD.",
+)
+
+
+def _mechanism(context: Any, start: Any, path: str) -> Mechanism:
+    clock = context.clock if context is not None else Clock()
+    mode = getattr(getattr(context, "config", None), "mechanism_mode", PLC836)
+    return Mechanism(clock, path, mode=mode)
+
+
+MECHANISM = FBType(
+    "MECHANISM",
+    _mechanism,
+    retain=False,
+    doc="PLC836 step mechanism (members ACTIVE, STEP, ET, ERR, LINE); boxes begin, step, wait_until, "
+    "wait_while, delay, ex, bex, error, goto, end, init, start.",
 )
 R_TRIG = FBType(
     "R_TRIG",
@@ -73,7 +91,7 @@ def box_hint(name: str) -> str:
         return ""
     box, block = near[0], boxes[near[0]]
     params = [p for p in inspect.signature(getattr(block.instance, box)).parameters if p != "self"]
-    example = {"IEC_TIMER": "TIMER", "IEC_COUNTER": "COUNTER"}.get(block.name, "EDGE")
+    example = {"IEC_TIMER": "TIMER", "IEC_COUNTER": "COUNTER", "MECHANISM": "MECH"}.get(block.name, "EDGE")
     call = ", ".join(f"{p}=..." for p in params)
     return (
         f"; {box} is a box of an {block.name} instance: declare {example} = {block.name}() and call "
@@ -120,9 +138,10 @@ class Block:
         """Member name -> type, for every member a program may read, in the manual's order."""
         return {m.name: m.type for m in self.members}
 
-    @property
+    @functools.cached_property
     def writable(self) -> frozenset[str]:
-        """Members a program may write directly (the rest are outputs the box computes)."""
+        """Members a program may write directly (the rest are outputs the box computes); computed once, as
+        every store into an instance member asks it."""
         return frozenset(m.name for m in self.members if m.writable)
 
     @property
@@ -177,6 +196,34 @@ BLOCKS: dict[str, Block] = {
         ),
         Block(R_TRIG, EdgeTrigger, ("R_TRIG",), _EDGE_MEMBERS, "memory"),
         Block(F_TRIG, EdgeTrigger, ("F_TRIG",), _EDGE_MEMBERS, "memory"),
+        Block(
+            MECHANISM,
+            Mechanism,
+            (
+                "begin",
+                "step",
+                "wait_until",
+                "wait_while",
+                "delay",
+                "ex",
+                "bex",
+                "error",
+                "goto",
+                "end",
+                "init",
+                "start",
+            ),
+            _members(
+                "ACTIVE:Bool",
+                "STEP:Int",
+                "ET:Time",
+                "ERR:Int",
+                "LINE:Int",
+                writable=("ACTIVE",),
+                traced=("ACTIVE", "STEP", "ET", "ERR"),
+            ),
+            "memory",
+        ),
     )
 }
 """The instance types by name."""
@@ -279,6 +326,8 @@ __all__ = [
     "IEC_COUNTER",
     "R_TRIG",
     "F_TRIG",
+    "MECHANISM",
+    "Mechanism",
     "IecTimer",
     "IecCounter",
     "EdgeTrigger",
