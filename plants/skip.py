@@ -62,12 +62,14 @@ N = (-math.sin(ANGLE), math.cos(ANGLE))  # across it, to the upper-left side
 ORIGIN = (0.0, 40.0)  # the bottom sensor's centre in the drawing
 SENSORS = {"SNIMAC_DOLNY": 0.0, "SNIMAC_SPOMAL": 800.0, "SNIMAC_HORNY": 1000.0}
 CAM_HALF = 10.0
+LABEL_SHIFT = {"SNIMAC_DOLNY": 80.0, "SNIMAC_SPOMAL": -40.0, "SNIMAC_HORNY": -60.0}
+"""Each sensor's label sits this far along the track from it (clear of the pouring stream), on the right side."""
 BUFFERS = (-25.0, 1030.0)
 V_FAST, V_SLOW = 40.0, 25.0  # mm/s, variant A of §5.7
 TIP_FROM, TIP_TO = 900.0, 1000.0
 START = 8.5  # where a skip stopped at the bottom sensor from the slow speed stands
 LOADING_ZONE = 15.0  # the hopper fills the skip within this distance of the bottom sensor's centre
-MIXER = (640.0, 800.0, 690.0, 830.0)  # x0, x1, y0, y1 of the mixer drum
+MIXER = (680.0, 840.0, 640.0, 780.0)  # x0, x1, y0, y1 of the mixer drum
 WIDTH, DEPTH = 120.0, 80.0  # the bucket, drawn
 MIXER_CAPACITY_G = 1000.0
 
@@ -236,7 +238,7 @@ class Skip:
 
     # --- drawing -------------------------------------------------------------------------------------------
     def bounds(self) -> tuple[float, float, float, float]:
-        return (-200.0, -20.0, 820.0, 1200.0)
+        return (-200.0, -20.0, 900.0, 1200.0)
 
     def static_drawables(self) -> list[Drawable]:
         lo, hi = BUFFERS
@@ -260,20 +262,24 @@ class Skip:
         mixer = [
             draw.polygon("mixer/legs", draw.rect(x0 + 50.0, 0.0, x1 - 50.0, y0), (205, 205, 210)),
             draw.polygon("mixer/drum", [(x0, y1), (x1, y1), (x1 - 18.0, y0), (x0 + 18.0, y0)], draw.FRAME),
-            draw.label("mixer/label", x0 - 50.0, y0 - 10.0, "mixer"),
+            draw.label("mixer/label", x1 - 45.0, y0 - 30.0, "mixer"),
         ]
         hopper = [
             draw.polygon("hopper", [(-130.0, 300.0), (10.0, 300.0), (-40.0, 220.0), (-80.0, 220.0)], draw.FRAME),
-            draw.label("hopper/label", -130.0, 315.0, "dosing hopper"),
+            draw.label("hopper/label", -60.0, 330.0, "dosing hopper"),
         ]
-        labels = [draw.label(f"sensors/{n}/label", *at(c - 5.0, -30.0), n) for n, c in SENSORS.items()]
+        labels = [draw.label(f"sensors/{n}/label", *at(c + LABEL_SHIFT[n], -120.0), n) for n, c in SENSORS.items()]
+        leaders = [
+            draw.line(f"sensors/{n}/leader", [at(c, -20.0), at(c + LABEL_SHIFT[n], -100.0)], draw.FRAME)
+            for n, c in SENSORS.items()
+        ]
         winch = [
             draw.circle("winch/sheave", *at(hi + 30.0, 8.0), 10.0, draw.BELT),
             draw.polygon("winch/house", draw.rect(120.0, 1040.0, 220.0, 1100.0), draw.BELT),
-            draw.label("winch/label", 120.0, 1110.0, "winch"),
+            draw.label("winch/label", 170.0, 1130.0, "winch"),
         ]
-        ground = draw.line("ground", [(-200.0, 0.0), (800.0, 0.0)], draw.TEXT)
-        return [ground, *rails, self._tipping_rail(), *buffers, *mixer, *hopper, *labels, *winch]
+        ground = draw.line("ground", [(-200.0, 0.0), (900.0, 0.0)], draw.TEXT)
+        return [ground, *rails, self._tipping_rail(), *buffers, *mixer, *hopper, *leaders, *labels, *winch]
 
     def _tipping_rail(self) -> Drawable:
         """The curved top rail that turns the bucket over: the path of the bucket's rear corner from 900 mm on."""
@@ -299,7 +305,9 @@ class Skip:
         out += self._mixer(b)
         state = "fault" if w.fault else "jammed" if w.jammed else "brake" if w.braked else f"{abs(w.f):.1f} Hz"
         arrow = " up" if w.f > 0 else " down" if w.f < 0 else ""
-        out.append(draw.label("VFD/state", -190.0, 1150.0, f"VFD: {state}{arrow}, {abs(w.v):.1f} mm/s at {s:.0f} mm"))
+        out.append(draw.label("VFD/state", -190.0, 1170.0, f"VFD: {state}{arrow}, {abs(w.v):.1f} mm/s"))
+        out.append(draw.label("skip/state", -190.0, 1120.0, f"skip: {b.load_g:.0f} g at {s:.0f} mm"))
+        out.append(draw.label("mixer/mass", -190.0, 1070.0, f"mixer: {b.bin_g:.0f} g"))
         return out
 
     def _bucket(self, s: float, b: Bucket) -> list[Drawable]:
@@ -323,8 +331,6 @@ class Skip:
             for k in range(n):
                 u = (k + phase) / n
                 out.append(draw.circle(f"skip/pour/{k}", x0 + (tx - x0) * u, y0 + (ty - y0) * u * u, 5.0, draw.PART))
-        where = (base[0] - WIDTH, base[1] + DEPTH + 15.0)
-        out.append(draw.label("skip/mass", *where, f"skip {b.load_g:.0f} g"))
         return out
 
     def _mixer(self, b: Bucket) -> list[Drawable]:
@@ -333,5 +339,4 @@ class Skip:
         out = []
         if b.bin_g > 0.0:
             out.append(draw.polygon("mixer/load", draw.rect(x0 + 22.0, y0 + 4.0, x1 - 22.0, level), draw.PART))
-        out.append(draw.label("mixer/mass", x0 - 50.0, y0 - 35.0, f"{b.bin_g:.0f} g"))
         return out

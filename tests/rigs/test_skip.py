@@ -181,6 +181,6 @@ def test_the_drawing_shows_the_tipped_bucket_and_the_pouring_stream():
     auto_ascent(p)
     run(p, 0.5)
     paths = {d.path for d in p.dynamic_drawables()}
-    assert {"skip/bucket", "skip/load", "mixer/load", "skip/pour/0"} <= paths
+    assert {"skip/bucket", "skip/load", "mixer/load", "skip/pour/0", "VFD/state"} <= paths
     static = {d.text for d in p.static_drawables() if d.kind == "label"}
     assert {"SNIMAC_DOLNY", "SNIMAC_SPOMAL", "SNIMAC_HORNY", "mixer"} <= static
