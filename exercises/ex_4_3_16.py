@@ -469,6 +469,14 @@ EXERCISE = Exercise(
             scenarios=(BETWEEN,),
         ),
     ],
+    spec_equivalent={
+        "OB1: network directions moved to the end": (
+            "START_HORE/START_DOLE are written at the end of the scan: a direction starts in the scan that sets "
+            "AUTO_HORE, and its speed output follows one scan later, inside item 4's 'within 1 scan'; the "
+            "direction still drops in the scan that reads SNIMAC_HORNY or SNIMAC_DOLNY (N1/N2 test the sensor "
+            "themselves), and N13 and N3-N5 read the direction the skip was driven with, as the reference does"
+        ),
+    },
     notes=(
         "Variant A of spec §5.7 (fast 40 mm/s, slow 25 mm/s, 1000 mm track, SNIMAC_SPOMAL 200 mm below the top): a "
         "full skip climbs in ≈ 28.6 s, so the textbook's 32 s is the 'small reserve' it asks for; the empty skip "
