@@ -29,7 +29,7 @@ Verbs of the rig: ``fill`` (the dosing hopper fills the skip at the bottom — w
 ``discharge`` (the mixer empties its batch — after which it allows aggregate again). The faults: ``jam_motor``
 (rope jam / overload: the skip stands), ``shift_sensor``, and the wiring's stuck sensors.
 
-Nominal figures at dt = 1 ms (``tests/rigs/test_skip.py``): full skip bottom → top ≈ 28.6 s (SPOMAL after 20.4 s),
+Nominal figures at dt = 1 ms (``tests/rigs/test_skip_plant.py``): full skip bottom → top ≈ 28.6 s (SPOMAL after 20.4 s),
 empty skip top → bottom at the slow speed ≈ 39.4 s, a full manual (slow) ascent ≈ 40.6 s; the skip stopped at the
 top sensor is empty ≈ 2.1 s after it arrived.
 
