@@ -24,6 +24,7 @@ GROUPS: dict[str, str] = {  # group name -> module with run(settings)
     "mutation": "benchmarks.mutation",
     "recording": "benchmarks.recording",
     "live": "benchmarks.live",
+    "ladder": "benchmarks.ladder",
     "tecomat": "benchmarks.tecomat",
     "digests": "benchmarks.digests",
 }

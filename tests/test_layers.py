@@ -33,6 +33,7 @@ LAYERS = [
     "scenario",
     "controllers",
     "frontends",
+    "ladder",
     "sim",
     "check",
     "exercise",

@@ -7,6 +7,8 @@
     plcsim grade 4.3.7 my_alarm.py --json out/report.json --junit out/report.xml
     plcsim grade 4.3.7 submissions/ --jobs 2 --gradebook out/grades.csv --junit out/grades.xml
     plcsim mutate 4.3.7 --seeds 3 --jobs 2 --json out/mutants.json
+    plcsim check-exercise my_course/runon.py --seeds 3
+    plcsim draw SORT -o out/sort.png
 
 Exit codes: 0 every check passed, 1 a submission failed (or did not run), 2 a usage error,
 3 a grade is void because of the grader or the exercise (a check that raised).
@@ -21,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from plcsim.core import version
-from plcsim.core.errors import PlcError
+from plcsim.core.errors import ConfigurationError, PlcError
 from plcsim.core.registry import is_rig, rig, rig_names
 
 EXIT_FAILED = 1
@@ -58,6 +60,25 @@ def _parser() -> argparse.ArgumentParser:
     show.add_argument(
         "--no-solutions", action="store_true", help="leave the shipped programs out (for a handout to students)"
     )
+    show.add_argument(
+        "--ladder",
+        nargs="?",
+        const="reference",
+        metavar="SOLUTION",
+        help="draw a shipped solution (default: the reference) as LAD networks, as the textbook's figures show it",
+    )
+    show.add_argument("-o", "--output", metavar="OUT.svg", help="with --ladder: where to write it (.svg or .png)")
+
+    ladder = sub.add_parser(
+        "ladder",
+        help="draw a .py program as LAD networks (SVG, or PNG)",
+        description="Draw each network of a Python program as ladder rungs, as the course and TIA Portal show them.",
+    )
+    ladder.add_argument("file", help="the program (.py)")
+    ladder.add_argument("-o", "--output", metavar="OUT.svg", help="where to write it (.svg or .png); default FILE.svg")
+    ladder.add_argument(
+        "--exercise", metavar="EXERCISE", help="the exercise whose tags the program uses (tells coils from MOVEs)"
+    )
 
     reference = sub.add_parser(
         "reference",
@@ -75,13 +96,18 @@ def _parser() -> argparse.ArgumentParser:
         "target", help=f"an exercise (4.3.7, or an exercise file) or a rig ({', '.join(rig_names()) or 'none'})"
     )
     which = run.add_mutually_exclusive_group()
-    which.add_argument("--program", metavar="FILE", help="the PLC program to run (.py; .il for the Tecomat)")
+    which.add_argument(
+        "--program",
+        metavar="FILE",
+        help="the PLC program to run (.py; .il for the Tecomat); on a bare rig, none runs it by hand, outputs off",
+    )
     which.add_argument("--reference", action="store_true", help="run the exercise's shipped reference solution")
     which.add_argument("--solution", metavar="NAME", help="run a shipped solution by name (see `plcsim show`)")
     run.add_argument(
         "--scenario",
         metavar="NAME",
-        help="which scenario of the exercise (default: the first), or a saved live session (.toml, .py)",
+        help="which scenario of the exercise (default: the first), or a saved live session: .toml, or .py (a .py "
+        "file is run as Python: trusted code only, like an exercise file; prefer .toml for a page's or a student's)",
     )
     run.add_argument("--seconds", type=float, metavar="N", help="simulated seconds (default: the scenario's)")
     run.add_argument("--seed", type=int, help="seed of placement noise and timing (default 1, or the saved session's)")
@@ -95,7 +121,9 @@ def _parser() -> argparse.ArgumentParser:
     )
     run.add_argument("--rrd", metavar="OUT.rrd", help="write a rerun recording (open it with: rerun OUT.rrd)")
     run.add_argument("--plot", metavar="OUT.png", help="write a timing diagram of the run")
-    run.add_argument("--trace", metavar="OUT.npz", help="write the trace as numpy columns")
+    run.add_argument(
+        "--trace", metavar="OUT.npz", help="write the trace as named numpy columns: np.load(F)['table']['S1']"
+    )
     run.add_argument("--signals", metavar="A,B,C", help="signals for --plot (default: inputs and outputs)")
     run.add_argument("--spawn-viewer", action="store_true", help="open the rerun viewer on the recording")
     run.add_argument("--cycle", metavar="TIME", help="OB1 cycle time, e.g. 1ms or 100ms (overrides the exercise)")
@@ -127,7 +155,9 @@ def _parser() -> argparse.ArgumentParser:
         "--rrd", metavar="DIR", help="write a rerun recording per scenario into DIR (a batch: DIR/<student>/)"
     )
     grade.add_argument(
-        "--plots", metavar="DIR", help="write a timing diagram per failed check into DIR (a batch: DIR/<student>/)"
+        "--plots",
+        metavar="DIR",
+        help="write a timing diagram and the ladder at that scan per failed check into DIR (a batch: DIR/<student>/)",
     )
     grade.add_argument(
         "--jobs", type=int, default=1, metavar="N", help="grade N submissions at a time (batch: threads or workers)"
@@ -148,7 +178,27 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("-v", "--verbose", action="store_true", help="also show why passed checks passed")
     _add_mutate_parser(sub)
     _add_live_parser(sub)
+    _add_instructor_parsers(sub)
     return p
+
+
+def _add_instructor_parsers(sub: Any) -> None:
+    checker = sub.add_parser(
+        "check-exercise",
+        help="check an exercise's own programs: the reference passes on every seed, each wrong one fails its fails=",
+        description="Grade every program an exercise ships on seeds 1..N (in this process: they are the "
+        "instructor's): the reference and the correct alternatives must pass every check on every seed, each wrong "
+        "solution must fail the checks its fails= names. Exit code 1 if one does not; run it on a course in CI.",
+    )
+    checker.add_argument("exercise", nargs="+", help="exercise files, folders of them, numbers or slugs")
+    checker.add_argument("--seeds", type=int, default=3, metavar="N", help="grade on seeds 1..N (default 3)")
+    drawer = sub.add_parser(
+        "draw",
+        help="draw a rig (or an exercise's rig) as a PNG: its layout, the drawing the recordings use",
+        description="Draw a rig at rest, as the recordings draw it: belts, sensors, pistons, bins, stations.",
+    )
+    drawer.add_argument("rig", help=f"a rig ({', '.join(rig_names()) or 'none'}) or an exercise (number, file)")
+    drawer.add_argument("-o", "--output", metavar="OUT.png", required=True, help="the PNG to write")
 
 
 def _add_live_parser(sub: Any) -> None:
@@ -159,11 +209,17 @@ def _add_live_parser(sub: Any) -> None:
         "(--save-scenario) and `plcsim run TARGET --program FILE --scenario SAVED` replays it bit for bit.",
     )
     live.add_argument("target", help="an exercise (4.3.7, a slug or an exercise file) or a rig (PANEL, CONV1 ...)")
-    live.add_argument("--program", metavar="FILE.py", required=True, help="the PLC program to run")
+    live.add_argument(
+        "--program", metavar="FILE.py", help="the PLC program to run (none: operate the rig by hand, outputs off)"
+    )
     live.add_argument("--scenario", metavar="NAME", help="start from this scenario of the exercise (default: none)")
     live.add_argument("--seed", type=int, default=1, help="seed of placement noise and timing (default 1)")
     live.add_argument("--port", type=int, default=8765, help="local port of the page (default 8765; 0: any free one)")
-    live.add_argument("--save-scenario", metavar="OUT.toml|OUT.py", help="save the session as a scenario here")
+    live.add_argument(
+        "--save-scenario",
+        metavar="OUT.toml|OUT.py",
+        help="save the session as a scenario here (.toml replays exactly; .py is Python, run by `plcsim run`)",
+    )
     live.add_argument("--rrd", metavar="OUT.rrd", help="write the session's rerun recording when it ends")
     live.add_argument(
         "--speed", default="1", metavar="X", help="simulated s per wall s, 0.1 ... 10, or max (default 1)"
@@ -202,18 +258,24 @@ def main(argv: list[str] | None = None) -> int:
         commands = {
             "list": _list,
             "show": _show,
+            "ladder": _ladder,
             "reference": _reference,
             "run": _run,
             "grade": _grade,
             "mutate": _mutate,
             "live": _live,
+            "check-exercise": _check_exercise,
+            "draw": _draw,
         }
         return commands[args.command](args)
     except PlcError as exc:
         from rich.console import Console
         from rich.text import Text
 
-        Console(stderr=True).print(Text.assemble(("error:", "bold red"), f" {exc}"), highlight=False)
+        from plcsim.core.untrusted_text import for_terminal
+
+        shown = for_terminal(str(exc), newlines=True)  # it may quote a program's text
+        Console(stderr=True).print(Text.assemble(("error:", "bold red"), f" {shown}"), highlight=False)
         return EXIT_USAGE
 
 
@@ -236,7 +298,7 @@ def _list(args: argparse.Namespace) -> int:
         loaded, broken = list(all_exercises()), list(broken_exercises())
         print_exercise_list(loaded)
     for bad in broken:  # the message is text, not markup: "DATA.arr[2]" must print as it is
-        Console(stderr=True).print(f"[bold red]not loaded:[/] {escape(str(bad))}", highlight=False)
+        Console(stderr=True).print(f"[bold red]not loaded:[/] {escape(str(bad))}", highlight=False, soft_wrap=True)
     return EXIT_USAGE if broken else 0
 
 
@@ -244,7 +306,45 @@ def _show(args: argparse.Namespace) -> int:
     from plcsim.exercise.catalog import get
     from plcsim.grading.terminal import print_exercise
 
-    print_exercise(get(args.exercise), solutions=not args.no_solutions)
+    exercise = get(args.exercise)
+    if args.ladder:
+        from plcsim.ladder.view import Ladder
+
+        solution = exercise.solution(args.ladder)
+        if solution.path.suffix != ".py":
+            raise ConfigurationError(
+                f"{solution.path.name} is an instruction list; the ladder view draws Python programs (.py)"
+            )
+        picture = Ladder.from_file(solution.path, exercise.tag_table())
+        picture.title = f"{exercise.number} {exercise.title}: {solution.name}"
+        default = f"{exercise.number.replace('.', '_')}-{solution.name}.svg"
+        return _write_ladder(picture, Path(args.output or default))
+    print_exercise(exercise, solutions=not args.no_solutions)
+    return 0
+
+
+def _ladder(args: argparse.Namespace) -> int:
+    from plcsim.ladder.view import Ladder
+
+    table = None
+    if args.exercise:
+        from plcsim.exercise.catalog import get
+
+        table = get(args.exercise).tag_table()
+    path = Path(args.file)
+    if path.suffix != ".py":
+        raise ConfigurationError(f"{path}: the ladder view draws Python programs (.py); an .il program is a list")
+    return _write_ladder(Ladder.from_file(path, table), Path(args.output or path.with_suffix(".svg").name))
+
+
+def _write_ladder(picture: Any, out: Path) -> int:
+    """Write a ladder picture as SVG or PNG (by the file's suffix) and say where."""
+    out.parent.mkdir(parents=True, exist_ok=True)
+    if out.suffix.lower() == ".png":
+        out.write_bytes(picture.png())
+    else:
+        out.write_text(picture.svg(), encoding="utf-8")
+    print(f"wrote {out}")
     return 0
 
 
@@ -262,10 +362,12 @@ def _reference(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     from rich.console import Console
+    from rich.markup import escape
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
     from rich.text import Text
 
     from plcsim.check import evaluate_all
+    from plcsim.core.untrusted_text import for_terminal
     from plcsim.frontends import read_program
     from plcsim.grading.terminal import print_run_summary
 
@@ -273,12 +375,10 @@ def _run(args: argparse.Namespace) -> int:
     exercise = None
     saved = _saved_scenario(args)
     if is_rig(args.target):
-        if not args.program:
-            raise PlcError(f"running the bare rig {args.target} needs --program FILE.py")
         sim = _rig_simulation(args, saved)
         scenario_name = saved.name if saved else None
     else:
-        from plcsim.core.errors import ConfigurationError, did_you_mean
+        from plcsim.core.errors import did_you_mean
         from plcsim.exercise.catalog import get
 
         try:
@@ -332,7 +432,7 @@ def _run(args: argparse.Namespace) -> int:
     if saved is not None:  # the live page shows the same digest for the same session
         console.print(f"seed {args.seed}, trace digest {sim.trace.digest()[:16]}")
     if error is not None:
-        console.print(Text.assemble(("the run stopped:", "bold red"), f" {error}"))
+        console.print(Text.assemble(("the run stopped:", "bold red"), f" {for_terminal(str(error), newlines=True)}"))
     if args.rrd:
         path = Path(args.rrd)
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -367,24 +467,38 @@ def _run(args: argparse.Namespace) -> int:
     _print_verdicts(results, console)
     console.print(
         f"[bold]{points:g} / {total:g}[/] points, {passed}/{len(results)} checks passed  "
-        f"(grade every scenario with: plcsim grade {exercise.number} FILE.py)"
+        f"(grade every scenario with: plcsim grade {escape(_as_typed(args.target))} FILE.py)"
     )
     return 0 if passed == len(results) else EXIT_FAILED
 
 
+def _as_typed(name: str) -> str:
+    """An exercise as the user named it, quoted for a shell: the form a hint repeats (a file-loaded exercise's
+    number is not found by number)."""
+    import shlex
+
+    return shlex.quote(name)
+
+
 def _print_verdicts(results: list[Any], console: Any) -> None:
+    from rich.text import Text
+
+    from plcsim.core.untrusted_text import for_terminal
+
     for check, verdict in results:
-        mark = "[green]✓[/]" if verdict.passed else "[red]✗[/]"
-        console.print(
-            f"  {mark} {check.title}" + ("" if verdict.passed else f"\n      {verdict.message}"), highlight=False
-        )
+        mark = ("✓", "green") if verdict.passed else ("✗", "red")
+        message = for_terminal(verdict.message, newlines=True).replace("\n", "\n      ")
+        said = "" if verdict.passed else f"\n      {message}"
+        console.print(Text.assemble("  ", mark, f" {for_terminal(check.title)}{said}"), highlight=False)
 
 
 def _rig_simulation(args: argparse.Namespace, scenario: Any = None) -> Any:
     from plcsim.apps.live.build import rig_simulation
+    from plcsim.apps.live.session import NO_PROGRAM
     from plcsim.frontends import read_program
+    from plcsim.frontends.python.program import Program
 
-    program = read_program(args.program)
+    program = read_program(args.program) if args.program else Program(NO_PROGRAM, "(no program)")
     return rig_simulation(rig(args.target)(), program, scenario, seed=args.seed, cycle=args.cycle, pacing=_pacing(args))
 
 
@@ -395,9 +509,18 @@ def _saved_scenario(args: argparse.Namespace) -> Any:
         return None
     from plcsim.apps.live.build import Target
     from plcsim.apps.live.recording import load_scenario_file
+    from plcsim.core.literals import format_ns
 
     base = None if is_rig(args.target) else _exercise_scenario(args.target)
-    scenario, seed = load_scenario_file(args.scenario, base=base, rig_verbs=Target.find(args.target).verbs())
+    target = Target.find(args.target)
+    scenario, seed = load_scenario_file(args.scenario, base=base, rig_verbs=target.verbs())
+    limit = target.replay_limit_ns()
+    if args.seconds is None and scenario.duration_ns > limit:  # a file must not make the run go on without bound
+        raise PlcError(
+            f"{args.scenario}: the scenario lasts {format_ns(scenario.duration_ns)}; a saved scenario on "
+            f"{target.name} may last {format_ns(limit)} (an hour, or the exercise's longest scenario); "
+            f"run it for N seconds with --seconds N"
+        )
     args.seed = args.seed if args.seed is not None else (seed if seed is not None else 1)
     return scenario
 
@@ -488,14 +611,14 @@ def _grade(args: argparse.Namespace) -> int:
             out = Path(args.json)
             out.mkdir(parents=True, exist_ok=True)
             for r in reports:
-                r.to_json(out / f"{r.student}.json")
+                r.to_json(out / f"{r.file_stem}.json")
         if args.junit:
             Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
             write_junit(reports, args.junit, name=f"plcsim {exercise.number}")
             console.print(f"JUnit report: {args.junit}", markup=False)
         if args.gradescope:
             for r in reports:
-                write_gradescope(r, Path(args.gradescope) / r.student / "results.json", visibility=visibility)
+                write_gradescope(r, Path(args.gradescope) / r.file_stem / "results.json", visibility=visibility)
             console.print(f"Gradescope results: {args.gradescope}/<student>/results.json", markup=False)
         return _exit_code(reports)
     if args.no_sandbox:
@@ -523,13 +646,14 @@ def _live(args: argparse.Namespace) -> int:
     from rich.console import Console
 
     from plcsim.apps.live.server import open_live
+    from plcsim.apps.live.session import NO_PROGRAM
 
     console = Console()
     if args.save_scenario and not args.save_scenario.endswith((".toml", ".py")):
         raise PlcError(f"--save-scenario {args.save_scenario}: save as .toml (exact replay) or .py (a scenario)")
     panel = open_live(
         args.target,
-        args.program,
+        args.program or NO_PROGRAM,
         scenario=args.scenario,
         seed=args.seed,
         port=args.port,
@@ -586,6 +710,52 @@ def _exit_code(reports: list[Any]) -> int:
     if any(r.grader_failed for r in reports):
         return EXIT_GRADER
     return 0 if all(r.passed for r in reports) else EXIT_FAILED
+
+
+def _check_exercise(args: argparse.Namespace) -> int:
+    from rich.console import Console
+    from rich.text import Text
+
+    from plcsim.apps.check_exercise import check_exercise, print_exercise_check
+    from plcsim.exercise.catalog import get, is_path, load_path
+
+    if args.seeds < 1:
+        raise PlcError("--seeds must be at least 1")
+    console = Console()
+    exercises, broken = [], []
+    for name in args.exercise:
+        if is_path(name):
+            loaded, unloaded = load_path(name)
+            exercises += loaded
+            broken += unloaded
+        else:
+            exercises.append(get(name))
+    for bad in broken:
+        console.print(Text.assemble(("not loaded: ", "bold red"), str(bad)))
+    seeds = range(1, args.seeds + 1)
+    ok = not broken
+    for exercise in exercises:
+        results = check_exercise(exercise, seeds)
+        print_exercise_check(exercise, results, console)
+        ok = ok and all(r.ok for r in results)
+    return 0 if ok else EXIT_FAILED
+
+
+def _draw(args: argparse.Namespace) -> int:
+    from plcsim.trace.drawing import save_rig_drawing
+
+    if is_rig(args.rig):
+        plant = rig(args.rig)()
+    else:
+        from plcsim.exercise.catalog import get
+
+        exercise = get(args.rig)
+        if exercise.rig is None:
+            raise PlcError(f"exercise {exercise.number} has no rig to draw (it runs on the CPU alone)")
+        plant = exercise.rig()
+    Path(args.output).parent.mkdir(parents=True, exist_ok=True)
+    print(f"drawing of {plant.name}: {save_rig_drawing(plant, args.output)}")
+    return 0
 
 
 def _mutate(args: argparse.Namespace) -> int:

@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 from rich.console import Console
-from rich.table import Table
 
 from plcsim import frontends
 from plcsim.controllers.profiles import Profile, all_profiles
+from plcsim.core.console_table import print_records
 
 
 def profile_rows(profiles: list[Profile] | None = None) -> list[dict[str, str]]:
@@ -29,11 +29,7 @@ def profile_rows(profiles: list[Profile] | None = None) -> list[dict[str, str]]:
 
 
 def print_profiles(console: Console | None = None) -> None:
-    """Print :func:`profile_rows` as a table."""
+    """Print :func:`profile_rows` as a table (as a list where a table would cut a name)."""
     rows = profile_rows()
-    table = Table(title="CPU profiles")
-    for column in rows[0] if rows else ("profile",):
-        table.add_column(column)
-    for row in rows:
-        table.add_row(*row.values())
-    (console or Console()).print(table)
+    columns = list(rows[0]) if rows else ["profile"]
+    print_records(console or Console(), columns, [list(row.values()) for row in rows], title="CPU profiles")

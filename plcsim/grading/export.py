@@ -8,8 +8,10 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 from plcsim.exercise.model import Exercise
+from plcsim.frontends.python.program import Program
 from plcsim.grading.report import CheckResult, Report
 from plcsim.grading.run_result import RunResult
 
@@ -22,9 +24,13 @@ def export(
     rrd_dir: str | Path | None = None,
     plots_dir: str | Path | None = None,
     traces_dir: str | Path | None = None,
+    program: Any = None,
 ) -> None:
     """Write the recordings, traces and failure diagrams asked for; file names carry the exercise, the
-    submission and the scenario, so that the students of a batch never overwrite each other's files."""
+    submission and the scenario, so that the students of a batch never overwrite each other's files.
+
+    Beside a failed check's timing diagram, for a Python ``program``: the ladder of the networks that write
+    the check's signals, drawn with the values of the scan where it failed (``result.ladder``)."""
     by_name = {run.scenario: run for run in runs}
     for scenario_run in report.runs:
         run = by_name[scenario_run.scenario]
@@ -39,10 +45,33 @@ def export(
             for result in report.checks:
                 if not result.passed and result.scenario == run.scenario and len(run.trace):
                     result.diagram = _diagram(run, result, Path(plots_dir) / f"{stem}-{_slug(result.check)}.png")
+                    if isinstance(program, Program):
+                        path = Path(plots_dir) / f"{stem}-{_slug(result.check)}-ladder.svg"
+                        try:
+                            result.ladder = _ladder(program, exercise, run, result, path)
+                        except Exception as exc:  # noqa: BLE001 - a picture that fails must never change a grade
+                            report.warnings.append(f"no ladder for {result.check}: {type(exc).__name__}: {exc}")
 
 
 def _slug(text: str) -> str:
     return "".join(ch if ch.isalnum() else "_" for ch in text)[:60].strip("_")
+
+
+def _ladder(program: Program, exercise: Exercise, run: RunResult, result: CheckResult, path: Path) -> str | None:
+    """The networks that write the failed check's signals, with the values of the scan where it failed."""
+    from plcsim.ladder.snapshot import networks_writing
+    from plcsim.ladder.view import Ladder
+
+    names = networks_writing(program, result.signals)
+    if not names:
+        return None
+    at = result.at_ns if result.at_ns is not None else (result.window[0] if result.window else run.simulated_ns)
+    picture = Ladder(
+        program, exercise.tag_table(), title=f"{result.scenario}: {result.check} — the scan at {at / 1e9:g} s"
+    )
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(picture.at_trace(run.trace, at, names), encoding="utf-8")
+    return str(path)
 
 
 def _diagram(run: RunResult, result: CheckResult, path: Path) -> str | None:

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -27,7 +28,7 @@ from plcsim.frontends.python.program import Program
 from plcsim.grading.export import export
 from plcsim.grading.report import Report
 from plcsim.grading.run import chosen_scenarios, load_error_kind, run_scenarios
-from plcsim.grading.sandbox.limits import Limits
+from plcsim.grading.sandbox.limits import Budget, Limits
 from plcsim.grading.scoring import evaluate, failure_report
 
 
@@ -55,7 +56,7 @@ def grade(
     else:
         report.warnings = list(runs[0].warnings) if runs else []
         evaluate(exercise, runs, analysis, report)
-        export(exercise, runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir)
+        export(exercise, runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir, program=program)
     return _finish(report, started)
 
 
@@ -80,6 +81,8 @@ def grade_sandboxed(
     from plcsim.grading.sandbox.parent import DEFAULT_ENTRY, run_child
 
     limits = limits or Limits()
+    if limits.budget is None and exercise.cpu_budget_s is not None:  # the exercise's own; a batch fits one
+        limits = replace(limits, budget=Budget.of_exercise(exercise.cpu_budget_s))
     started = time.perf_counter()
     report = Report(exercise.number, exercise.title, str(path), seed=seed)
     try:
@@ -105,7 +108,10 @@ def grade_sandboxed(
     try:
         report.warnings += list(outcome.runs[0].warnings) if outcome.runs else []
         evaluate(exercise, outcome.runs, analysis, report)
-        export(exercise, outcome.runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir)
+        drawn = _python_program(Path(path)) if plots_dir is not None else None
+        export(
+            exercise, outcome.runs, report, rrd_dir=rrd_dir, plots_dir=plots_dir, traces_dir=traces_dir, program=drawn
+        )
     except Exception as exc:  # noqa: BLE001 - our own bug: reported as the grader's, not the student's
         report.checks, report.runs = [], []
         failure_report(report, "grader error", f"{type(exc).__name__}: {exc}", exercise)
@@ -134,3 +140,16 @@ def parent_analysis(exercise: Exercise, path: Path) -> Any:
         return analyse(exercise.tag_table()) if analyse is not None else None
     table = program.declare_into(exercise.tag_table())
     return program.compile(table).analysis
+
+
+def _python_program(path: Path) -> Any:
+    """The submission read as a Python program for its ladder picture (parsed and checked here, never run;
+    None for another language or a file that does not read)."""
+    if path.suffix != ".py":
+        return None
+    from plcsim.frontends.python.program import Program
+
+    try:
+        return Program.from_file(path)
+    except PlcError:
+        return None

@@ -44,7 +44,8 @@ def test_no_command_prints_help_and_fails(capsys):
     assert capsys.readouterr().out.startswith("usage: plcsim")
 
 
-def test_list(capsys):
+def test_list(capsys, monkeypatch):
+    monkeypatch.setenv("COLUMNS", "200")  # wide enough for the table
     assert main(["list"]) == 0
     out = capsys.readouterr().out
     for ex in ("4.3.1", "4.3.5", "conveyor-1", "led-1", "LED control 1 (NO push-button)"):
@@ -52,6 +53,23 @@ def test_list(capsys):
     numbers = [line.split("│")[1].strip() for line in out.splitlines() if line.startswith("│ 4.3.")]
     assert numbers[:2] == ["4.3.1", "4.3.2"]
     assert numbers == sorted(numbers, key=lambda n: tuple(int(p) for p in n.split(".")))
+
+
+@pytest.mark.parametrize("width", [40, 80, 120])
+@pytest.mark.parametrize("command", [["list"], ["list", "--profiles"]])
+def test_list_never_cuts_a_name_at_any_width(command, width, capsys, monkeypatch):
+    """At 80 columns the table cut names (``wrong-no-con…``); now it becomes a list where it does not fit."""
+    monkeypatch.setenv("COLUMNS", str(width))
+    assert main(command) == 0
+    out = capsys.readouterr().out
+    assert "…" not in out
+    words = set(out.split())
+    if command == ["list"]:
+        for ex in get("4.3.2"), get("6.3.3"):
+            assert ex.number in words and ex.slug in words
+            assert all(s.name in words or f"{s.name}," in words for s in ex.solutions)
+    else:
+        assert {"s7-1200", "tecomat-ns950"} <= words
 
 
 def test_show(capsys):
@@ -129,9 +147,21 @@ def test_run_a_bare_rig_with_a_program(tmp_path, capsys):
     assert "grade of this run" not in out  # a bare rig has no checks
 
 
-def test_run_a_bare_rig_needs_a_program(capsys):
-    assert main(["run", "CONV1"]) == EXIT_USAGE
-    assert "running the bare rig CONV1 needs --program FILE.py" in capsys.readouterr().err
+def test_run_a_bare_rig_without_a_program_operates_it_by_hand(tmp_path, capsys):
+    """A student explores a machine before writing a program: the rig runs with every output off, and a
+    saved session's presses and parts act on it."""
+    trace = tmp_path / "by-hand.npz"
+    assert main(["run", "CONV1", "--seconds", "2", "--trace", str(trace)]) == 0
+    assert "2000 scans, CPU RUN" in capsys.readouterr().out
+    assert not Trace.load(trace).column("D1").any()
+
+
+def test_live_without_a_program_runs_the_empty_one():
+    from plcsim.apps.live.session import NO_PROGRAM, LiveSession
+
+    session = LiveSession("CONV1", NO_PROGRAM)
+    session.advance(500_000_000)
+    assert session.sim.cpu.mode == "RUN" and session.sim.cpu.outputs["D1"] is False
 
 
 def test_run_in_real_time(capsys):

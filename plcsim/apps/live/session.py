@@ -20,7 +20,6 @@ True
 
 from __future__ import annotations
 
-import string
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -44,6 +43,9 @@ from plcsim.sim.simulation import Simulation
 
 PANEL_DEMO = "def OB1(t):\n    t.LED = t.TL\n"
 """A one-line program for the PANEL rig: the lamp follows the button TL."""
+NO_PROGRAM = '"""No program yet: every output stays off, the rig is operated by hand."""\n\n\ndef OB1(t):\n    pass\n'
+"""The program of ``plcsim run RIG`` and ``plcsim live RIG`` without ``--program``: a student explores the
+machine by hand (buttons, parts, the watch table) before writing one."""
 
 FAULTS = {
     "stick": "stuck at",
@@ -78,6 +80,8 @@ class LiveSession:
         self.program: SourceProgram = (
             read_program(program) if _is_file(program) else Program(str(program), "<live program>")
         )
+        self.first_program = self.program
+        """The program the session started with (a replay starts from it; downloads are actions)."""
         self.sim = self.target.simulation(self.program, open_ended(self.name, self.base), seed=seed)
         self.sim.run(until=self.sim.now)  # the outputs as the run starts, as a replay's first step sees them
         self.recorded: list[Action] = []
@@ -88,6 +92,10 @@ class LiveSession:
         self._base_count = len(self.sim.scenario.actions)  # type: ignore[union-attr]
         self.verbs: dict[str, RigVerb] = {**getattr(self.sim.cpu, "VERBS", {}), **rig_verbs(plant)}
         """The verbs this run's rig and controller bring (``set_ambient``, ``interrupt``), besides the scenario's."""
+        self.extra_watch: list[str] = []
+        """Tags the student added to the watch table (a click on a contact in the Program card)."""
+        self._ladder: Any = None
+        self._program_mtime = Path(self.program_file).stat().st_mtime_ns if self.program_file else None
 
     # -- time ------------------------------------------------------------------------------------------
 
@@ -210,7 +218,7 @@ class LiveSession:
     def replay(self, recording: Recording | None = None) -> Simulation:
         """Run ``recording`` (default: this session's, up to now) afresh and return the finished simulation."""
         rec = recording or self.recording()
-        sim = self.target.simulation(self.program, rec.scenario(self.base), seed=rec.seed)
+        sim = self.target.simulation(self.first_program, rec.scenario(self.base), seed=rec.seed)
         sim.run()
         return sim
 
@@ -280,19 +288,88 @@ class LiveSession:
             "dt_ns": sim.dt_ns,
         }
 
+    def ladder_svg(self) -> str | None:
+        """The program's ladder with the power flow of the CPU's state now (the Program card); None for a
+        program that is no Python (an instruction list has no ladder)."""
+        if not isinstance(self.program, Program):
+            return self._il_svg()
+        if self._ladder is None:
+            from plcsim.ladder.view import Ladder
+
+            self._ladder = Ladder(self.program, self.sim.cpu.base_table, title="")
+        return self._ladder.monitor(self.sim.cpu.t)
+
+    # -- downloads ----------------------------------------------------------------------------------------
+
+    def program_changed(self) -> bool:
+        """Whether the program file was saved since the session loaded (or last downloaded) it."""
+        if self.program_file is None:
+            return False
+        try:
+            return Path(self.program_file).stat().st_mtime_ns != self._program_mtime
+        except OSError:
+            return False
+
+    def download(self, text: str | None = None) -> Action:
+        """Download the program file as it is now (or ``text``) into the running CPU, as TIA Portal does:
+        STOP, load, RUN, the machine running on. The program is compiled first: an error names the file and
+        line and nothing changes. The download is an action of the scenario, with the program's text, so
+        that the saved session replays bit for bit."""
+        if not isinstance(self.program, Program):
+            raise PlcError("only a Python program (.py) can be downloaded into a running session")
+        name = self.program_file or "<live program>"
+        if text is None:
+            if self.program_file is None:
+                raise PlcError("this session's program is no file: give the program's text")
+            text = Path(self.program_file).read_text(encoding="utf-8")
+            self._program_mtime = Path(self.program_file).stat().st_mtime_ns
+        program = Program(text, name)  # refuses what does not read, naming the line
+        cpu = self.sim.cpu
+        from plcsim.controllers.s7.cpu import CPU
+
+        dry = CPU(cpu.base_table, program, config=cpu.config, start=False)
+        missing = [n for n in self.sim.trace.names if n.split(".")[0].split("[")[0] not in dry.t.__dict__]
+        missing = [n for n in missing if self.sim.trace.kinds.get(n) != "analog"]
+        if missing:
+            raise PlcError(
+                f"{name}: the new program no longer declares {', '.join(missing)}, which this session's trace "
+                f"records; keep the declaration (or end the session and start a new one)"
+            )
+        action = self._take("download", "CPU", {"program": text, "file": Path(name).name}, self.now)
+        self.program = program
+        self._ladder = None
+        return action
+
+    def _il_svg(self) -> str | None:
+        """An instruction list with A0/A1 per line of the last pass (STL monitoring), or None."""
+        text = getattr(self.program, "text", None)
+        if text is None or getattr(self.sim.cpu, "machine", None) is None:
+            return None
+        from plcsim.ladder.il import IlMonitor, render_il_svg
+
+        if self._ladder is None:
+            self._ladder = IlMonitor(self.sim.cpu)
+            self._ladder.attach()
+        return render_il_svg(self._ladder.lines(text), Path(getattr(self.program, "filename", "")).name)
+
+    def watch(self, tag: str) -> None:
+        """Add a tag to the watch table (it must be readable: a typo is refused with the nearest names)."""
+        _read(self.sim.cpu, tag)
+        if tag not in self.sim.trace.names and tag not in self.extra_watch:
+            self.extra_watch.append(tag)
+
     def _verb_json(self, verb: RigVerb) -> dict[str, Any]:
         """A rig's or a controller's verb as the page offers it: its caption, what its target may be (empty:
         typed, e.g. a time of day; ``parts``: a part on the machine) and the arguments its phrase names."""
         owner = self.sim.cpu if verb.controller else self.sim.plant
         targets = "parts" if verb.on_parts else sorted(getattr(owner, verb.targets, ())) if verb.targets else []
-        args = [f for _, f, _, _ in string.Formatter().parse(verb.phrase) if f and f != "target"]
         caption = verb.name.replace("_", " ")
         return {
             "verb": verb.name,
             "caption": caption,
             "role": verb.role,
             "targets": targets,
-            "args": args,
+            "args": list(verb.arguments),
             "doc": verb.doc,
         }
 
@@ -307,11 +384,12 @@ class LiveSession:
             "mode": cpu.mode,
             "scans": cpu.scan_count,
             "error": self.error,
+            "program_changed": self.program_changed(),
             "dynamic": [drawable_json(d) for d in (plant.dynamic_drawables() if plant is not None else [])],
             "sensors": {k: _jsonable(v) for k, v in (plant.sensors.items() if plant is not None else ())},
-            "watch": {name: _jsonable(_read(cpu, name)) for name in sim.trace.names},
+            "watch": {name: _jsonable(_read(cpu, name)) for name in [*sim.trace.names, *self.extra_watch]},
             "io": {k: _jsonable(v) for k, v in (*cpu.inputs.items(), *cpu.outputs.items())},
-            "forces": {k: _jsonable(v) for k, v in cpu.forces.items()},
+            "forces": {k: _jsonable(v) for k, v in getattr(cpu, "forces", {}).items()},
             "faults": sorted(sim.wiring.faults) if sim.wiring is not None else [],
             "parts": parts,
             "diagnostics": [f"{format_ns(e.time_ns)}  {e.event}: {e.message}" for e in list(cpu.diagnostics)[-40:]],
@@ -358,9 +436,12 @@ def _check_value(current: Any, value: Any, tag: str) -> None:
 
 
 def _read(cpu: Any, name: str) -> Any:
+    """A traced value as the watch table shows it: the S7's ``read`` (never refreshing a timer); a controller
+    without one (the Tecomat) by its symbols' values at the last cycle's end."""
+    reader = getattr(cpu, "read", None)
     try:
-        return cpu.read(name)
-    except PlcError:
+        return reader(name) if reader is not None else getattr(cpu.t, name)
+    except (PlcError, AttributeError):
         return None
 
 

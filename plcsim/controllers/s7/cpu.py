@@ -49,7 +49,7 @@ from plcsim.controllers.s7.execution import (
     switched_off,
     tuple_getter,
 )
-from plcsim.controllers.s7.instructions import bind_instructions
+from plcsim.controllers.s7.instructions import bind_instructions, block_of
 from plcsim.controllers.s7.instructions.timers import IecTimer
 from plcsim.controllers.s7.profile import DEFAULT_INTERRUPT_PERIOD, PROFILE
 from plcsim.core.clock import Clock
@@ -122,6 +122,8 @@ class CPU(TaskRunner, HostAccess):
         self.compiled: Any = None
         """The Python front end's compiled form (its analysis feeds the static checks); None for another."""
         self.warnings: list[str] = []
+        self.downloads = 0
+        """How many downloads changed the program while it ran (:meth:`download`)."""
         self._rng = random.Random(self.config.seed)
         self._stack: list[Execution] = []
         self._ob1: RunningTask | None = None
@@ -239,6 +241,29 @@ class CPU(TaskRunner, HostAccess):
         self._plan_cyclic()
         names = ", ".join(t.spec.name for t in loaded.tasks) or "no OBs"
         self._diag("download", f"program {loaded.filename} loaded: {names}")
+        if was_running:
+            self.start()
+
+    def download(self, text: str, filename: str = "<downloaded program>") -> None:
+        """Download a changed program as TIA Portal does into a running CPU: STOP, load, RUN (if it ran).
+
+        Every tag, DB member and instance that keeps its name and type keeps its value, and then STOP -> RUN
+        does what it always does: non-retain tags take their start values, retain ones (counters, retain
+        tags) keep theirs. The inputs keep their terminals. A program that does not compile is refused
+        before the CPU stops (the error names the file and the line)."""
+        program = pkgutil.resolve_name(PROFILE.source_reader)(text, filename)
+        CPU(self.base_table, program, replace(self.config), start=False, clock=Clock(self.clock.now))  # a dry run
+        was_running = self.mode == RUN
+        if was_running:
+            self.stop(reason="download")
+        old, inputs = self.t, self.inputs
+        self.load(program)
+        _carry_values(old, self.t)
+        inputs.clear()
+        inputs.update(self.inputs)
+        self.inputs = inputs  # the same dict: whoever drives the terminals (the wiring) keeps writing into it
+        self._plan_cyclic()  # the scan loop reads the inputs from there
+        self.downloads += 1
         if was_running:
             self.start()
 
@@ -433,3 +458,16 @@ def _check_task_numbers(loaded: LoadedProgram) -> None:
 
 
 __all__ = ["CPU", "CPUConfig", "DiagnosticEntry", "RUN", "STOP", "CLOCK_BITS", "SYSTEM_BITS", "Bool", "Int"]
+
+
+def _carry_values(old: PlcStruct, new: PlcStruct) -> None:
+    """Copy into ``new`` every value of ``old`` whose name and type are the same (instances by object)."""
+    for name, member in new._type.members.items():
+        before = old._type.members.get(name)
+        if before is None or before.type != member.type or name not in old.__dict__:
+            continue
+        value, fresh = old.__dict__[name], new.__dict__.get(name)
+        if isinstance(value, PlcStruct) and isinstance(fresh, PlcStruct):
+            _carry_values(value, fresh)
+        elif type(value) is type(fresh) and (isinstance(value, bool | int | float | str) or block_of(value)):
+            new.__dict__[name] = value

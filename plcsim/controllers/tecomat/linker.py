@@ -20,10 +20,11 @@ from plcsim.controllers.tecomat.tables import TABLES
 Code = Callable[[], int]
 
 
-def link(m: Machine) -> list[Code]:
-    """The program's closures, one per instruction (runs fused into generated functions with ``config.fuse``)."""
+def link(m: Machine, fuse_runs: bool | None = None) -> list[Code]:
+    """The program's closures, one per instruction (runs fused into generated functions with ``config.fuse``;
+    ``fuse_runs=False``: one closure per instruction whatever the configuration, for a per-line online view)."""
     code = []
     for index, instr in enumerate(m.asm.code):
         builder = BUILDERS.get(instr.mnemonic) or (block if instr.mnemonic in BLOCKS else TABLES[instr.mnemonic])
         code.append(builder(m, index, instr))
-    return fuse(m, code) if m.config.fuse else code
+    return fuse(m, code) if (m.config.fuse if fuse_runs is None else fuse_runs) else code

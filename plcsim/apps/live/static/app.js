@@ -8,15 +8,18 @@ const page = { layout: null, state: null, ws: null, pressed: null, controls: {},
 window.plcsimLive = page; // for the browser test and the curious
 
 // -- connection ------------------------------------------------------------------------------------
+// the session's token, put in the page by the server: its WebSocket refuses a connection without it
+const TOKEN = document.querySelector('meta[name="plcsim-token"]')?.content ?? "";
 function connect() {
-  const ws = new WebSocket(`ws://${location.host}/ws`);
+  const ws = new WebSocket(`ws://${location.host}/ws?token=${encodeURIComponent(TOKEN)}`);
   page.ws = ws;
   ws.onopen = () => setLink(true);
   ws.onclose = () => { setLink(false); setTimeout(connect, 1000); };
   ws.onmessage = (event) => {
     const m = JSON.parse(event.data);
     ({ layout: buildLayout, state: render, error: (r) => toast(r.message, true), saved: onSaved,
-       ended: onEnded, digest: (r) => showDigest(r), graded: showChecks })[m.type]?.(m);
+       ended: onEnded, digest: (r) => showDigest(r), graded: showChecks,
+       downloaded: (r) => toast(`downloaded ${r.file}: STOP, load, RUN at ${(r.t_ns / 1e9).toFixed(3)} s`) })[m.type]?.(m);
   };
 }
 function send(message) {
@@ -310,6 +313,10 @@ function render(s) {
   }));
   list("diagnostics", s.diagnostics); list("events", s.events); list("actions", s.actions);
   const err = $("error"); err.classList.toggle("hidden", !s.error); err.textContent = s.error || "";
+  refreshLadder(`${s.t_ns}/${s.actions.length}/${s.mode}`);
+  $("program-changed").classList.toggle("hidden", !s.program_changed);
+  page.showDownload();
+  $("download").classList.toggle("on", !!s.program_changed);
   page.onFrame?.(s); // a hook for the browser test: called after each frame is drawn
 }
 // the moving shapes are kept and updated in place (a shape under the pointer stays the same element)
@@ -351,6 +358,8 @@ $("cpu-stop").onclick = () => send({ op: "do", verb: "stop_cpu" });
 $("cpu-run").onclick = () => send({ op: "do", verb: "start_cpu" });
 $("cpu-power").onclick = () => send({ op: "do", verb: "power_cycle" });
 $("save").onclick = () => send({ op: "save" });
+$("download").onclick = () => send({ op: "download" });
+page.showDownload = () => $("download").classList.toggle("hidden", !String(page.layout?.program || "").endsWith(".py"));
 $("grade").onclick = () => send({ op: "grade" });
 $("end").onclick = () => { if (confirm("End the session? It is saved as a scenario.")) send({ op: "end" }); };
 window.addEventListener("keydown", (e) => {
@@ -360,6 +369,29 @@ window.addEventListener("resize", () => {
   if (!page.layout) return;
   page.dynamic?.forEach((item) => item.g.remove()); page.dynamic = null;
   buildLayout(page.layout);
+});
+
+// -- the Program card: the ladder of the running program, refetched with the frames ----------------------
+const ladder = { shown: false, busy: false, seen: -1, at: 0 };
+page.ladder = ladder;
+async function refreshLadder(version) {
+  if (ladder.busy || version === ladder.seen || performance.now() - ladder.at < 100) return;
+  ladder.busy = true; ladder.at = performance.now();
+  try {
+    const response = await fetch("/api/ladder.svg", { cache: "no-store" });
+    if (!response.ok) { $("program-card").classList.add("hidden"); ladder.shown = false; return; }
+    $("ladder").innerHTML = await response.text(); // drawn by the server from the program, every text escaped
+    ladder.seen = version; ladder.shown = true; $("program-card").classList.remove("hidden");
+    page.onLadder?.();
+  } catch (e) { /* the server is away: the next frame tries again */ } finally { ladder.busy = false; }
+}
+$("ladder").addEventListener("click", (e) => {
+  const tag = e.target.closest?.("[data-tag]")?.dataset.tag;
+  if (!tag || !page.layout) return;
+  if (!page.layout.watch.includes(tag)) { page.layout.watch.push(tag); buildWatch(page.layout); send({ op: "watch", target: tag }); }
+  const row = [...$("watch").children].find((tr) => tr.dataset.tag === tag);
+  row?.scrollIntoView({ block: "nearest" }); row?.classList.add("picked"); setTimeout(() => row?.classList.remove("picked"), 1500);
+  row?.querySelector("input")?.focus();
 });
 
 function showDigest(r) { $("digest").textContent = `digest ${r.digest.slice(0, 16)} at ${(r.t_ns / 1e9).toFixed(3)} s`; }
