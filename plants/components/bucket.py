@@ -32,10 +32,13 @@ class Bucket:
     """The bucket, its load and the bin it pours into (see the module docstring).
 
     Args:
-        name: the bucket (subject of ``bucket filled``); bin_name: the bin (subject of ``pour ended``).
-        tip_from, tip_to: the track positions (mm) where the tilt starts and where it reaches ``tilt_max``.
+        name: the bucket (subject of ``bucket filled``).
+        bin_name: the bin it pours into (subject of ``pour ended`` and ``mixer discharged``).
+        tip_from: the track position (mm) where the tilt starts.
+        tip_to: the track position where it reaches ``tilt_max``.
         tilt_max: the tilt at ``tip_to`` and beyond (degrees).
-        pour_from, pour_full: the tilts where the load starts to flow and where it flows at the full rate.
+        pour_from: the tilt where the load starts to flow.
+        pour_full: the tilt from which it flows at the full rate.
         rate_g_s: the full flow rate (g/s).
         capacity_g: what one fill puts into the bucket.
     """

@@ -51,13 +51,19 @@ class Winch:
 
     Args:
         name: the carriage (subject of its events); the converter's events are about ``converter``.
-        lo, hi: the end buffers (mm along the track).
+        lo: the lower end buffer (mm along the track).
+        hi: the upper end buffer.
         start: the position after reset.
-        v_fast, v_slow: the carriage speeds at the two fixed frequencies (mm/s, unloaded).
+        v_fast: the carriage speed at the fast fixed frequency (mm/s, unloaded).
+        v_slow: the speed at the slow one.
         f_fast: the fast frequency (Hz); the slow one is ``f_fast · v_slow / v_fast``.
-        ramp_hz_s: the converter's ramp (Hz/s); brake_mm_s2: the brake's deceleration.
+        ramp_hz_s: the converter's ramp (Hz/s).
+        brake_mm_s2: the brake's deceleration (mm/s²).
         slip: the speed lost at full load (fraction).
-        up, down, fast, slow: the actuators (PLC outputs).
+        up: the actuator (PLC output) of the direction up.
+        down: the actuator of the direction down.
+        fast: the actuator of the fast fixed frequency.
+        slow: the actuator of the slow fixed frequency.
         cams: the limit switches along the track.
         converter: the converter's name (subject of its events).
     """
