@@ -12,6 +12,7 @@ from plants.conveyors import Conv1, Conv2x2, Conv3, ConveyorLine
 from plants.machine import Machine
 from plants.panel import Panel
 from plants.punch import Punch
+from plants.skip import Skip
 from plants.slide import Slide
 from plants.sort import Sort
 from plants.spindle import Spindle
@@ -45,6 +46,7 @@ __all__ = [
     "Machine",
     "Panel",
     "Punch",
+    "Skip",
     "Slide",
     "Sort",
     "Spindle",

@@ -112,6 +112,10 @@ class Exercise:
     "the pulse used one scan later is still one a second"}`` (a key is a mutant's description, or
     ``"line N: description"`` where the description alone names several). Mutation testing reports
     them as explained, outside the score; one that matches no mutant, or is killed, is reported.
+
+    ``hmi`` is the operator panel the task describes where its controls are tags, not plant signals (the HMI
+    bits of a data block): each Bool tag named is offered on the live page as a ``"switch"`` (a click flips it)
+    or a ``"button"`` (TRUE while held): ``{"DB_SKIP.AUTO": "switch", "DB_SKIP.MAN_HORE": "button"}``.
     """
 
     number: str
@@ -132,6 +136,7 @@ class Exercise:
     notes: str = ""
     plant_name: str = ""
     spec_equivalent: Mapping[str, str] = field(default_factory=dict)
+    hmi: Mapping[str, str] = field(default_factory=dict)
     cpu_budget_s: float | None = None
     """The CPU seconds a graded submission may use in all scenarios together; None (the default): ten times
     what the reference uses, measured once per batch, at least 10 s (:mod:`plcsim.grading.sandbox.limits`)."""

@@ -73,6 +73,7 @@ class _Validation:
         for scenario in exercise.scenarios:
             self._scenario(scenario)
         self._checks()
+        self._hmi()
 
     def add(self, where: str, detail: str) -> None:
         """Record one mistake, at the line that made it (and the exercise's own, if that is elsewhere)."""
@@ -182,6 +183,19 @@ class _Validation:
                     self.add(action.defined_at, f"scenario {scenario.name!r}: {action.describe()}: {exc}")
 
     # -- checks ---------------------------------------------------------------------------------
+
+    def _hmi(self) -> None:
+        """The HMI's controls are Bool tags of the exercise, each a switch or a button."""
+        assert self.cpu is not None
+        traced = default_signals(self.cpu)
+        for tag, kind in self.exercise.hmi.items():
+            if kind not in ("switch", "button"):
+                self.add(self.exercise.defined_at, f"hmi[{tag!r}] is {kind!r}; a control is 'switch' or 'button'")
+            if tag not in traced:
+                self.add(
+                    self.exercise.defined_at,
+                    f"hmi names {tag!r}, which the exercise does not have{did_you_mean(tag, traced)}",
+                )
 
     def _checks(self) -> None:
         ex = self.exercise

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import pytest
 
+from exercises.ex_4_3_16 import EXERCISE
 from plcsim.apps.live import LiveSession, Recording, load_scenario_file
 from plcsim.apps.live.build import Target
 from plcsim.apps.live.session import PANEL_DEMO
@@ -229,3 +230,14 @@ def test_saving_midway_does_not_change_what_follows(tmp_path):
     session.do("knock_off", "p1")
     session.advance(2000 * MS)
     assert replayed_digest(session, tmp_path / "second.toml") == session.sim.trace.digest() != first
+
+
+def test_an_exercise_s_hmi_tags_are_offered_as_controls_and_written_by_them():
+    """4.3.16's HMI bits live in DB_SKIP: the page offers AUTO as a switch, MAN_HORE as a button, and writes them."""
+    session = LiveSession(Target("4.3.16", exercise=EXERCISE), EXERCISE.reference.path, seed=1)
+    controls = {c["name"]: c["kind"] for c in session.layout()["controls"]}
+    assert controls["DB_SKIP.AUTO"] == "hmi switch" and controls["DB_SKIP.MAN_HORE"] == "hmi button"
+    assert {v["verb"] for v in session.layout()["rig_verbs"]} == {"fill", "discharge"}
+    session.write_text("DB_SKIP.MAN_HORE", "1")
+    session.advance(500 * MS)
+    assert session.sim.cpu.read("START_HORE") is True and session.state()["watch"]["DB_SKIP.MAN_HORE"] is True

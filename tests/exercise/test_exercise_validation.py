@@ -6,6 +6,7 @@ beside good ones. Every error names the file and line the instructor wrote and t
 
 from __future__ import annotations
 
+import dataclasses
 import re
 import sys
 from pathlib import Path
@@ -76,8 +77,8 @@ def test_all_shipped_exercises_validate_cleanly():
     assert broken_exercises() == ()
     numbers = [e.number for e in all_exercises()]
     modules = sorted(Path(exercises.__file__).parent.glob("ex_*.py"))
-    # 4.3.x with 4.3.12, 4.3.17; 6.3.1-6.3.5; the PLC836 mechanisms' P-01, P-02; the Tecomat's T-01..T-06
-    assert len(numbers) == len(modules) == 33
+    # 4.3.x with 4.3.12, 4.3.16, 4.3.17; 6.3.1-6.3.5; the PLC836 mechanisms' P-01, P-02; the Tecomat's T-01..T-06
+    assert len(numbers) == len(modules) == 34
     assert numbers[:5] == ["4.3.1", "4.3.2", "4.3.3", "4.3.4", "4.3.5"] and numbers[-9] == "6.3.5"
     assert numbers[-8:-6] == ["P-01", "P-02"]
     assert numbers[-6:] == ["T-01", "T-02", "T-03", "T-04", "T-05", "T-06"]  # after the textbook's numbers
@@ -544,3 +545,10 @@ def test_an_unknown_exercise_mentions_the_modules_that_did_not_load(package, mon
 def test_the_shipped_registry_loads_through_load_package():
     loaded, broken = load_package("exercises")
     assert broken == [] and [e.number for e in loaded] == [e.number for e in all_exercises()]
+
+
+def test_an_hmi_control_must_be_a_tag_of_the_exercise_and_a_switch_or_a_button():
+    good = conveyor()
+    message = refused(lambda: dataclasses.replace(good, hmi={"ACK": "switch", "D1": "lamp"}))
+    assert "hmi names 'ACK', which the exercise does not have" in message
+    assert "hmi['D1'] is 'lamp'; a control is 'switch' or 'button'" in message

@@ -250,6 +250,11 @@ class LiveSession:
             for n, s in signals.items()
             if s.operator
         ]
+        exercise = self.target.exercise
+        hmi = exercise.hmi if exercise is not None else {}
+        controls += [
+            {"name": tag, "kind": f"hmi {kind}", "doc": f"HMI {kind}: writes {tag}"} for tag, kind in hmi.items()
+        ]
         wired = list(sim.wiring.by_tag) if sim.wiring is not None else []
         motors = [n for n, s in signals.items() if s.direction == "actuator"] if hasattr(plant, "jam_motor") else []
         faults = {k: v for k, v in FAULTS.items() if k not in ("shift", "jam_motor", "free_motor")}
@@ -257,7 +262,6 @@ class LiveSession:
             faults["shift"] = FAULTS["shift"]
         if motors:
             faults.update({k: FAULTS[k] for k in ("jam_motor", "free_motor")})
-        exercise = self.target.exercise
         return {
             "target": self.target.name,
             "title": f"{exercise.number} {exercise.title}" if exercise is not None else f"rig {self.target.name}",

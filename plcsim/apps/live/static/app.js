@@ -128,8 +128,14 @@ function buildControls(layout) {
     return b;
   }));
 }
+function controlOn(name) {  // a plant's button or switch is a sensor; an HMI control is a tag in the watch table
+  const c = page.controls[name];
+  return c.kind.startsWith("hmi") ? !!page.state?.watch?.[name] : !!page.state?.sensors?.[name];
+}
 function controlDown(name) {
-  const c = page.controls[name], on = page.state?.sensors?.[name];
+  const c = page.controls[name], on = controlOn(name);
+  if (c.kind === "hmi switch") return send({ op: "write", target: name, text: on ? "0" : "1" });
+  if (c.kind === "hmi button") { page.pressed = name; return send({ op: "write", target: name, text: "1" }); }
   if (c.kind === "switch") return send({ op: "toggle", target: name });
   if ($("latch").checked || (on && page.pressed !== name)) {
     return on ? send({ op: "release", target: name }) : send({ op: "do", verb: "press", target: name });
@@ -138,7 +144,10 @@ function controlDown(name) {
   send({ op: "do", verb: "press", target: name });
 }
 function controlUp() {
-  if (page.pressed) { send({ op: "release", target: page.pressed }); page.pressed = null; }
+  if (!page.pressed) return;
+  const c = page.controls[page.pressed];
+  send(c.kind === "hmi button" ? { op: "write", target: page.pressed, text: "0" } : { op: "release", target: page.pressed });
+  page.pressed = null;
 }
 window.addEventListener("pointerup", controlUp);
 window.addEventListener("pointercancel", controlUp);
@@ -289,7 +298,7 @@ function render(s) {
   const speed = $("speed");
   if (document.activeElement !== speed) speed.value = s.speed === null ? "max" : String(s.speed);
   updateDynamic(s);
-  for (const b of $("controls").children) b.classList.toggle("on", !!s.sensors[b.dataset.control]);
+  for (const b of $("controls").children) b.classList.toggle("on", controlOn(b.dataset.control));
   for (const tr of $("watch").children) {
     const name = tr.dataset.tag, forced = name in s.forces;
     showValue(tr.children[1], s.watch[name]);
