@@ -93,11 +93,12 @@ TASK = (
     "and no place may get a second part.\n"
     "The operator works at the HMI, one request at a time: (for a put-in) puts a part on the fork wherever it "
     "waits in front of the rack, writes DATA.x and DATA.y (1.0 … 3.0), then sets one request, a few tenths of a "
-    f"second apart. {DONE.replace('..', ' to ')} after the fork has put the part down or lifted it, the operator "
+    f"second apart. {DONE.replace('s..', ' to ').replace('s', ' s')} after the fork has put the part down or lifted it, the operator "
     "takes a retrieved part off the fork and begins the next request: the program has those 2 s to bring the fork "
     "back to z2 and clear the request. A put-in goes to a free place, a take-out to an occupied one. The crane is "
     "switched on with X anywhere from left of x1 to x3, Y anywhere from below y1 "
-    "to y6, and the fork at z2 or behind it; the rack may hold parts already."
+    "to y6, and the fork at z2 or behind it; the rack may hold parts already. A position sensor may be mounted a "
+    "few millimetres off its place, or fail: the crane must then stay safe, even if a request cannot be served."
 )
 
 EXERCISE = Exercise(
