@@ -139,7 +139,7 @@ class HBW:
         self.signals: dict[str, SignalSpec] = {n: specs[n] for n in ORDER}
         self.EVENTS = self.assembly.events
         doc = "a place of the rack (stocked before the run): column {}, row {} (row 1 at the bottom)"
-        self.stations = {"fork": Station("fork", 0.0, 0.0, "on the fork, in front of the rack")} | {
+        self.stations = {"fork": Station("fork", SIDE_X0 - 60.0, 10.0, "on the fork, in front of the rack")} | {
             n: Station(n, X_CAMS[f"x{i}"], SHELVES[j - 1], doc.format(i, j)) for n, (i, j) in self.rack.places.items()
         }
         self.space: Any = None
@@ -252,13 +252,13 @@ class HBW:
 
     # -- drawing: the front view (X right, Y up) and, right of it, the side view (Z right, Y up) -------------
     def bounds(self) -> tuple[float, float, float, float]:
-        return (-10.0, -40.0, SIDE_X0 + RACK_FRONT + RACK_DEPTH + 40.0, 330.0)
+        return (-10.0, -40.0, SIDE_X0 + RACK_FRONT + RACK_DEPTH + 40.0, 360.0)
 
     def static_drawables(self) -> list[Drawable]:
         out = [
             draw.polygon("floor", draw.rect(0.0, -4.0, SIDE_X0 + 170.0, 0.0), draw.FRAME),
-            draw.label("views/front", 200.0, 318.0, "front view (X, Y)"),
-            draw.label("views/side", SIDE_X0 + 20.0, 318.0, "side view (Z, Y)"),
+            draw.label("views/front", 220.0, 345.0, "front view (X, Y)"),
+            draw.label("views/side", SIDE_X0, 345.0, "side view (Z, Y)"),
         ]
         half = 60.0
         for i, (name, cx) in enumerate(X_CAMS.items(), start=1):  # the rack seen from the front
@@ -269,9 +269,10 @@ class HBW:
         out.append(draw.polygon("rack/post4", draw.rect(400.0 - 6.0, 0.0, 400.0, 300.0), draw.FRAME))
         for j in range(1, 4):
             out.append(draw.label(f"rack/row{j}", 22.0, SHELVES[j - 1] + 22.0, f"row {j}"))
-        for name, h in Y_CAMS.items():  # Y cams on the side view's mast
-            out.append(draw.line(f"cams/{name}/mark", [(SIDE_X0 - 125.0, h), (SIDE_X0 - 119.0, h)], draw.TEXT))
-            out.append(draw.label(f"cams/{name}", SIDE_X0 - 135.0, h, name))
+        for k, (name, h) in enumerate(Y_CAMS.items()):  # Y cams on the side view's mast; odd and even apart
+            x = SIDE_X0 - (135.0 if k % 2 else 185.0)
+            out.append(draw.line(f"cams/{name}/mark", [(x + 10.0, h), (SIDE_X0 - 119.0, h)], draw.TEXT))
+            out.append(draw.label(f"cams/{name}", x, h, name))
         z0, z1 = SIDE_X0 + RACK_FRONT, SIDE_X0 + RACK_FRONT + RACK_DEPTH
         out.append(draw.polygon("side/rack", draw.rect(z1, 0.0, z1 + 6.0, 300.0), draw.FRAME))
         for j, top in enumerate(SHELVES, start=1):
