@@ -10,6 +10,8 @@ The workloads, each 1 ms scan, 1 ms physics, the trace on (one row per scan, pla
 * ``sorter`` (SORT, 4.3.17's reference, its "six mixed" scenario): six parts of mixed colours on the belt.
 * ``punch`` (PUNCH, 6.3.5's reference): 60 s of parts loaded one after the other, each shuttled twice
   to the press by the reversible belt, three strokes at each visit.
+* ``crane`` (HBW, 4.3.18's reference, its "all nine places" scenario): 70 s, nine put-in requests at the HMI,
+  three axes driven by set-points, a part on the fork put down on each place of the rack.
 
 "Physics alone" replays, on a fresh plant and in the same process, exactly the plant calls the
 co-simulation made (actuator commands, parts placed and removed) at the same simulated times, and steps
@@ -40,6 +42,7 @@ WORKLOADS = (
     ("aligner", "4.3.12 reference", "ALIGN"),
     ("sorter", "4.3.17 reference", "SORT"),
     ("punch", "6.3.5 reference", "PUNCH"),
+    ("crane", "4.3.18 reference", "HBW"),
 )
 
 
@@ -82,6 +85,9 @@ def _cosim(workload: str, seconds: int) -> tuple[float, Any, list[tuple[int, str
         scenario = exercise.scenario("six mixed")
     elif workload == "punch":
         exercise, scenario = get("6.3.5"), _punch(seconds)
+    elif workload == "crane":
+        exercise = get("4.3.18")
+        scenario = exercise.scenario("all nine places")
     else:
         exercise = get("4.3.6")
         scenario = exercise.scenario("five objects")

@@ -103,6 +103,13 @@ def _cams(positions: dict[str, float], zone: float, what: str) -> list[LimitSwit
     ]
 
 
+def _lamps(name: str, where: Any) -> tuple[Drawable, Drawable]:
+    return (
+        draw.polygon(f"cams/{name}/state", where, draw.BEAM_FREE),
+        draw.polygon(f"cams/{name}/state", where, draw.BEAM_CUT),
+    )
+
+
 class HBW:
     """The stacker crane and its rack (see the module docstring)."""
 
@@ -142,6 +149,12 @@ class HBW:
         self.stations = {"fork": Station("fork", SIDE_X0 - 60.0, 10.0, "on the fork, in front of the rack")} | {
             n: Station(n, X_CAMS[f"x{i}"], SHELVES[j - 1], doc.format(i, j)) for n, (i, j) in self.rack.places.items()
         }
+        self._cam_lamps = [(cam, _lamps(cam.name, mark((cam.lo + cam.hi) / 2))) for axis, mark in (
+            (self.x, lambda c: draw.rect(c - 3.0, -12.0, c + 3.0, -6.0)),
+            (self.y, lambda c: draw.rect(SIDE_X0 - 111.0, c - 2.0, SIDE_X0 - 106.0, c + 2.0)),
+            (self.z, lambda c: draw.rect(SIDE_X0 + c - 3.0, -12.0, SIDE_X0 + c + 3.0, -6.0)),
+        ) for cam in axis.cams]  # fmt: skip
+        """Each cam's lamp (off, on) under its axis, built once: a frame only picks one of the two."""
         self.space: Any = None
         self.sensors: dict[str, Any] = {}
         self.events: list[PlantEvent] = []
@@ -282,18 +295,6 @@ class HBW:
         out.append(draw.polygon("side/mast", draw.rect(SIDE_X0 - 118.0, 0.0, SIDE_X0 - 112.0, 300.0), draw.BELT))
         return out
 
-    @staticmethod
-    def _x_mark(c: float) -> Any:
-        return draw.rect(c - 3.0, -12.0, c + 3.0, -6.0)
-
-    @staticmethod
-    def _y_mark(c: float) -> Any:
-        return draw.rect(SIDE_X0 - 111.0, c - 2.0, SIDE_X0 - 106.0, c + 2.0)
-
-    @staticmethod
-    def _z_mark(c: float) -> Any:
-        return draw.rect(SIDE_X0 + c - 3.0, -12.0, SIDE_X0 + c + 3.0, -6.0)
-
     def dynamic_drawables(self) -> list[Drawable]:
         x, y, z = self.x.s, self.y.s, self.z.s
         w, d, h = PART
@@ -307,10 +308,7 @@ class HBW:
             ),
             draw.line("side/arm", [(SIDE_X0 - 112.0, y - 3.0), (SIDE_X0 + z - d / 2 - 5.0, y - 3.0)], draw.BELT),
         ]  # fmt: skip
-        for axis, mark in ((self.x, self._x_mark), (self.y, self._y_mark), (self.z, self._z_mark)):
-            for cam in axis.cams:
-                lit = draw.BEAM_CUT if cam.actuated else draw.BEAM_FREE
-                out.append(draw.polygon(f"cams/{cam.name}/state", mark((cam.lo + cam.hi) / 2), lit))
+        out += [lamps[cam.actuated] for cam, lamps in self._cam_lamps]
         col = self.rack.column_at()
         for (i, j), part in sorted(self.rack.stored.items()):
             cx, top = X_CAMS[f"x{i}"], SHELVES[j - 1]
