@@ -215,3 +215,31 @@ class Estimate(Check):
                 signals,
             )
         return Verdict(True, f"{db}.aktualna followed {self.axis}", None, signals)
+
+
+@dataclass
+class FinalStep(Check):
+    """Criterion 3: the step control ends a request in its last step, ``DATA.KROK`` = 6, when it clears it."""
+
+    name: str | None = None
+    weight: float = 1.0
+
+    def names(self) -> Names:
+        return Names((PUT, TAKE, "DATA.KROK")) + super().names()
+
+    def describe(self) -> str:
+        return "DATA.KROK is 6 when a request is cleared"
+
+    def evaluate(self, ctx: Context) -> Verdict:
+        signals = [PUT, TAKE, "DATA.KROK"]
+        cleared = [(kind, x, y, c) for kind, x, y, _, c in requests_in(ctx.trace) if c >= 0]
+        for kind, x, y, c in cleared:
+            step = int(ctx.trace.value_at("DATA.KROK", c))
+            if step != 6:
+                what = "put-in" if kind == "put" else "take-out"
+                return Verdict(
+                    False, f"the {what} request for [{x},{y}] was cleared at {ctx.t(c)} in step {step}", c, signals
+                )
+        if not cleared:
+            return Verdict(False, "expected a request to be cleared; none was", None, signals)
+        return Verdict(True, f"{len(cleared)} request(s) cleared in step 6", None, signals)

@@ -8,7 +8,7 @@ place), the position estimates are compared with the crane's true position (``pl
 from __future__ import annotations
 
 from exercises._common import solution
-from exercises._hbw import DONE, Estimate, Served, operator, random_requests
+from exercises._hbw import DONE, Estimate, FinalStep, Served, operator, random_requests
 from plants.hbw import HBW, Z_ZONE
 from plcsim.check import all_of, any_of, count, event, never, not_, value
 from plcsim.exercise import IO, Exercise, only
@@ -83,10 +83,11 @@ TASK = (
     "(1.0, 2.0 … the sensor's number) and OS_X/OS_Y/OS_Z.aktualna must always hold the axis's actual position once "
     "it has seen its first sensor: the sensor's number while on it, half-way values between two sensors (1.5 "
     "between x1 and x2), 0.5 before the first and 3.5 (6.5 for Y) past the last. Then put parts in and take them "
-    "out by step control (DATA.KROK) that only changes the set-points. A put-in request (DATA.Poziadavka_naloz) "
+    "out by step control (DATA.KROK, steps 1 … 6 as in the textbook, 6 = done) that only changes the "
+    "set-points. A put-in request (DATA.Poziadavka_naloz) "
     "or a take-out request (DATA.Poziadavka_vyloz) for place [DATA.x, DATA.y] must end with the part on that "
     "place (put-in) or on the fork (take-out) and the fork back at z2; the program then clears the request, "
-    "and not before the fork is back at z2.\n"
+    "and not before the fork is back at z2, in step 6.\n"
     "Keep the crane safe: never drive an axis both ways, never drive an axis against an end stop; move X only "
     "while the fork is at z2 or behind it, move Y inside the rack only with the fork fully in (z3), and move the "
     "fork forward past z2 only while X and Y stand still on a sensor. Nothing may hit the rack, no part may fall "
@@ -184,6 +185,7 @@ EXERCISE = Exercise(
         ),
         # criteria 3 and 4
         only(Served().named("every request ends at the requested place, then is cleared with the fork at z2"), *SERVED),
+        only(FinalStep().named("DATA.KROK is 6 when a request is cleared"), *SERVED),
         only(count(event("part put down")).equals(9).named("all nine places are served"), NINE),
         # criterion 5
         never(event("axis stalled")).named("no axis is driven against an end stop"),
