@@ -241,11 +241,12 @@ EXERCISE = Exercise(
     ],
     notes=(
         "Sensors: z1 back, z2 middle, z3 forward and odd y below a shelf, even y above it (text issue 11). The rig "
-        "is kinematic (spec §5.9): a drive switched off coasts speed × 30 ms, inside the ±6 mm (X) and ±4 mm (Y, Z) "
-        "cam zones at any scan up to ~50 ms; a later stop, or a cam that fails, lets the axis run out of the zone and "
-        "the estimate must follow (the textbook's ±0.5 on the N edge does; the axis then hunts back). 'A cam that "
-        "fails' grades only safety: the reference hunts between x1 and x3 and never puts the fork in. The textbook's "
-        "stated limitations (simultaneous requests, a request changed during the sequence) are outside the "
-        "scenarios: the operator waits for the previous request to finish."
+        "is kinematic (spec §5.9, about twice as fast): a drive switched off coasts speed × 20 ms, inside the ±6 mm "
+        "(X) and ±4 mm (Y, Z) cam zones at any scan up to ~30 ms; a later stop, or a cam that fails, lets the axis "
+        "run out of the zone and the estimate must follow (the textbook's ±0.5 on the N edge does; the axis then "
+        "hunts back). 'A cam that fails' grades only safety: the reference hunts between x1 and x3 and never puts "
+        "the fork in. The textbook's stated limitations (simultaneous requests, a request changed during the "
+        "sequence) are outside the scenarios: the operator waits for the previous request to finish. Grading one "
+        "solution simulates 174 s (≈ 2.2 s of CPU at a 1 ms scan)."
     ),
 )
