@@ -212,6 +212,7 @@ EXERCISE = Exercise(
             "the textbook's warning: with 0.0 as the set-points' start values, the crane standing on its sensors "
             "drives every axis 'to positions outside the rack', into the end stops",
             fails=("no axis is driven against an end stop",),
+            scenarios=(FAILED,),
         ),
         solution(
             NUMBER,
@@ -220,6 +221,7 @@ EXERCISE = Exercise(
             "(not from the textbook) S2 goes on to S3 when X has arrived, without asking Y: the fork goes into the "
             "rack while Y is still on its way",
             fails=("the fork goes forward past z2 only while X and Y stand still on a sensor",),
+            scenarios=(MIXED_2,),
         ),
         solution(
             NUMBER,
@@ -228,6 +230,7 @@ EXERCISE = Exercise(
             "(not from the textbook) the requests are cleared in S4, as soon as the part is down (or up): the HMI "
             "shows the job done while the fork is still in the rack",
             fails=("every request ends at the requested place, then is cleared with the fork at z2",),
+            scenarios=(SHIFTED,),
         ),
         solution(
             NUMBER,
@@ -237,6 +240,7 @@ EXERCISE = Exercise(
             "the first moves both are TRUE and leaving a sensor adds +0.5 and -0.5, so the estimate between two "
             "sensors stays the number of the last one",
             fails=("OS_X.aktualna holds the true position of X",),
+            scenarios=(POSE,),
         ),
     ],
     notes=(
@@ -247,6 +251,7 @@ EXERCISE = Exercise(
         "hunts back). 'A cam that fails' grades only safety: the reference hunts between x1 and x3 and never puts "
         "the fork in. The textbook's stated limitations (simultaneous requests, a request changed during the "
         "sequence) are outside the scenarios: the operator waits for the previous request to finish. Grading one "
-        "solution simulates 174 s (≈ 2.2 s of CPU at a 1 ms scan)."
+        "solution simulates 174 s (≈ 2.2 s of CPU at a 1 ms scan); each wrong one is graded in the one scenario that "
+        "shows its flaw (10 to 24 s)."
     ),
 )
