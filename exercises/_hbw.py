@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from plants.hbw import X_CAMS, Y_CAMS, Z_CAMS, Z_ZONE
+from plants.hbw import X_CAMS, Y_CAMS, Y_ZONE, Z_CAMS, Z_ZONE
 from plcsim.check import Check, Context, Verdict
 from plcsim.check.base import Names
 from plcsim.scenario import after_event, place, remove, write
@@ -243,3 +243,40 @@ class FinalStep(Check):
         if not cleared:
             return Verdict(False, "expected a request to be cleared; none was", None, signals)
         return Verdict(True, f"{len(cleared)} request(s) cleared in step 6", None, signals)
+
+
+@dataclass
+class OneRowInRack(Check):
+    """Criterion 2: with the fork in the rack (forward of z2) Y moves only between the two sensors of one row,
+    below and above its shelf (odd ↔ even), never through a second shelf."""
+
+    name: str | None = None
+    weight: float = 1.0
+
+    def names(self) -> Names:
+        return Names(("plant:Y.s", "plant:Z.s")) + super().names()
+
+    def describe(self) -> str:
+        return "in the rack Y moves only between the two sensors of one row"
+
+    def evaluate(self, ctx: Context) -> Verdict:
+        signals = ["plant:Y.s", "plant:Z.s", "y_hore", "y_dole", "z3"]
+        trace = ctx.trace
+        y = np.asarray(trace.column("plant:Y.s"), dtype=float)
+        inside = np.asarray(trace.column("plant:Z.s"), dtype=float) > Z_CAMS["z2"] + Z_ZONE + 0.5
+        lows, highs = list(Y_CAMS.values())[0::2], list(Y_CAMS.values())[1::2]
+        bands = [(lo - Y_ZONE - 2.0, hi + Y_ZONE + 2.0) for lo, hi in zip(lows, highs, strict=True)]
+        edges = np.flatnonzero(np.diff(np.concatenate(([0], inside.astype(np.int8), [0]))))
+        for start, stop in zip(edges[0::2], edges[1::2], strict=True):
+            low, high = float(y[start:stop].min()), float(y[start:stop].max())
+            if not any(a <= low and high <= b for a, b in bands):
+                t0, t1 = int(trace.times[start]), int(trace.times[stop - 1])
+                return Verdict(
+                    False,
+                    f"with the fork in the rack from {ctx.t(t0)} to {ctx.t(t1)} Y went from {low:.1f} to {high:.1f} "
+                    f"mm: more than one row's two sensors",
+                    t0,
+                    signals,
+                    (t0, t1),
+                )
+        return Verdict(True, "Y stayed within one row whenever the fork was in the rack", None, signals)

@@ -7,8 +7,10 @@ place), the position estimates are compared with the crane's true position (``pl
 
 from __future__ import annotations
 
+import itertools
+
 from exercises._common import solution
-from exercises._hbw import DONE, Estimate, FinalStep, Served, operator, random_requests
+from exercises._hbw import DONE, Estimate, FinalStep, OneRowInRack, Served, operator, random_requests
 from plants.hbw import HBW, Z_ZONE
 from plcsim.check import all_of, any_of, count, event, never, not_, value
 from plcsim.exercise import IO, Exercise, only
@@ -17,6 +19,25 @@ from plcsim.tags import DB
 from plcsim.tags.types import Bool, Int, Real
 
 NUMBER = "4.3.18"
+STEPS = ("s0_request", "s1_z_middle", "s2_x_y_target", "s3_z_forward", "s4_y_opposite", "s5_z_back")
+"""The reference's step networks, in their order (the mutants that reorder them are one scan apart)."""
+HALF_STEP_LATE = (
+    "Fb3 reads na_snimaci of the scan before: the half step is taken one scan after the axis left its sensor; "
+    "the task asks the estimate within one scan"
+)
+POSITION_LATE = (
+    "the sensor's number is written after the drive and the steps have read the estimate: the axis is switched "
+    "off one scan later (0.1 mm at 100 mm/s, deep inside the cam) and each step moves on a scan later; the task "
+    "bounds neither"
+)
+DRIVE_EARLY = (
+    "the drive follows a set-point in the scan the step wrote it, not the next: the axis starts one scan earlier; "
+    "no requirement depends on that scan"
+)
+STEP_LATE = (
+    "a step's set-point or its transition is seen one scan later: the sequence takes a scan longer per step; the "
+    "task bounds no step's duration (only the 2 s to finish a request, which it keeps)"
+)
 START_AT = HBW.VERBS["start_at"]
 
 NINE = "all nine places"
@@ -89,8 +110,9 @@ TASK = (
     "place (put-in) or on the fork (take-out) and the fork back at z2; the program then clears the request, "
     "and not before the fork is back at z2, in step 6.\n"
     "Keep the crane safe: never drive an axis both ways, never drive an axis against an end stop; move X only "
-    "while the fork is at z2 or behind it, move Y inside the rack only with the fork fully in (z3), and move the "
-    "fork forward past z2 only while X and Y stand still on a sensor. Nothing may hit the rack, no part may fall "
+    "while the fork is at z2 or behind it; move Y inside the rack only with the fork fully in (z3) and only "
+    "between the two sensors of one row; move the fork forward past z2 only while X and Y stand still on a "
+    "sensor. Nothing may hit the rack, no part may fall "
     "and no place may get a second part.\n"
     "The operator works at the HMI, one request at a time: (for a put-in) puts a part on the fork wherever it "
     "waits in front of the rack, writes DATA.x and DATA.y (1.0 … 3.0), then sets one request, a few tenths of a "
@@ -180,6 +202,7 @@ EXERCISE = Exercise(
         # criterion 2
         never(all_of(X_DRIVEN, PAST_Z2)).named("X moves only while the fork is at z2 or behind it"),
         never(all_of(Y_DRIVEN, PAST_Z2, not_("z3"))).named("Y moves inside the rack only with the fork fully in"),
+        OneRowInRack().named("in the rack Y moves only between the two sensors of one row"),
         never(all_of("z_vpred", PAST_Z2, any_of(not_(X_CAM), not_(Y_CAM), X_DRIVEN, Y_DRIVEN))).named(
             "the fork goes forward past z2 only while X and Y stand still on a sensor"
         ),
@@ -243,6 +266,14 @@ EXERCISE = Exercise(
             scenarios=(POSE,),
         ),
     ],
+    spec_equivalent={
+        **{f"OB1: networks {a}_on_sensor and {a}_between swapped": HALF_STEP_LATE for a in "xyz"},
+        **{f"OB1: network {a}_on_sensor moved to the end": HALF_STEP_LATE for a in "xyz"},
+        **{f"OB1: network {a}_position moved to the end": POSITION_LATE for a in "xyz"},
+        **{f"OB1: network {a}_drive moved to the end": DRIVE_EARLY for a in "xyz"},
+        **{f"OB1: networks {a} and {b} swapped": STEP_LATE for a, b in itertools.pairwise(STEPS)},
+        **{f"OB1: network {a} moved to the end": STEP_LATE for a in STEPS[:4]},
+    },
     notes=(
         "Sensors: z1 back, z2 middle, z3 forward and odd y below a shelf, even y above it (text issue 11). The rig "
         "is kinematic (spec §5.9, about twice as fast): a drive switched off coasts speed × 20 ms, inside the ±6 mm "
