@@ -9,6 +9,9 @@ Figures:
   least) in ``ratio_to_s7``; ``load_1min`` is the machine's load when it was taken. Budget (issue 15):
   >= 50 k scans/s.
 * ``tecomat_assemble_ms`` -- assembling and linking the workload into a fresh controller.
+* ``tecomat_assemble_defs_data_ms`` -- assembling ``n`` ``#def`` constants and ``n`` ``#data`` items that
+  name them (issue 26: each item re-evaluated every ``#def`` before, quadratic); ``per_item_us`` at ``n``
+  and at ``n/4`` stay close when the assembler is linear.
 """
 
 from __future__ import annotations
@@ -66,3 +69,28 @@ def run(settings: Settings) -> Iterator[Figure]:
         times.append((time.perf_counter() - t0) * 1e3)
     times = sorted(times[1:])
     yield figure("tecomat_assemble_ms", round(times[0], 3), "ms", median=round(times[len(times) // 2], 3))
+    n = settings.size(20_000, 400)
+    small, large = _assemble_defs_data_ms(n // 4), _assemble_defs_data_ms(n)
+    yield figure(
+        "tecomat_assemble_defs_data_ms",
+        round(large, 1),
+        "ms",
+        defs=n,
+        items=n,
+        per_item_us=round(1e3 * large / n, 2),
+        per_item_us_at_quarter=round(1e3 * small / (n // 4), 2),
+    )
+
+
+def _assemble_defs_data_ms(n: int) -> float:
+    """The best of three assemblies of ``n`` #def constants and ``n`` #data items naming them, in ms."""
+    from plcsim.controllers.tecomat.assembler import assemble
+
+    source = "".join(f"#def KON{k} {k % 100}\n" for k in range(n))
+    source += "".join(f"#data byte TAB{k} = KON{k}, 1\n" for k in range(n)) + "LD X0.0\nWR Y0.0\n"
+    best = float("inf")
+    for _ in range(3):
+        t0 = time.perf_counter()
+        assemble(source, "defs.il")
+        best = min(best, (time.perf_counter() - t0) * 1e3)
+    return best

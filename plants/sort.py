@@ -33,8 +33,6 @@ from __future__ import annotations
 
 from typing import Any
 
-import pymunk
-
 from plants.components.bins import Bins
 from plants.components.colour_sensor import ColourSensor
 from plants.components.compressor import Compressor
@@ -69,6 +67,11 @@ class Sort(TopViewPlant):
     … Piest3_Farba3, Kompresor."""
 
     VERBS = {"set_ambient": SET_AMBIENT, "fail_compressor": FAIL_COMPRESSOR}
+    PART_PROPERTIES = {
+        **TopViewPlant.PART_PROPERTIES,
+        "colour": "1 white, 2 red, 3 blue: what the colour sensor reads (and the part is drawn in)",
+        "colour_raw": "the colour sensor's mean reading of the part, raw 0..27648 (instead of a colour)",
+    }
 
     def __init__(self, *, seed: int = 0) -> None:
         self.belt = TopBelt("D1", "D1_VPRED", (0.0, -HALF_WIDTH, BELT_LENGTH, HALF_WIDTH), speed=50.0)
@@ -129,11 +132,6 @@ class Sort(TopViewPlant):
         if colour in RGB:
             kw.setdefault("color", RGB[colour])
         return super().place(station, **kw)
-
-    def support_at(self, x: float, y: float) -> pymunk.Body:
-        """A part placed on the belt rides on it."""
-        x0, y0, x1, y1 = self.belt.area
-        return self.belt.body if x0 <= x <= x1 and y0 <= y <= y1 else self.space.static_body
 
     def set_ambient(self, name: str, offset: float = 0.0) -> None:
         """Condition (rig verb ``set_ambient``): ambient light adds ``offset`` raw units to the colour readings."""

@@ -6,6 +6,7 @@ packages, one per job, are drawn in ``docs/architecture.md``; the module paths o
 for one release (:mod:`plcsim.core.moved`).
 """
 
+import plcsim.core.startup  # noqa: F401 - first: `python -m plcsim` imports nothing from the current folder
 from plcsim.controllers.s7.cpu import CPU, RUN, STOP, CPUConfig
 from plcsim.core import moved
 from plcsim.core.errors import PlcError

@@ -33,6 +33,8 @@ PAGES = {
     ],
     "reference/exercise/index.html": ["Exercise", "IO", "Scenario", "place", "press", "after_event"],
     "reference/plant/index.html": ["Plant", "SignalSpec", "PlantEvent", "check_plant"],
+    "writing-a-rig/index.html": ["TopBelt", "class Reject(TopViewPlant)", "check-exercise", "one_of", "carrier_at"],
+    "reference/plants/index.html": ["TopViewPlant", "ZoneSensor", "Carrier", "Bins", "Piston", "rig_figure"],
     "reference/tecomat/index.html": ["TecomatCPU", "load_file", "set_input", "peek", "G36", "base-60"],
     "reference/grading/index.html": ["grade_sandboxed", "Limits", "Report", "write_junit", "PlcRun"],
     "reference/cli/index.html": ["usage: plcsim grade", "--cpu-seconds", "usage: plcsim reference", "Exit codes"],

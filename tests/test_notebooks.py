@@ -12,7 +12,13 @@ parallel. A notebook passes when
   file (``Path("out/01_scan_cycle.rrd")``), and the paths listed in its metadata under
   ``plcsim.outputs``, exist and are not empty after the run.
 
-The committed notebooks are kept clean: no outputs, no execution counts, kernelspec ``python3``.
+The notebooks are committed executed, so that a reader browsing the repository sees their figures: every
+code cell ran, in order, from a fresh kernel, without an error, and the outputs name no folder of the machine
+that ran them. After editing a notebook, store it executed again with
+
+    python tests/test_notebooks.py notebooks/05_edges.ipynb   # or no argument: every notebook
+
+which runs it exactly as the test does (a temporary working directory) and writes the outputs back.
 
 Timeouts allow for a slow machine and for nbclient's occasional 4 s wait on the iopub channel
 (see shared/background/pymunk-rerun-notes.md §4); each notebook is meant to run in well under 20 s.
@@ -101,14 +107,27 @@ def test_there_are_notebooks():
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=_ids)
-def test_notebook_is_committed_clean(path: Path):
+def test_notebook_is_committed_executed(path: Path):
     nb = nbformat.read(path, as_version=4)
-    dirty = [
-        i
-        for i, cell in enumerate(nb.cells)
-        if cell.cell_type == "code" and (cell.get("outputs") or cell.get("execution_count") is not None)
+    code = [cell for cell in nb.cells if cell.cell_type == "code"]
+    counts = [cell.get("execution_count") for cell in code]
+    assert counts == list(range(1, len(code) + 1)), (
+        f"{path.name}: not stored executed top to bottom (execution counts {counts}); "
+        f"run: python tests/test_notebooks.py notebooks/{path.name}"
+    )
+    outputs = [out for cell in code for out in cell.get("outputs", [])]
+    assert not [out for out in outputs if out.get("output_type") == "error"], f"{path.name}: stored with an error"
+    assert any("image/png" in out.get("data", {}) for out in outputs), f"{path.name}: stored without a figure"
+    text = "\n".join(  # what a reader sees as text (base64 images hold '/tmp' by chance)
+        str(out.get("text", "")) + "".join(str(v) for k, v in out.get("data", {}).items() if k.startswith("text/"))
+        for out in outputs
+    )
+    leaked = [
+        folder
+        for folder in (tempfile.gettempdir(), str(Path.home()), str(NOTEBOOKS[0].parent.parent))
+        if folder in text
     ]
-    assert not dirty, f"{path.name}: strip the outputs before committing (cells {dirty})"
+    assert not leaked, f"{path.name}: its outputs name folders of the machine that ran it: {leaked}"
     kernel = nb.metadata.get("kernelspec", {}).get("name")
     assert kernel == "python3", f"{path.name}: kernelspec is {kernel!r}, expected 'python3'"
 
@@ -140,3 +159,19 @@ def test_notebook_runs(path: Path, tmp_path: Path, record_property):
     assert not missing, f"{path.name}: promised files not written (or empty): {missing}"
 
     assert elapsed < NOTEBOOK_BUDGET_S, f"{path.name} took {elapsed:.0f} s (budget {NOTEBOOK_BUDGET_S} s)"
+
+
+def store_executed(paths: list[Path]) -> None:
+    """Execute each notebook as :func:`test_notebook_runs` does and write it back with its outputs."""
+    for path in paths:
+        with tempfile.TemporaryDirectory(prefix="nb-") as workdir:
+            nb, elapsed = execute(path.resolve(), Path(workdir))
+        nb.metadata.pop("widgets", None)
+        nbformat.write(nb, path)
+        print(f"{path.name}: stored executed ({elapsed:.1f} s)")
+
+
+if __name__ == "__main__":
+    import sys
+
+    store_executed([Path(arg) for arg in sys.argv[1:]] or NOTEBOOKS)

@@ -44,11 +44,13 @@ class Axis:
 
     Args:
         name: the axis (subject of its events).
-        lo, hi: the end stops.
+        lo: the lower end stop.
+        hi: the upper end stop.
         start: position after reset (default ``lo``).
         speed: travel speed in mm/s.
         tau_s: time constant of the speed response (0: instant).
-        plus, minus: the actuators driving toward ``hi`` and toward ``lo`` (either may be None).
+        plus: the actuator driving toward ``hi`` (may be None).
+        minus: the actuator driving toward ``lo`` (may be None).
         cams: limit switches along ``s`` (their names are the rig's sensors).
         docs: doc strings of the actuators.
         drawing: ``(x, y, dx, dy, width, length)`` — draw the carriage as a bar of that size whose reference point

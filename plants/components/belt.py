@@ -45,14 +45,17 @@ class Belt:
 
     Args:
         name: the belt's name (``D1``), also used as the subject of events on it.
-        x0, length, top: geometry in mm (side view, y up).
+        x0: where the belt starts (mm; side view, y up).
+        length: its length (mm).
+        top: the height of its top surface (mm).
         speed: nominal speed in mm/s.
         tau_s: time constant of the drive's speed response.
         friction: belt/part friction coefficient (pymunk multiplies the two shapes' values; parts use 1.0,
             so this is the pair's μ).
         reversible: whether a backward command (-1) is allowed (implied by a ``backward`` actuator).
         radius: segment radius (the belt's ends are rounded with it).
-        forward, backward: the actuators of the motor's two directions (None: not driven from the PLC).
+        forward: the actuator of the motor's forward direction (None: not driven from the PLC).
+        backward: the actuator of its backward direction (None: none).
         docs: doc strings of the actuators.
     """
 

@@ -1,7 +1,8 @@
 """Bins (magazines) beside a machine: zones that record every part that lands in them.
 
 A bin is a static sensor rectangle; a part that reaches it is **in** the bin: ``part in bin`` (subject: the
-bin, data: the part's properties worth grading, e.g. its ``colour``), once per part. The rig then takes the part
+bin, data: the part's properties the rig declares worth grading, ``report=``: by default ``colour`` and
+``colour_raw``; a rig whose parts are ``bad=True`` reports ``("bad",)``), once per part. The rig then takes the part
 out of the physics (it lies in the bin) with :meth:`Bins.landed`'s answer. ``contents`` keeps what each bin holds,
 in order, for the checks and the drawing.
 
@@ -15,14 +16,13 @@ in order, for the checks and the drawing.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from typing import Any
 
 import pymunk
 
 from plants.components import draw
-from plants.components.collide import BEAM_CAT, CT_BEAM, PART_CAT
-from plants.components.component import Host
+from plants.components.component import Host, zone
 from plants.components.sketch import Sketch
 from plcsim.plant import Drawable, SignalSpec
 
@@ -30,12 +30,20 @@ GRADED = ("colour", "colour_raw")
 
 
 class Bins:
-    """Named bins, each an axis-aligned rectangle (x0, y0, x1, y1) in mm."""
+    """Named bins, each an axis-aligned rectangle (x0, y0, x1, y1) in mm; ``report``: the part properties their
+    ``part in bin`` event carries (what ``event_data("part in bin", key)`` can grade)."""
 
     EVENTS = frozenset({"part in bin"})
 
-    def __init__(self, bins: Mapping[str, tuple[float, float, float, float]], *, name: str = "bins") -> None:
+    def __init__(
+        self,
+        bins: Mapping[str, tuple[float, float, float, float]],
+        *,
+        name: str = "bins",
+        report: Iterable[str] = GRADED,
+    ) -> None:
         self.name = name
+        self.report = tuple(report)
         self.bins = {k: tuple(float(v) for v in box) for k, box in bins.items()}
         self._sketch = Sketch(self._draw)
 
@@ -49,12 +57,9 @@ class Bins:
         self.contents: dict[str, list[str]] = {k: [] for k in self.bins}
         if host.space is not None:  # in a space: each bin is a sensor zone; a part touching it has landed there
             for k, (x0, y0, x1, y1) in self.bins.items():
-                shape = pymunk.Poly(host.space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
-                shape.sensor = True
-                shape.collision_type = CT_BEAM
-                shape.filter = pymunk.ShapeFilter(categories=BEAM_CAT, mask=PART_CAT)
-                shape.owner = _Zone(self, k)
-                host.space.add(shape)
+                zone(
+                    host, _Zone(self, k), pymunk.Poly(host.space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+                )
         return False
 
     def which(self, x: float, y: float) -> str | None:
@@ -69,7 +74,7 @@ class Bins:
         if any(pid in parts for parts in self.contents.values()):
             return
         self.contents[bin_name].append(pid)
-        host.emit("part in bin", bin_name, pid, **{k: props[k] for k in GRADED if k in props})
+        host.emit("part in bin", bin_name, pid, **{k: props[k] for k in self.report if k in props})
 
     def actuate(self, host: Host, signal: str, value: Any) -> bool:
         return False

@@ -18,8 +18,7 @@ from typing import Any
 import pymunk
 
 from plants.components import draw
-from plants.components.collide import BEAM_CAT, CT_BEAM, PART_CAT
-from plants.components.component import Host
+from plants.components.component import Host, zone
 from plants.components.sketch import Sketch
 from plcsim.plant import Drawable, SignalSpec
 
@@ -58,12 +57,7 @@ class ColourSensor:
     def reset(self, host: Host) -> bool:
         self.parts: dict[str, float] = {}  # covering parts -> their colour mean
         self.ambient = 0.0
-        shape = pymunk.Circle(host.space.static_body, self.radius, (self.x, self.y))
-        shape.sensor = True
-        shape.collision_type = CT_BEAM
-        shape.filter = pymunk.ShapeFilter(categories=BEAM_CAT, mask=PART_CAT)
-        shape.owner = self
-        host.space.add(shape)
+        zone(host, self, pymunk.Circle(host.space.static_body, self.radius, (self.x, self.y)))
         self.value = host.sensors[self.name] = self._clip(self.bare)
         return False
 

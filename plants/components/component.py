@@ -18,6 +18,13 @@ uses it; the base needs no change.
 * ``static_drawables()``, ``dynamic_drawables()``: its shapes (:class:`~plcsim.plant.Drawable`).
 
 What a component sees of its rig is the :class:`Host`.
+
+Two roles a top-view component may take on besides (:mod:`plants.components.top_view` relies on them):
+
+* a :class:`ZoneSensor` owns sensor shapes (made with :func:`zone`): the rig calls its ``enter(host, part)`` when a
+  part starts to touch one and ``leave(host, part_id)`` when it has left it (a light barrier, a bin, a belt's area);
+* a :class:`Carrier` carries the parts that lie on it: ``carrier_at(x, y)`` is the body a part placed at (x, y)
+  rests on (a belt's), or None. The rig ties a placed part to the first carrier that claims it, else to the table.
 """
 
 from __future__ import annotations
@@ -28,7 +35,7 @@ from typing import Any, Protocol, runtime_checkable
 import numpy as np
 import pymunk
 
-from plcsim.plant import Drawable, PlantEvent, SignalSpec
+from plcsim.plant import Drawable, PlantEvent, SignalSpec, missing_members
 
 
 class Host(Protocol):
@@ -77,6 +84,55 @@ class Component(Protocol):
     def dynamic_drawables(self) -> list[Drawable]: ...
 
 
+@runtime_checkable
+class ZoneSensor(Protocol):
+    """The owner of a sensor zone (:func:`zone`): told when a part enters and leaves it."""
+
+    def enter(self, host: Host, part: Any) -> None:
+        """A part (with ``id`` and ``props``) starts to touch the zone (called inside a physics step)."""
+
+    def leave(self, host: Host, pid: str) -> None:
+        """Part ``pid`` no longer touches the zone (or was removed from the rig)."""
+
+
+@runtime_checkable
+class Carrier(Protocol):
+    """A component parts ride on (a belt seen from above)."""
+
+    def carrier_at(self, x: float, y: float) -> pymunk.Body | None:
+        """The body a part placed at (x, y) rests on, or None if (x, y) is not on this component."""
+
+
+def zone(host: Host, owner: ZoneSensor, shape: pymunk.Shape) -> pymunk.Shape:
+    """Make ``shape`` a sensor zone of ``owner`` in the host's space: parts do not collide with it, and the top view
+    calls ``owner.enter``/``owner.leave`` as they touch it and leave it. Refuses an owner that cannot be told.
+
+    >>> z = zone(Bench(space=pymunk.Space()), object(), pymunk.Circle(None, 3.0))
+    Traceback (most recent call last):
+    TypeError: object lacks `enter`, `leave` of the zone-sensor protocol (plants.components.component.ZoneSensor)
+    """
+    lacking = missing_members(owner, ZoneSensor)
+    if lacking:
+        raise TypeError(
+            f"{_named(owner)} lacks {', '.join(f'`{m}`' for m in lacking)} of the zone-sensor protocol "
+            f"(plants.components.component.ZoneSensor)"
+        )
+    from plants.components.collide import BEAM_CAT, CT_BEAM, PART_CAT
+
+    shape.sensor = True
+    shape.collision_type = CT_BEAM
+    shape.filter = pymunk.ShapeFilter(categories=BEAM_CAT, mask=PART_CAT)
+    shape.owner = owner
+    host.space.add(shape)
+    return shape
+
+
+def _named(obj: Any) -> str:
+    """A component as an error names it: its class, and its name if it has one."""
+    name = getattr(obj, "name", None)
+    return f"{type(obj).__name__} {name!r}" if isinstance(name, str) else type(obj).__name__
+
+
 class Assembly:
     """The components of one rig and their bookkeeping: signals, actuator routing, the busy list, events, drawing.
 
@@ -90,8 +146,12 @@ class Assembly:
         self.components = list(components)
         self.owner: dict[str, Component] = {}
         for c in self.components:
-            if not isinstance(c, Component):
-                raise TypeError(f"{c!r} lacks members of the component protocol (plants.components.component)")
+            lacking = missing_members(c, Component)
+            if lacking:
+                raise TypeError(
+                    f"{_named(c)} lacks {', '.join(f'`{m}`' for m in lacking)} of the component protocol "
+                    f"(plants.components.component.Component)"
+                )
             for spec in c.specs():
                 if spec.name in self.owner:
                     raise ValueError(f"signal {spec.name} belongs to both {self.owner[spec.name].name} and {c.name}")
@@ -182,9 +242,9 @@ class Bench:
 
     name = "bench"
 
-    def __init__(self, dt_ns: int = 1_000_000, seed: int = 0) -> None:
+    def __init__(self, dt_ns: int = 1_000_000, seed: int = 0, *, space: pymunk.Space | None = None) -> None:
         self.dt_ns = dt_ns
-        self.space: Any = None
+        self.space: Any = space
         self.sensors: dict[str, Any] = {}
         self.events: list[PlantEvent] = []
         self.now_ns = 0

@@ -49,12 +49,15 @@ class Piston:
         stroke: the groove's length (mm): the mechanical end stop.
         full: the full working stroke (default ``stroke``): ``piston extended`` from ``full - 2 mm`` on.
         plate: (width across the stroke, thickness) of the pusher plate (mm).
-        extend_speed, retract_speed: mm/s.
-        force_n, spring_n: force limits out (at full pressure) and back (N).
+        extend_speed: mm/s out.
+        retract_speed: mm/s back.
+        force_n: the force limit out, at full pressure (N).
+        spring_n: the spring's force limit back (N).
         valve_s: valve switching delay (s).
         threshold: the fraction of full pressure below which it does not move out.
         supply: a callable giving the pressure fraction now (None: always full).
-        rear, front: optional end switches (their names become sensors).
+        rear: an optional end switch at the rear (its name becomes a sensor).
+        front: an optional end switch at the front.
     """
 
     EVENTS = frozenset({"piston extended", "piston retracted", "piston jammed"})

@@ -102,6 +102,8 @@ class SideViewPlant:
     """What the rig offers besides the core (its components may add more: a panel, the operator)."""
     VERBS: dict[str, RigVerb] = {}
     """The rig's own scenario verbs (a subclass adds to a copy of it)."""
+    PART_PROPERTIES: dict[str, str] = {"color": "the part's colour as drawn: (r, g, b), 0..255"}
+    """The properties a scenario may give a part (a rig adds to a copy of it)."""
 
     def __init__(
         self,

@@ -3,7 +3,8 @@
 There is no normal force in a top view, so ``surface_velocity`` does nothing; a part on the belt is tied to the
 belt's kinematic body by the top view's friction joints instead (pymunk notes §2a), so it rides at the belt speed and
 a piston can still push it sideways against that friction. The belt area is a sensor zone: a part that has left it
-completely (pushed off the side, carried off the end) is tied to the table instead and slides to a stop.
+completely (pushed off the side, carried off the end) is tied to the table instead and slides to a stop. Listed among
+a top-view rig's components, the belt carries the parts placed on it by itself (``carrier_at``).
 The drive is first order (τ), like the side-view belt.
 """
 
@@ -15,8 +16,7 @@ from typing import Any
 import pymunk
 
 from plants.components import draw
-from plants.components.collide import BEAM_CAT, CT_BEAM, PART_CAT
-from plants.components.component import Host
+from plants.components.component import Host, zone
 from plants.components.sketch import Sketch
 from plcsim.plant import Drawable, SignalSpec
 
@@ -52,13 +52,14 @@ class TopBelt:
         self.target = 0.0
         self.body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
         x0, y0, x1, y1 = self.area
-        zone = pymunk.Poly(host.space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
-        zone.sensor = True
-        zone.collision_type = CT_BEAM
-        zone.filter = pymunk.ShapeFilter(categories=BEAM_CAT, mask=PART_CAT)
-        zone.owner = self
-        host.space.add(self.body, zone)
+        host.space.add(self.body)
+        zone(host, self, pymunk.Poly(host.space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]))
         return False
+
+    def carrier_at(self, x: float, y: float) -> pymunk.Body | None:
+        """A part placed on the belt's area rides on the belt (the :class:`Carrier` protocol)."""
+        x0, y0, x1, y1 = self.area
+        return self.body if x0 <= x <= x1 and y0 <= y <= y1 else None
 
     def enter(self, host: Any, part: Any) -> None:
         """A part touches the belt area (it rides on the belt once it is placed there)."""

@@ -6,9 +6,13 @@
   a ``GearJoint`` with ``max_force = μ·m·g·r`` (r = (length + depth)/6, about the mean lever arm of a uniformly
   loaded rectangle). A pushed part slides and stops as on a real table.
 * **Parts** are blocks ``length × depth`` (the :class:`~plants.components.workpiece.WorkpieceSpec`, seen from
-  above). Spot sensors (:class:`SpotSensor`, a colour sensor) are sensor shapes: pymunk's ``begin``/``separate``
-  call their ``enter(host, part)`` / ``leave(host, part_id)``, which update the sensors (``part entered`` /
-  ``part left`` events); nothing is queried per step.
+  above). Spot sensors (:class:`SpotSensor`, a colour sensor), bins and a belt's area are sensor zones
+  (:func:`~plants.components.component.zone`, the :class:`~plants.components.component.ZoneSensor` protocol):
+  pymunk's ``begin``/``separate`` call their owner's ``enter(host, part)`` / ``leave(host, part_id)``, which update
+  the sensors (``part entered`` / ``part left`` events); nothing is queried per step.
+* **Belts** carry parts by themselves: a placed part rests on the first component that claims the spot with
+  ``carrier_at(x, y)`` (the :class:`~plants.components.component.Carrier` protocol; a
+  :class:`~plants.components.top_belt.TopBelt`), else on the table.
 * **Components** (piston, fence, sensors) plug in through :mod:`plants.components.component`; the rig steps the
   busy ones before each physics step.
 * **C step.** The space is stepped with ``cpSpaceStep`` (:mod:`plants.components.chipmunk`), so nothing may add
@@ -28,8 +32,8 @@ import numpy as np
 import pymunk
 
 from plants.components import chipmunk, draw
-from plants.components.collide import BEAM_CAT, CT_BEAM, CT_PART, PART_CAT, STOP_CAT
-from plants.components.component import Assembly, Component
+from plants.components.collide import CT_BEAM, CT_PART, PART_CAT, STOP_CAT
+from plants.components.component import Assembly, Carrier, Component, ZoneSensor, zone
 from plants.components.sketch import Sketch
 from plants.components.workpiece import WorkpieceSpec
 from plcsim.plant import (
@@ -80,12 +84,19 @@ class TopPart:
 
 
 class SpotSensor:
-    """A reflex or through-beam sensor seen from above: True while a part covers its spot (a circle)."""
+    """A reflex or through-beam sensor seen from above: True while a part covers its spot (a circle).
+
+    ``sees``: the part property it detects (an inspection sensor, ``sees="bad"``): it is True only while a part whose
+    property is truthy covers the spot, and the others pass unseen (no event either). Default: every part.
+    """
 
     EVENTS = frozenset({"part entered", "part left"})
 
-    def __init__(self, name: str, x: float, y: float, radius: float = 3.0, doc: str = "") -> None:
+    def __init__(
+        self, name: str, x: float, y: float, radius: float = 3.0, doc: str = "", *, sees: str | None = None
+    ) -> None:
         self.name, self.x, self.y, self.radius, self.doc = name, float(x), float(y), float(radius), doc
+        self.sees = sees
         self._sketch = Sketch(self._draw)
 
     def specs(self) -> list[SignalSpec]:
@@ -102,13 +113,7 @@ class SpotSensor:
         return False
 
     def _attach(self, host: Any) -> None:
-        shape = self._sensing_shape(host.space.static_body)
-        shape.sensor = True
-        shape.collision_type = CT_BEAM
-        shape.filter = pymunk.ShapeFilter(categories=BEAM_CAT, mask=PART_CAT)
-        shape.owner = self
-        host.space.add(shape)
-        self.shape = shape
+        self.shape = zone(host, self, self._sensing_shape(host.space.static_body))
 
     def _sensing_shape(self, body: pymunk.Body) -> pymunk.Shape:
         """The sensor's area: a spot of ``radius`` (a :class:`Beam` is a line across the belt)."""
@@ -116,6 +121,8 @@ class SpotSensor:
 
     def enter(self, host: Any, part: TopPart) -> None:
         pid = part.id
+        if self.sees is not None and not part.props.get(self.sees):
+            return
         if pid not in self.parts:
             self.parts[pid] = None
             host.sensors[self.name] = True
@@ -217,6 +224,8 @@ class TopViewPlant:
     view = "top"
     CAPABILITIES = frozenset({PARTS, QUIESCENCE, SENSOR_SHIFT, OBSERVABLES})
     VERBS: dict[str, RigVerb] = {}
+    PART_PROPERTIES: dict[str, str] = {"color": "the part's colour as drawn: (r, g, b), 0..255"}
+    """The properties a scenario may give a part (a rig adds to a copy of it)."""
     PART_EVENTS = frozenset({"part placed", "part removed"})
 
     def __init__(
@@ -279,6 +288,19 @@ class TopViewPlant:
         self._cp_step, self._cp_space = chipmunk.stepper(self.space)
         self._fresh = True  # a body was added: pymunk's own step checks it once
         self.assembly.reset(self)
+        self._check_zones()
+
+    def _check_zones(self) -> None:
+        """Refuse a sensor shape the collision callbacks could not report to (made without :func:`zone`)."""
+        for shape in self.space.shapes:
+            if shape.collision_type == CT_BEAM and not isinstance(getattr(shape, "owner", None), ZoneSensor):
+                owner = getattr(shape, "owner", None)
+                what = "no owner" if owner is None else f"the owner {type(owner).__name__}, which lacks enter/leave"
+                raise TypeError(
+                    f"{self.name}: a sensor zone in the space has {what}; make sensor zones with "
+                    f"plants.components.zone(host, owner, shape), the owner having enter(host, part) and "
+                    f"leave(host, part_id) (the ZoneSensor protocol)"
+                )
 
     def quiescent(self) -> bool:
         """True when nothing moves and no component is busy: a step only advances the clock."""
@@ -362,7 +384,12 @@ class TopViewPlant:
         return part
 
     def support_at(self, x: float, y: float) -> pymunk.Body:
-        """The body a part placed at (x, y) rests on: the table here; a rig with a belt gives the belt's."""
+        """The body a part placed at (x, y) rests on: the first carrier's that claims it (a belt), else the table's."""
+        for c in self.assembly.components:
+            if isinstance(c, Carrier):
+                body = c.carrier_at(x, y)
+                if body is not None:
+                    return body
         return self.space.static_body
 
     def support(self, pid: str, body: pymunk.Body) -> None:

@@ -7,6 +7,8 @@
     plcsim grade 4.3.7 my_alarm.py --json out/report.json --junit out/report.xml
     plcsim grade 4.3.7 submissions/ --jobs 2 --gradebook out/grades.csv --junit out/grades.xml
     plcsim mutate 4.3.7 --seeds 3 --jobs 2 --json out/mutants.json
+    plcsim check-exercise my_course/runon.py --seeds 3
+    plcsim draw SORT -o out/sort.png
 
 Exit codes: 0 every check passed, 1 a submission failed (or did not run), 2 a usage error,
 3 a grade is void because of the grader or the exercise (a check that raised).
@@ -81,7 +83,8 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument(
         "--scenario",
         metavar="NAME",
-        help="which scenario of the exercise (default: the first), or a saved live session (.toml, .py)",
+        help="which scenario of the exercise (default: the first), or a saved live session: .toml, or .py (a .py "
+        "file is run as Python: trusted code only, like an exercise file; prefer .toml for a page's or a student's)",
     )
     run.add_argument("--seconds", type=float, metavar="N", help="simulated seconds (default: the scenario's)")
     run.add_argument("--seed", type=int, help="seed of placement noise and timing (default 1, or the saved session's)")
@@ -95,7 +98,9 @@ def _parser() -> argparse.ArgumentParser:
     )
     run.add_argument("--rrd", metavar="OUT.rrd", help="write a rerun recording (open it with: rerun OUT.rrd)")
     run.add_argument("--plot", metavar="OUT.png", help="write a timing diagram of the run")
-    run.add_argument("--trace", metavar="OUT.npz", help="write the trace as numpy columns")
+    run.add_argument(
+        "--trace", metavar="OUT.npz", help="write the trace as named numpy columns: np.load(F)['table']['S1']"
+    )
     run.add_argument("--signals", metavar="A,B,C", help="signals for --plot (default: inputs and outputs)")
     run.add_argument("--spawn-viewer", action="store_true", help="open the rerun viewer on the recording")
     run.add_argument("--cycle", metavar="TIME", help="OB1 cycle time, e.g. 1ms or 100ms (overrides the exercise)")
@@ -148,7 +153,27 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("-v", "--verbose", action="store_true", help="also show why passed checks passed")
     _add_mutate_parser(sub)
     _add_live_parser(sub)
+    _add_instructor_parsers(sub)
     return p
+
+
+def _add_instructor_parsers(sub: Any) -> None:
+    checker = sub.add_parser(
+        "check-exercise",
+        help="check an exercise's own programs: the reference passes on every seed, each wrong one fails its fails=",
+        description="Grade every program an exercise ships on seeds 1..N (in this process: they are the "
+        "instructor's): the reference and the correct alternatives must pass every check on every seed, each wrong "
+        "solution must fail the checks its fails= names. Exit code 1 if one does not; run it on a course in CI.",
+    )
+    checker.add_argument("exercise", nargs="+", help="exercise files, folders of them, numbers or slugs")
+    checker.add_argument("--seeds", type=int, default=3, metavar="N", help="grade on seeds 1..N (default 3)")
+    drawer = sub.add_parser(
+        "draw",
+        help="draw a rig (or an exercise's rig) as a PNG: its layout, the drawing the recordings use",
+        description="Draw a rig at rest, as the recordings draw it: belts, sensors, pistons, bins, stations.",
+    )
+    drawer.add_argument("rig", help=f"a rig ({', '.join(rig_names()) or 'none'}) or an exercise (number, file)")
+    drawer.add_argument("-o", "--output", metavar="OUT.png", required=True, help="the PNG to write")
 
 
 def _add_live_parser(sub: Any) -> None:
@@ -163,7 +188,11 @@ def _add_live_parser(sub: Any) -> None:
     live.add_argument("--scenario", metavar="NAME", help="start from this scenario of the exercise (default: none)")
     live.add_argument("--seed", type=int, default=1, help="seed of placement noise and timing (default 1)")
     live.add_argument("--port", type=int, default=8765, help="local port of the page (default 8765; 0: any free one)")
-    live.add_argument("--save-scenario", metavar="OUT.toml|OUT.py", help="save the session as a scenario here")
+    live.add_argument(
+        "--save-scenario",
+        metavar="OUT.toml|OUT.py",
+        help="save the session as a scenario here (.toml replays exactly; .py is Python, run by `plcsim run`)",
+    )
     live.add_argument("--rrd", metavar="OUT.rrd", help="write the session's rerun recording when it ends")
     live.add_argument(
         "--speed", default="1", metavar="X", help="simulated s per wall s, 0.1 ... 10, or max (default 1)"
@@ -207,13 +236,18 @@ def main(argv: list[str] | None = None) -> int:
             "grade": _grade,
             "mutate": _mutate,
             "live": _live,
+            "check-exercise": _check_exercise,
+            "draw": _draw,
         }
         return commands[args.command](args)
     except PlcError as exc:
         from rich.console import Console
         from rich.text import Text
 
-        Console(stderr=True).print(Text.assemble(("error:", "bold red"), f" {exc}"), highlight=False)
+        from plcsim.core.untrusted_text import for_terminal
+
+        shown = for_terminal(str(exc), newlines=True)  # it may quote a program's text
+        Console(stderr=True).print(Text.assemble(("error:", "bold red"), f" {shown}"), highlight=False)
         return EXIT_USAGE
 
 
@@ -262,10 +296,12 @@ def _reference(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     from rich.console import Console
+    from rich.markup import escape
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
     from rich.text import Text
 
     from plcsim.check import evaluate_all
+    from plcsim.core.untrusted_text import for_terminal
     from plcsim.frontends import read_program
     from plcsim.grading.terminal import print_run_summary
 
@@ -332,7 +368,7 @@ def _run(args: argparse.Namespace) -> int:
     if saved is not None:  # the live page shows the same digest for the same session
         console.print(f"seed {args.seed}, trace digest {sim.trace.digest()[:16]}")
     if error is not None:
-        console.print(Text.assemble(("the run stopped:", "bold red"), f" {error}"))
+        console.print(Text.assemble(("the run stopped:", "bold red"), f" {for_terminal(str(error), newlines=True)}"))
     if args.rrd:
         path = Path(args.rrd)
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -367,17 +403,29 @@ def _run(args: argparse.Namespace) -> int:
     _print_verdicts(results, console)
     console.print(
         f"[bold]{points:g} / {total:g}[/] points, {passed}/{len(results)} checks passed  "
-        f"(grade every scenario with: plcsim grade {exercise.number} FILE.py)"
+        f"(grade every scenario with: plcsim grade {escape(_as_typed(args.target))} FILE.py)"
     )
     return 0 if passed == len(results) else EXIT_FAILED
 
 
+def _as_typed(name: str) -> str:
+    """An exercise as the user named it, quoted for a shell: the form a hint repeats (a file-loaded exercise's
+    number is not found by number)."""
+    import shlex
+
+    return shlex.quote(name)
+
+
 def _print_verdicts(results: list[Any], console: Any) -> None:
+    from rich.text import Text
+
+    from plcsim.core.untrusted_text import for_terminal
+
     for check, verdict in results:
-        mark = "[green]✓[/]" if verdict.passed else "[red]✗[/]"
-        console.print(
-            f"  {mark} {check.title}" + ("" if verdict.passed else f"\n      {verdict.message}"), highlight=False
-        )
+        mark = ("✓", "green") if verdict.passed else ("✗", "red")
+        message = for_terminal(verdict.message, newlines=True).replace("\n", "\n      ")
+        said = "" if verdict.passed else f"\n      {message}"
+        console.print(Text.assemble("  ", mark, f" {for_terminal(check.title)}{said}"), highlight=False)
 
 
 def _rig_simulation(args: argparse.Namespace, scenario: Any = None) -> Any:
@@ -395,9 +443,18 @@ def _saved_scenario(args: argparse.Namespace) -> Any:
         return None
     from plcsim.apps.live.build import Target
     from plcsim.apps.live.recording import load_scenario_file
+    from plcsim.core.literals import format_ns
 
     base = None if is_rig(args.target) else _exercise_scenario(args.target)
-    scenario, seed = load_scenario_file(args.scenario, base=base, rig_verbs=Target.find(args.target).verbs())
+    target = Target.find(args.target)
+    scenario, seed = load_scenario_file(args.scenario, base=base, rig_verbs=target.verbs())
+    limit = target.replay_limit_ns()
+    if args.seconds is None and scenario.duration_ns > limit:  # a file must not make the run go on without bound
+        raise PlcError(
+            f"{args.scenario}: the scenario lasts {format_ns(scenario.duration_ns)}; a saved scenario on "
+            f"{target.name} may last {format_ns(limit)} (an hour, or the exercise's longest scenario); "
+            f"run it for N seconds with --seconds N"
+        )
     args.seed = args.seed if args.seed is not None else (seed if seed is not None else 1)
     return scenario
 
@@ -488,14 +545,14 @@ def _grade(args: argparse.Namespace) -> int:
             out = Path(args.json)
             out.mkdir(parents=True, exist_ok=True)
             for r in reports:
-                r.to_json(out / f"{r.student}.json")
+                r.to_json(out / f"{r.file_stem}.json")
         if args.junit:
             Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
             write_junit(reports, args.junit, name=f"plcsim {exercise.number}")
             console.print(f"JUnit report: {args.junit}", markup=False)
         if args.gradescope:
             for r in reports:
-                write_gradescope(r, Path(args.gradescope) / r.student / "results.json", visibility=visibility)
+                write_gradescope(r, Path(args.gradescope) / r.file_stem / "results.json", visibility=visibility)
             console.print(f"Gradescope results: {args.gradescope}/<student>/results.json", markup=False)
         return _exit_code(reports)
     if args.no_sandbox:
@@ -586,6 +643,52 @@ def _exit_code(reports: list[Any]) -> int:
     if any(r.grader_failed for r in reports):
         return EXIT_GRADER
     return 0 if all(r.passed for r in reports) else EXIT_FAILED
+
+
+def _check_exercise(args: argparse.Namespace) -> int:
+    from rich.console import Console
+    from rich.text import Text
+
+    from plcsim.apps.check_exercise import check_exercise, print_exercise_check
+    from plcsim.exercise.catalog import get, is_path, load_path
+
+    if args.seeds < 1:
+        raise PlcError("--seeds must be at least 1")
+    console = Console()
+    exercises, broken = [], []
+    for name in args.exercise:
+        if is_path(name):
+            loaded, unloaded = load_path(name)
+            exercises += loaded
+            broken += unloaded
+        else:
+            exercises.append(get(name))
+    for bad in broken:
+        console.print(Text.assemble(("not loaded: ", "bold red"), str(bad)))
+    seeds = range(1, args.seeds + 1)
+    ok = not broken
+    for exercise in exercises:
+        results = check_exercise(exercise, seeds)
+        print_exercise_check(exercise, results, console)
+        ok = ok and all(r.ok for r in results)
+    return 0 if ok else EXIT_FAILED
+
+
+def _draw(args: argparse.Namespace) -> int:
+    from plcsim.trace.drawing import save_rig_drawing
+
+    if is_rig(args.rig):
+        plant = rig(args.rig)()
+    else:
+        from plcsim.exercise.catalog import get
+
+        exercise = get(args.rig)
+        if exercise.rig is None:
+            raise PlcError(f"exercise {exercise.number} has no rig to draw (it runs on the CPU alone)")
+        plant = exercise.rig()
+    Path(args.output).parent.mkdir(parents=True, exist_ok=True)
+    print(f"drawing of {plant.name}: {save_rig_drawing(plant, args.output)}")
+    return 0
 
 
 def _mutate(args: argparse.Namespace) -> int:

@@ -46,6 +46,8 @@ from typing import Any
 
 import pytest
 
+from plcsim.core.untrusted_text import for_terminal
+
 __all__ = ["PlcRun", "SubmissionError"]
 
 
@@ -89,9 +91,8 @@ class PlcRun:
             lines = [f"{c.title}: {v.message}" for c, v in failed]
             if self.cpu_error:
                 lines.append(f"(the CPU stopped: {self.cpu_error})")
-            raise AssertionError(
-                f"{self.program.name}, scenario {self.scenario!r}, seed {self.seed}:\n  " + "\n  ".join(lines)
-            )
+            said = f"{self.program.name}, scenario {self.scenario!r}, seed {self.seed}:\n  " + "\n  ".join(lines)
+            raise AssertionError(for_terminal(said, newlines=True))
 
 
 # -- options and fixtures -----------------------------------------------------------------------------------
@@ -298,7 +299,9 @@ def _run_one(ex: Any, path: Path, scenario: str, seed: int, confined: bool, limi
 
             outcome = run_child(ex, path, seed, [ex.scenario(scenario)], limits or Limits())
             if outcome.kind is not None:
-                return SubmissionError(f"{path.name} did not run ({outcome.kind}): {outcome.message}")
+                return SubmissionError(
+                    for_terminal(f"{path.name} did not run ({outcome.kind}): {outcome.message}", newlines=True)
+                )
             (result,) = outcome.runs
             notes = list(outcome.notes)
         else:
@@ -307,7 +310,7 @@ def _run_one(ex: Any, path: Path, scenario: str, seed: int, confined: bool, limi
             (result,), _ = run_scenarios(ex, read_program(path), seed=seed, scenarios=[scenario])
             notes = []
     except PlcError as exc:
-        return SubmissionError(f"{path.name} did not run ({load_error_kind(exc)}): {exc}")
+        return SubmissionError(for_terminal(f"{path.name} did not run ({load_error_kind(exc)}): {exc}", newlines=True))
     return PlcRun(
         ex,
         result.scenario,
@@ -339,7 +342,7 @@ def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config
         exercise = _exercise(name)
         for program in programs:
             for seed in _seeds(config):
-                label = f"plcsim {exercise.number} {program.stem} seed {seed}"
+                label = f"plcsim {exercise.number} {for_terminal(program.stem)} seed {seed}"
                 items.extend(
                     ExerciseGrade.from_parent(
                         session, name=label, exercise=exercise, program=program, seed=seed
@@ -388,10 +391,11 @@ class CheckItem(pytest.Item):
     def runtest(self) -> None:
         report = self.parent.report()  # type: ignore[union-attr]
         if report.error is not None:
-            raise CheckError(f"{report.submission} did not run ({report.error_kind}): {report.error}")
+            said = f"{report.submission} did not run ({report.error_kind}): {report.error}"
+            raise CheckError(for_terminal(said, newlines=True))
         result = report.result(self.check, self.scenario)
         if not result.passed:
-            raise CheckError(f"{result.status}: {result.message}")
+            raise CheckError(for_terminal(f"{result.status}: {result.message}", newlines=True))
 
     def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> str:
         if isinstance(excinfo.value, CheckError):

@@ -92,13 +92,16 @@ class Context:
 
 @dataclass
 class Verdict:
-    """The result of one check."""
+    """The result of one check. ``nothing_to_check``: it failed because the run gave it nothing to check (no
+    trigger, nothing to measure), which a wrong program can cause and a scenario that cannot show the behaviour
+    too; the grade says how to apply the check only where it applies (``only(...)``)."""
 
     passed: bool
     message: str
     at_ns: int | None = None
     signals: list[str] = field(default_factory=list)
     window: tuple[int, int] | None = None
+    nothing_to_check: bool = False
 
 
 @dataclass(frozen=True)

@@ -273,6 +273,7 @@ class Response(Check):
                 f"that {self.describe()}; it happened {len(triggers)} time(s)",
                 None,
                 signals,
+                nothing_to_check=True,
             )
         answers = self.response.times(ctx)
         lo, hi = self.lo.resolve(ctx.scan_ns), self.hi.resolve(ctx.scan_ns)

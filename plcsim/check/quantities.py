@@ -79,7 +79,8 @@ class Quantity(Check):
         values, at = result
         items = values if isinstance(values, list) else [values]
         if not items or items == [None]:
-            return Verdict(False, f"expected {self.describe()}; there was nothing to measure", None, self.sources)
+            message = f"expected {self.describe()}; there was nothing to measure"
+            return Verdict(False, message, None, self.sources, nothing_to_check=True)
         for k, v in enumerate(items):
             if v is None or (lo is not None and v < lo) or (hi is not None and v > hi):
                 when = at[k] if k < len(at) else None

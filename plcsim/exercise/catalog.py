@@ -16,6 +16,7 @@ import importlib
 import importlib.util
 import pkgutil
 import re
+import shlex
 import sys
 import traceback
 from dataclasses import dataclass
@@ -242,6 +243,18 @@ def get(name: str) -> Exercise:
     )
 
 
+def command_name(exercise: Exercise) -> str:
+    """How a command names ``exercise`` so that it is found again: its number if it is registered, else its file
+    (relative to the working directory when it lies below it), quoted for a shell. A hint such as "grade it with
+    plcsim grade ..." repeats it: the number of an exercise loaded from a file finds nothing."""
+    if any(e is exercise for e in all_exercises()):
+        return exercise.number
+    file = Path(exercise.defined_at.rpartition(":")[0]).resolve()
+    if file.is_relative_to(Path.cwd()):
+        file = file.relative_to(Path.cwd())
+    return shlex.quote(file.as_posix())
+
+
 def _by_path(name: str) -> Exercise:
     exercises, broken = load_path(name)
     if broken:
@@ -252,4 +265,13 @@ def _by_path(name: str) -> Exercise:
     return exercises[0]
 
 
-__all__ = ["BrokenExercise", "all_exercises", "broken_exercises", "get", "is_path", "load_package", "load_path"]
+__all__ = [
+    "BrokenExercise",
+    "all_exercises",
+    "broken_exercises",
+    "command_name",
+    "get",
+    "is_path",
+    "load_package",
+    "load_path",
+]

@@ -132,12 +132,18 @@ class Exercise:
     notes: str = ""
     plant_name: str = ""
     spec_equivalent: Mapping[str, str] = field(default_factory=dict)
+    cpu_budget_s: float | None = None
+    """The CPU seconds a graded submission may use in all scenarios together; None (the default): ten times
+    what the reference uses, measured once per batch, at least 10 s (:mod:`plcsim.grading.sandbox.limits`)."""
 
     def __post_init__(self) -> None:
         self.defined_at = defined_at()
         for mutant, reason in self.spec_equivalent.items():
             if not (isinstance(reason, str) and reason.strip()):
                 raise ExerciseError(f"{self.defined_at}: spec_equivalent[{mutant!r}] needs the reason it is correct")
+        budget = self.cpu_budget_s
+        if budget is not None and (isinstance(budget, bool) or not isinstance(budget, int | float) or not budget > 0):
+            raise ExerciseError(f"{self.defined_at}: cpu_budget_s is a positive number of seconds, not {budget!r}")
         self.checks = [c if isinstance(c, GradedCheck) else GradedCheck(c) for c in self.checks]
         validate(self)
 

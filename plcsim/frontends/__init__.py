@@ -22,7 +22,7 @@ from pathlib import Path
 
 from plcsim.controllers.loaded import SourceProgram
 from plcsim.core import registry
-from plcsim.core.errors import ProgramError
+from plcsim.core.errors import ProgramError, ProgramFileError
 
 Reader = Callable[[Path], SourceProgram]
 DEFAULT_PROFILE = "s7-1200"
@@ -100,7 +100,11 @@ def read_program(path: str | Path) -> SourceProgram:
     if front is None:
         known = ", ".join(sorted(suffixes()))
         raise ProgramError(f"{path}: no front end reads {path.suffix or 'files without a suffix'}; use {known}")
-    return front.read(path)
+    try:
+        return front.read(path)
+    except UnicodeDecodeError as exc:  # another package's reader: still the file's fault, named as such
+        why = f"{path}: this file is not text in {exc.encoding} (byte {exc.start}: {exc.reason})"
+        raise ProgramFileError(f"{why}; save it as {exc.encoding}") from None
 
 
 def _read_python(path: Path) -> SourceProgram:

@@ -32,12 +32,10 @@ class IlProgram:
     def from_file(cls, path: str | Path) -> IlProgram:
         path = Path(path)
         try:
-            text = path.read_text(encoding="utf-8")
-        except UnicodeDecodeError:
-            text = path.read_text(encoding="cp1250")  # the manual's Czech Windows code page
+            data = path.read_bytes()
         except OSError as exc:
             raise ProgramFileError(f"{path}: cannot read the program: {exc.strerror}") from None
-        return cls(text, str(path))
+        return cls(decode_il(data, str(path)), str(path))
 
     def controller(self, tags: TagTable | Mapping[str, Any] | None = None, **options: Any) -> Any:
         """A Tecomat CPU running this program, its symbols bound to the I/O table ``tags``."""
@@ -80,6 +78,32 @@ class IlProgram:
 
     def link(self, target: Any) -> Any:
         return self.declare_into(target.table)
+
+
+def decode_il(data: bytes, filename: str) -> str:
+    """An ``.il`` file's text: UTF-8, or else cp1250 (the manual's Czech Windows code page); a file that is
+    neither is a ProgramFileError naming the file and the first byte cp1250 does not have.
+
+    >>> try:
+    ...     decode_il(b"LD X0.0 ; \\x81", "lab.il")
+    ... except ProgramFileError as exc:
+    ...     print(str(exc).replace("; ", ";\\n"))
+    lab.il, line 1: this file is not text in UTF-8 or cp1250 (byte 0x81 in column 11);
+    save it as UTF-8
+    """
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        pass
+    try:
+        return data.decode("cp1250")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        column = exc.start - (data.rfind(b"\n", 0, exc.start) + 1) + 1
+        raise ProgramFileError(
+            f"{filename}, line {line}: this file is not text in UTF-8 or cp1250 (byte 0x{data[exc.start]:02x} in "
+            f"column {column}); save it as UTF-8"
+        ) from None
 
 
 AREAS = {"I": "X", "Q": "Y", "M": "R"}

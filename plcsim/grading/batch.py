@@ -22,8 +22,9 @@ from typing import Any
 from plcsim.core import version
 from plcsim.core.errors import ConfigurationError
 from plcsim.exercise.model import Exercise
+from plcsim.grading.budget import fitted_limits
 from plcsim.grading.grader import grade_sandboxed
-from plcsim.grading.report import Report
+from plcsim.grading.report import Report, file_stem
 from plcsim.grading.run import chosen_scenarios
 from plcsim.grading.sandbox.limits import Limits
 from plcsim.grading.scoring import failure_report
@@ -33,8 +34,9 @@ EXPORT_DIRS = ("rrd_dir", "plots_dir", "traces_dir")
 
 
 def per_student(folder: str | Path | None, submission: Path) -> Path | None:
-    """A student's own folder below ``folder`` (named like the submission's file, without ``.py``)."""
-    return None if folder is None else Path(folder) / (submission.stem or "submission")
+    """A student's own folder below ``folder`` (named like the submission's file, without ``.py``; never
+    outside ``folder``: see :func:`~plcsim.grading.report.file_stem`)."""
+    return None if folder is None else Path(folder) / file_stem(submission)
 
 
 @dataclass(frozen=True)
@@ -101,6 +103,7 @@ def grade_batch(
     seed: int = 1,
     limits: Limits | None = None,
     progress: Callable[[int, int, Report], None] | None = None,
+    budget: bool = True,
     **options: Any,
 ) -> list[Report]:
     """Grade many submissions, each in its own confined child process, through ``executor``.
@@ -113,7 +116,10 @@ def grade_batch(
     called as each finishes. The trusted probe runs once per scenario for the whole batch.
 
     Recordings, traces and diagrams (``rrd_dir``, ``traces_dir``, ``plots_dir``) go into one folder per
-    student below the folder given (``out/alice/led-1-alice-presses.rrd``)."""
+    student below the folder given (``out/alice/led-1-alice-presses.rrd``).
+
+    ``budget``: stop each submission at the exercise's CPU budget, fitted to its reference's cost
+    (measured once here, :mod:`plcsim.grading.budget`): one over it is ``too slow``, not a time limit."""
     from plcsim.grading.executors import open_executor
     from plcsim.grading.sandbox.probes import Probes
 
@@ -123,6 +129,9 @@ def grade_batch(
         probes = Probes.of(exercise, chosen_scenarios(exercise, options.get("scenarios")), seed)
     except Exception:  # noqa: BLE001 - the exercise's mistake: each task probes again and reports it
         probes = None
+    if budget:
+        chosen = options.get("scenarios")
+        limits = fitted_limits(exercise, limits or Limits(), seed=seed, scenarios=chosen)
     opened = open_executor(executor, jobs=jobs) if isinstance(executor, str) else contextlib.nullcontext(executor)
     with opened as pool:
         target = exercise if isinstance(pool, ThreadPoolExecutor) else ExerciseRef.of(exercise)

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -27,7 +28,7 @@ from plcsim.frontends.python.program import Program
 from plcsim.grading.export import export
 from plcsim.grading.report import Report
 from plcsim.grading.run import chosen_scenarios, load_error_kind, run_scenarios
-from plcsim.grading.sandbox.limits import Limits
+from plcsim.grading.sandbox.limits import Budget, Limits
 from plcsim.grading.scoring import evaluate, failure_report
 
 
@@ -80,6 +81,8 @@ def grade_sandboxed(
     from plcsim.grading.sandbox.parent import DEFAULT_ENTRY, run_child
 
     limits = limits or Limits()
+    if limits.budget is None and exercise.cpu_budget_s is not None:  # the exercise's own; a batch fits one
+        limits = replace(limits, budget=Budget.of_exercise(exercise.cpu_budget_s))
     started = time.perf_counter()
     report = Report(exercise.number, exercise.title, str(path), seed=seed)
     try:

@@ -1,8 +1,10 @@
 """The grade of a submission as data, and its files: JSON, JUnit XML, the gradebook CSV.
 
 A report is built by the grader (:mod:`plcsim.grading.scoring`) from checks it ran itself; nothing in it
-comes from a submission except texts (messages, file names), which every writer here treats as
-data: JUnit escapes them as XML, the CSV neutralises cells a spreadsheet would run as a formula.
+comes from a submission except texts (messages, file names, the labels an error echoes), which every
+writer here passes through :mod:`plcsim.core.untrusted_text` for its medium: JUnit gets only characters
+XML 1.0 allows, with control and format characters as visible escapes; the gradebook gets one line per
+cell, escaped, never a formula; JSON gets the text as it is, as valid UTF-8.
 """
 
 from __future__ import annotations
@@ -16,6 +18,8 @@ from typing import Any
 from xml.etree import ElementTree as ET
 
 from plcsim.core import version
+from plcsim.core.untrusted_text import for_csv, for_json, for_xml, visible
+from plcsim.core.untrusted_text import spreadsheet_safe as spreadsheet_safe  # the formula guard, still here
 
 SCHEMA_VERSION = 3
 """Version of the JSON report's layout (2: ``schema_version``, ``plcsim_version`` and ``seed`` at the top;
@@ -93,13 +97,19 @@ class Report:
         """True if the grade is void because of the grader or the exercise, not the submission."""
         return self.error_kind in ERROR_KINDS_OF_THE_GRADER
 
-    def to_dict(self) -> dict[str, Any]:
+    @property
+    def file_stem(self) -> str:
+        """:attr:`student` as the name of a file or folder the grader writes (see :func:`file_stem`)."""
+        return file_stem(self.submission)
 
+    def to_dict(self) -> dict[str, Any]:
+        """The report as JSON data: every text as it is, only lone surrogates (a file name of bytes that are
+        not UTF-8) escaped, so that the file is valid UTF-8."""
         return {
             "schema_version": SCHEMA_VERSION,
             "plcsim_version": version.__version__,
             "seed": self.seed,
-            **asdict(self),
+            **_json_texts(asdict(self)),
         }
 
     @classmethod
@@ -140,6 +150,28 @@ class Report:
         return write_junit([self], path, name=f"plcsim {self.exercise}")
 
 
+def file_stem(submission: str | Path) -> str:
+    r"""A submission's file name without its suffix, as the name of a file or folder the grader writes
+    (``alice.json``, ``gs/alice/``): control characters escaped, never ``.``, ``..`` or hidden (the file
+    ``...py`` has the stem ``..``).
+
+    >>> file_stem("subs/alice.py"), file_stem("...py"), file_stem("a\x1b[2J.py")
+    ('alice', '_..', 'a\\x1b[2J')
+    """
+    stem = visible(Path(submission).stem or "submission", newlines=False)
+    return "_" + stem if stem.startswith(".") else stem
+
+
+def _json_texts(data: Any) -> Any:
+    if isinstance(data, str):
+        return for_json(data)
+    if isinstance(data, dict):
+        return {key: _json_texts(value) for key, value in data.items()}
+    if isinstance(data, list | tuple):
+        return [_json_texts(value) for value in data]
+    return data
+
+
 # -- Gradescope --------------------------------------------------------------------------------------
 
 GRADESCOPE_VISIBILITY = ("hidden", "after_due_date", "after_published", "visible")
@@ -155,11 +187,11 @@ def gradescope_results(report: Report, *, visibility: str = "visible") -> dict[s
         raise ValueError(f"Gradescope visibility is one of {', '.join(GRADESCOPE_VISIBILITY)}, not {visibility!r}")
     tests = [
         {
-            "name": f"{c.scenario}: {c.check}",
+            "name": _shown(f"{c.scenario}: {c.check}"),
             "score": c.points,
             "max_score": c.max_points,
             "status": PASSED if c.passed else FAILED,
-            "output": c.message + (f"\ntiming diagram: {c.diagram}" if c.diagram else ""),
+            "output": _shown(c.message + (f"\ntiming diagram: {c.diagram}" if c.diagram else "")),
             "tags": [c.status] if c.status == NOT_EXERCISED else [],
             "visibility": visibility,
         }
@@ -169,11 +201,11 @@ def gradescope_results(report: Report, *, visibility: str = "visible") -> dict[s
         blame = " (a fault of the grader or the exercise, not of the submission)" if report.grader_failed else ""
         tests.append(
             {
-                "name": report.error_kind or "error",
+                "name": _shown(report.error_kind or "error"),
                 "score": 0.0,
                 "max_score": 0.0 if report.checks else report.max_score,
                 "status": FAILED,
-                "output": report.error + blame,
+                "output": _shown(report.error + blame),
                 "visibility": visibility,
             }
         )
@@ -182,19 +214,28 @@ def gradescope_results(report: Report, *, visibility: str = "visible") -> dict[s
     return {
         "score": report.score,
         "execution_time": round(report.elapsed_s, 3),
-        "output": f"{report.exercise} {report.title}: {verdict}, {report.score:g} / {report.max_score:g} points"
-        + "".join(f"\nwarning: {w}" for w in report.warnings),
+        "output": _shown(
+            f"{report.exercise} {report.title}: {verdict}, {report.score:g} / {report.max_score:g} points"
+            + "".join(f"\nwarning: {w}" for w in report.warnings)
+        ),
         "visibility": visibility,
         "stdout_visibility": "hidden",
+        "output_format": "text",  # shown as text, never as Markdown or HTML: a message may quote the program
+        "test_output_format": "text",
+        "test_name_format": "text",
         "tests": tests,
         "extra_data": {
             "max_score": report.max_score,
             "exercise": report.exercise,
             "seed": report.seed,
-            "error_kind": report.error_kind,
+            "error_kind": report.error_kind and _shown(report.error_kind),
             "plcsim_version": version.__version__,
         },
     }
+
+
+_shown = for_xml
+"""Gradescope shows each output as text on a web page: the escapes and the cut of a JUnit text."""
 
 
 def write_gradescope(report: Report, path: str | Path, *, visibility: str = "visible") -> Path:
@@ -211,7 +252,7 @@ def write_gradescope(report: Report, path: str | Path, *, visibility: str = "vis
 def write_junit(reports: Sequence[Report], path: str | Path | None = None, *, name: str | None = None) -> str:
     """JUnit XML of one or many reports (a batch); written to ``path`` if given."""
     suites = [s for r in reports for s in _suites(r)]
-    root = ET.Element("testsuites", name=name or f"plcsim {reports[0].exercise if reports else ''}".strip())
+    root = ET.Element("testsuites", name=for_xml(name or f"plcsim {reports[0].exercise if reports else ''}".strip()))
     root.extend(suites)
     _count(root, suites, sum(r.elapsed_s for r in reports))
     text = ET.tostring(root, encoding="unicode")
@@ -221,10 +262,11 @@ def write_junit(reports: Sequence[Report], path: str | Path | None = None, *, na
 
 
 def _suites(report: Report) -> list[ET.Element]:
+    """The suites of one report; every text goes through :func:`for_xml` (XML 1.0's characters only)."""
     suites: list[ET.Element] = []
     per_run = report.elapsed_s / max(1, len(report.runs))
     if report.error and not report.checks:
-        suite = ET.Element("testsuite", name=report.exercise)
+        suite = ET.Element("testsuite", name=for_xml(report.exercise))
         case = _case(suite, "load", f"{report.student}.{report.exercise}", report.elapsed_s)
         _error(case, report.error_kind or "error", report.error)
         suites.append(suite)
@@ -233,20 +275,21 @@ def _suites(report: Report) -> list[ET.Element]:
         by_scenario.setdefault(c.scenario, []).append(c)
     stopped = {run.scenario: run.cpu_error for run in report.runs if run.cpu_error}
     for scenario, results in by_scenario.items():
-        suite = ET.Element("testsuite", name=f"{report.exercise}.{scenario}")
+        suite = ET.Element("testsuite", name=for_xml(f"{report.exercise}.{scenario}"))
         classname = f"{report.student}.{report.exercise}.{scenario}"
         if scenario in stopped:
             _error(_case(suite, "CPU run", classname, 0.0), "CPU STOP", stopped[scenario])
         for r in results:
             case = _case(suite, r.check, classname, per_run / max(1, len(results)) if scenario != "static" else 0.0)
+            message = for_xml(r.message)
             if r.status == NOT_EXERCISED:
-                ET.SubElement(case, "skipped", message=r.message).text = r.message
+                ET.SubElement(case, "skipped", message=message).text = message
             elif not r.passed:
-                failure = ET.SubElement(case, "failure", message=r.message, type="check failed")
-                failure.text = r.message + (f"\ntiming diagram: {r.diagram}" if r.diagram else "")
+                failure = ET.SubElement(case, "failure", message=message, type="check failed")
+                failure.text = for_xml(r.message + (f"\ntiming diagram: {r.diagram}" if r.diagram else ""))
         suites.append(suite)
     if report.error and report.checks:  # a grader error after the checks ran
-        suite = ET.Element("testsuite", name=f"{report.exercise}.grader")
+        suite = ET.Element("testsuite", name=for_xml(f"{report.exercise}.grader"))
         case = _case(suite, "grading", f"{report.student}.{report.exercise}", 0.0)
         _error(case, report.error_kind or "error", report.error)
         suites.append(suite)
@@ -257,11 +300,12 @@ def _suites(report: Report) -> list[ET.Element]:
 
 
 def _case(suite: ET.Element, name: str, classname: str, seconds: float) -> ET.Element:
-    return ET.SubElement(suite, "testcase", name=name, classname=classname, time=f"{seconds:.3f}")
+    return ET.SubElement(suite, "testcase", name=for_xml(name), classname=for_xml(classname), time=f"{seconds:.3f}")
 
 
 def _error(case: ET.Element, kind: str, message: str) -> None:
-    ET.SubElement(case, "error", message=message, type=kind).text = message
+    shown = for_xml(message)
+    ET.SubElement(case, "error", message=shown, type=for_xml(kind)).text = shown
 
 
 _COUNTED = {"failures": "failure", "errors": "error", "skipped": "skipped"}
@@ -284,31 +328,7 @@ def _count(element: ET.Element, children: Sequence[ET.Element], seconds: float) 
 
 # -- gradebook ----------------------------------------------------------------------------------------
 
-_FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
-
-
-def spreadsheet_safe(cell: str) -> str:
-    """A CSV cell a spreadsheet shows as text: one starting like a formula gets a leading quote (OWASP).
-
-    >>> spreadsheet_safe("=1+1.py"), spreadsheet_safe("alice.py")
-    ("'=1+1.py", 'alice.py')
-    """
-    return "'" + cell if cell.startswith(_FORMULA_STARTS) else cell
-
-
 _CELL = {PASSED: "pass", FAILED: "FAIL", NOT_EXERCISED: "not exercised"}
-
-
-def one_line(text: str, limit: int = 200) -> str:
-    """The first line of a message, cut to ``limit`` characters (a gradebook cell, a batch line).
-
-    >>> one_line("alice.py, line 2: syntax error\\n    t.LED = (\\n          ^")
-    'alice.py, line 2: syntax error …'
-    """
-    lines = text.strip().splitlines() or [""]
-    first = lines[0].strip()
-    cut = len(first) > limit or len(lines) > 1
-    return first[:limit] + (" …" if cut else "")
 
 
 def cpu_state(report: Report) -> str:
@@ -320,7 +340,7 @@ def cpu_state(report: Report) -> str:
         return "RUN"
     first = stopped[0]
     more = f" (and {len(stopped) - 1} more)" if len(stopped) > 1 else ""
-    return f"{first.cpu_mode} in {first.scenario}{more}: {one_line(first.cpu_error or 'no reason given')}"
+    return f"{first.cpu_mode} in {first.scenario}{more}: {first.cpu_error or 'no reason given'}"
 
 
 def write_gradebook(reports: Sequence[Report], path: str | Path) -> Path:
@@ -336,19 +356,19 @@ def write_gradebook(reports: Sequence[Report], path: str | Path) -> Path:
     with path.open("w", newline="", encoding="utf-8") as f:
         writer = csv.writer(f)
         header = ["submission", "score", "max_score", "percent", "passed", "error", "cpu", *checks]
-        writer.writerow([spreadsheet_safe(h) for h in header])
+        writer.writerow([for_csv(h) for h in header])
         for r in reports:
             results = {f"{c.scenario}: {c.check}": _CELL[c.status] for c in r.checks}
             percent = f"{100 * r.score / r.max_score:.1f}" if r.max_score else "0.0"
-            error = f"{r.error_kind or 'error'}: {one_line(r.error)}" if r.error else ""
+            error = f"{r.error_kind or 'error'}: {r.error}" if r.error else ""
             row = [
-                spreadsheet_safe(Path(r.submission).name),
+                for_csv(Path(r.submission).name),
                 f"{r.score:g}",
                 f"{r.max_score:g}",
                 percent,
                 "yes" if r.passed else "no",
-                spreadsheet_safe(error),
-                cpu_state(r),  # starts with RUN, STOP or -: never a formula
+                for_csv(error),
+                for_csv(cpu_state(r)),
                 *(results.get(c, "-") for c in checks),
             ]
             writer.writerow(row)

@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 
 from plcsim.core.errors import PlcError
+from plcsim.core.untrusted_text import clip
 from plcsim.plant.protocol import Drawable
 from plcsim.trace.facade import HEAD, GeometryFrame, Trace, TraceEvent
 
@@ -95,9 +96,9 @@ def encode_runs(runs: Sequence[RunResult], *, geometry: bool = False) -> bytes:
             "simulated_ns": run.simulated_ns,
             "scans": run.scans,
             "cpu_mode": run.cpu_mode,
-            "cpu_error": run.cpu_error,
-            "plant_error": run.plant_error,
-            "warnings": list(run.warnings),
+            "cpu_error": None if run.cpu_error is None else clip(run.cpu_error, MAX_TEXT),
+            "plant_error": None if run.plant_error is None else clip(run.plant_error, MAX_TEXT),
+            "warnings": [clip(w, MAX_TEXT) for w in run.warnings],
             "names": list(tr.names),
             "kinds": dict(tr.kinds),
             "types": dict(tr.types),
@@ -114,8 +115,9 @@ def encode_runs(runs: Sequence[RunResult], *, geometry: bool = False) -> bytes:
 
 
 def encode_failure(kind: str, message: str) -> bytes:
-    """The message of a child whose submission did not run (it did not load, or ran out of memory)."""
-    return _frame({"kind": "failure", "error_kind": kind, "message": message}, [])
+    """The message of a child whose submission did not run (it did not load, or ran out of memory); a
+    message longer than the grader accepts (a label of 3 MB echoed by an error) arrives cut, saying so."""
+    return _frame({"kind": "failure", "error_kind": kind, "message": clip(message, MAX_TEXT)}, [])
 
 
 def _frame(header: dict[str, Any], blobs: Sequence[bytes]) -> bytes:

@@ -9,6 +9,7 @@ that raises is the exercise's or the grader's fault (:class:`GraderError`), neve
 from __future__ import annotations
 
 from collections.abc import Sequence
+from pathlib import Path
 from typing import Any
 
 from plcsim.check import StaticCheck
@@ -31,7 +32,12 @@ def evaluate(exercise: Exercise, runs: Sequence[RunResult], analysis: Any, repor
     A check that holds only because the program never drove what it guards is *not exercised*
     (:mod:`plcsim.check.exercised`): 0 points. A check that raises is a grader error (its own outcome),
     never a point lost by the student.
+
+    A program the exercise ships as correct (:func:`ships_as_correct`, the report's file) that fails a check because
+    the run gave it nothing to check shows the exercise's mistake: the message says how to apply the check only in
+    the scenarios that can show it.
     """
+    correct = ships_as_correct(exercise, report.submission)
     durations = {s.name: s.duration_ns for s in exercise.scenarios}
     graded = [exercise.scenario(run.scenario) for run in runs]
     activity = Activity.of((run.trace for run in runs), written_by_scenario=scenario_writes(graded))
@@ -54,7 +60,9 @@ def evaluate(exercise: Exercise, runs: Sequence[RunResult], analysis: Any, repor
                 static = isinstance(gc.check, StaticCheck)
                 if static and static_done:
                     continue
-                result = _check(gc, ctx, run, static, cut_short, durations[run.scenario])
+                result, nothing_to_check = _check(gc, ctx, run, static, cut_short, durations[run.scenario])
+                if correct and nothing_to_check:
+                    result.message += _restrict_hint(gc, list(durations), run.scenario)
                 if result.passed:
                     why = activity.unexercised(gc.check) or _unprovoked(gc.check, [ctx] if not static else contexts)
                     if why:
@@ -82,12 +90,15 @@ def _not_exercised(result: CheckResult, why: str, run: RunResult, static: bool) 
     return result
 
 
-def _check(gc: Any, ctx: Context, run: RunResult, static: bool, cut_short: bool, duration_ns: int) -> CheckResult:
+def _check(
+    gc: Any, ctx: Context, run: RunResult, static: bool, cut_short: bool, duration_ns: int
+) -> tuple[CheckResult, bool]:
+    """The check's result in this run, and whether it failed for want of anything to check."""
     weight = gc.check.weight
     if cut_short and not static:
         why = run.plant_error or run.cpu_error or "no reason given"
         message = f"the run ended at {format_ns(run.simulated_ns)} of {format_ns(duration_ns)} ({why}); not checked"
-        return CheckResult(run.scenario, gc.name, False, message, 0.0, weight)
+        return CheckResult(run.scenario, gc.name, False, message, 0.0, weight), False
     try:
         verdict = gc.check.evaluate(ctx)
     except Exception as exc:  # the exercise's bug, reported as such
@@ -99,7 +110,7 @@ def _check(gc: Any, ctx: Context, run: RunResult, static: bool, cut_short: bool,
     message = verdict.message
     if not verdict.passed and run.cpu_error and not static:
         message += f" [the CPU stopped: {run.cpu_error}]"
-    return CheckResult(
+    result = CheckResult(
         "static" if static else run.scenario,
         gc.name,
         bool(verdict.passed),
@@ -109,6 +120,25 @@ def _check(gc: Any, ctx: Context, run: RunResult, static: bool, cut_short: bool,
         verdict.at_ns,
         signals,
         verdict.window,
+    )
+    return result, not verdict.passed and verdict.nothing_to_check and not static
+
+
+def ships_as_correct(exercise: Exercise, program: str) -> bool:
+    """Whether the file ``program`` is the exercise's reference or a correct alternative it ships."""
+    try:
+        path = Path(program).resolve()
+    except (TypeError, ValueError, OSError):
+        return False
+    return any(s.kind != "wrong" and Path(s.path).resolve() == path for s in exercise.solutions)
+
+
+def _restrict_hint(gc: Any, scenarios: list[str], scenario: str) -> str:
+    """How to apply a check only where it can apply: the scenarios it applies to now, but ``scenario``."""
+    others = [s for s in scenarios if s != scenario and (gc.scenarios is None or s in gc.scenarios)]
+    return (
+        f"; a correct program gave this check nothing to check in scenario {scenario!r}: if that scenario cannot "
+        f"show it, apply the check only where it can: only(check, {', '.join(map(repr, others))}) in the exercise"
     )
 
 

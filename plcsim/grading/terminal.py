@@ -6,23 +6,27 @@ from collections.abc import Sequence
 from typing import Any
 
 from rich.console import Console
+from rich.markup import escape
 from rich.panel import Panel
 from rich.table import Table
 from rich.text import Text
 
 from plcsim.core.literals import format_ns
+from plcsim.core.untrusted_text import for_terminal
 
 
 def print_report(report: Any, console: Console | None = None, *, verbose: bool = False) -> None:
     """A grade report: one line per scenario and check, the reasons of the failures, the score.
 
     Every text that may come from a submission (its file name, error messages, check messages,
-    CPU diagnostics, warnings) is printed as plain text, never read as Rich markup."""
+    CPU diagnostics, warnings) is printed as plain text, never read as Rich markup, with its control and
+    format characters as visible escapes (:func:`~plcsim.core.untrusted_text.for_terminal`): a message
+    cannot clear the screen, colour a forged verdict or start a line of its own."""
     console = console or Console()
-    title = f"{report.exercise} {report.title} — {report.submission}"
+    title = _one_line(f"{report.exercise} {report.title} — {report.submission}")
     if report.error:
-        heading = Text.assemble((report.error_kind or "error", "bold red"), ": ", title)
-        console.print(Panel(Text(report.error), title=heading, border_style="red"))
+        heading = Text.assemble((_one_line(report.error_kind or "error"), "bold red"), ": ", title)
+        console.print(Panel(Text(for_terminal(report.error, newlines=True)), title=heading, border_style="red"))
         console.print(Text.assemble("score ", ("0", "bold"), f" / {report.max_score:g}"))
         if report.grader_failed:
             console.print(Text("this is a fault of the grader or the exercise, not of the submission", "yellow"))
@@ -33,23 +37,29 @@ def print_report(report: Any, console: Console | None = None, *, verbose: bool =
     table.add_column("", justify="center")
     table.add_column("points", justify="right")
     for c in report.checks:
-        table.add_row(Text(c.scenario), Text(c.check), _mark(c.status), f"{c.points:g}/{c.max_points:g}")
+        table.add_row(
+            Text(_one_line(c.scenario)), Text(_one_line(c.check)), _mark(c.status), f"{c.points:g}/{c.max_points:g}"
+        )
     console.print(table)
     for c in report.failed():
-        console.print(Text.assemble(_mark(c.status), " ", (f"{c.scenario}: {c.check}", "bold"), f"\n    {c.message}"))
+        name = _one_line(f"{c.scenario}: {c.check}")
+        console.print(Text.assemble(_mark(c.status), " ", (name, "bold"), f"\n    {_indented(c.message)}"))
         if c.diagram:
-            console.print(Text(f"    timing diagram: {c.diagram}"))
+            console.print(Text(f"    timing diagram: {_one_line(c.diagram)}"))
     if verbose:
         for c in report.checks:
             if c.passed:
-                console.print(Text.assemble(("✓", "green"), f" {c.scenario}: {c.check}: {c.message}", style="dim"))
+                said = _one_line(f"{c.scenario}: {c.check}: {c.message}")
+                console.print(Text.assemble(("✓", "green"), f" {said}", style="dim"))
     for run in report.runs:
         if run.cpu_error:
-            console.print(Text.assemble(("!", "yellow"), f" {run.scenario}: the CPU stopped: {run.cpu_error}"))
+            said = _one_line(f"{run.scenario}: the CPU stopped: {run.cpu_error}")
+            console.print(Text.assemble(("!", "yellow"), f" {said}"))
         if run.rrd:
-            console.print(Text(f"  trace of {run.scenario}: {run.rrd} (open with: rerun {run.rrd})", "dim"))
+            rrd = _one_line(run.rrd)
+            console.print(Text(f"  trace of {_one_line(run.scenario)}: {rrd} (open with: rerun {rrd})", "dim"))
     for w in report.warnings:
-        console.print(Text.assemble(("warning:", "yellow"), f" {w}"))
+        console.print(Text.assemble(("warning:", "yellow"), f" {_one_line(w)}"))
     verdict = Text("PASSED", "bold green") if report.passed else Text("FAILED", "bold red")
     idle = len(report.not_exercised())
     console.print(
@@ -62,6 +72,17 @@ def print_report(report: Any, console: Console | None = None, *, verbose: bool =
             f"  ({report.elapsed_s:.2f} s)",
         )
     )
+
+
+def _one_line(text: str) -> str:
+    """A text that may come from a submission, on one line, escaped (see :func:`for_terminal`)."""
+    return for_terminal(text)
+
+
+def _indented(text: str) -> str:
+    """A message of several lines, escaped, each line after the first indented: none starts a line of the
+    report's own (a forged ``PASSED`` at the left margin)."""
+    return for_terminal(text, newlines=True).replace("\n", "\n    ")
 
 
 _MARKS = {"passed": ("✓", "green"), "failed": ("✗", "red"), "not exercised": ("–", "yellow")}
@@ -78,8 +99,9 @@ def print_batch_line(report: Any, console: Console) -> None:
 
     mark = Text("✓", "green") if report.passed else Text("✗", "red")
     first = (report.error or "").strip().splitlines()[:1]
-    why = f"  {report.error_kind}: {first[0] if first else ''}" if report.error else ""
-    console.print(Text.assemble(mark, f" {Path(report.submission).name}: {report.score:g}/{report.max_score:g}{why}"))
+    why = f"  {_one_line(report.error_kind or '')}: {_one_line(first[0]) if first else ''}" if report.error else ""
+    name = _one_line(Path(report.submission).name)
+    console.print(Text.assemble(mark, f" {name}: {report.score:g}/{report.max_score:g}{why}"))
 
 
 LIST_TITLE = "plcsim exercises (STU textbook, chapter 4.3)"
@@ -134,7 +156,11 @@ def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool =
         where = f"  [dim]({', '.join(c.scenarios)})[/]" if c.scenarios else ""
         console.print(f"  • {c.name}{where}")
     if solutions:
-        console.print(f"[bold]Shipped programs[/] (grade one with: plcsim grade {ex.number} --solution NAME)")
+        from plcsim.exercise.catalog import command_name
+
+        console.print(
+            f"[bold]Shipped programs[/] (grade one with: plcsim grade {escape(command_name(ex))} --solution NAME)"
+        )
         for s in ex.solutions:
             console.print(Text(f"  • {s.name} [{s.kind}]: {s.explanation}"))
     if ex.notes:
@@ -153,8 +179,8 @@ def print_run_summary(sim: Any, wall_s: float, console: Console | None = None, *
     if shown:
         console.print(f"[bold]events[/] ({len(shown)}; first {min(events, len(shown))}):")
         for e in shown[:events]:
-            console.print(f"  {e}", highlight=False)
+            console.print(Text(f"  {_one_line(str(e))}"), highlight=False)
     if cpu.error:
-        console.print(Text.assemble(("the CPU stopped:", "red"), f" {cpu.error}"))
+        console.print(Text.assemble(("the CPU stopped:", "red"), f" {_one_line(str(cpu.error))}"))
     for w in cpu.warnings:
-        console.print(Text.assemble(("warning:", "yellow"), f" {w}"))
+        console.print(Text.assemble(("warning:", "yellow"), f" {_one_line(w)}"))

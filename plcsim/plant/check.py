@@ -22,6 +22,7 @@ from plcsim.plant.protocol import (
     SignalSpec,
     Station,
     capable,
+    missing_members,
     stations_of,
 )
 from plcsim.plant.verbs import RigVerb
@@ -46,7 +47,9 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
       about a declared subject (or a part);
     * drawables have ``(N, 2)`` finite float points (N ≥ 3 for polygons, ≥ 2 for lines, 1 for circles and labels),
       RGB colours and a path; ``bounds`` is a proper rectangle;
-    * both runs give identical sensors, events and geometry (determinism).
+    * both runs give identical sensors, events and geometry (determinism);
+    * a part placed at the first station, where a belt is drawn (a static polygon ``belt/...``), is carried: some
+      actuator, switched on alone, moves it (a top-view rig whose belt does not carry its parts fails here).
 
     Returns a summary: ``{"signals", "events", "drawables", "digest"}`` (digest = sha256 of the second run).
     """
@@ -58,7 +61,8 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
         if not cond:
             problems.append(msg)
 
-    need(isinstance(plant, Plant), f"{type(plant).__name__} lacks members of the Plant protocol")
+    lacking = missing_members(plant, Plant)
+    need(not lacking, f"{type(plant).__name__} lacks {', '.join(f'`{m}`' for m in lacking)} of the Plant protocol")
     _check_declarations(plant, need)
     signals = dict(plant.signals)
     for key, spec in signals.items():
@@ -154,6 +158,8 @@ def check_plant(plant: Plant, *, seed: int = 1234, steps: int = 300, dt_ns: int 
     names = ("sensors after reset", "sensors at the end", "now_ns", "events", "geometry")
     for name, a, b in zip(names, first, second):
         need(a == b, f"two runs with seed {seed} differ in {name}: {a!r} != {b!r}")
+    if not problems:
+        _check_carried(plant, need, seed=seed, steps=steps, dt_ns=dt_ns)
     plant.reset(seed=seed)
     if problems:
         raise AssertionError(f"check_plant({getattr(plant, 'name', plant)!r}):\n  " + "\n  ".join(problems))
@@ -196,3 +202,55 @@ def _check_declarations(plant: Any, need: Any) -> None:
             need(False, f"VERBS[{key!r}] is not a RigVerb named {key!r}")
         elif not callable(getattr(plant, verb.method, None)):
             need(False, f"rig verb {key!r} calls {verb.method!r}, which the plant does not have")
+
+
+CARRIED_MM = 1.0
+"""How far a part on a running belt must move in the check's run to count as carried."""
+
+
+def _check_carried(plant: Any, need: Any, *, seed: int, steps: int, dt_ns: int) -> None:
+    """A part placed at the first station, where a belt is drawn, moves when some actuator alone is switched on."""
+    stations = stations_of(plant)
+    if not stations:
+        return
+    station = next(iter(stations.values()))
+    belts = [d.path for d in plant.static_drawables() if d.path.startswith("belt/") and _under(plant, station, d)]
+    actuators = [k for k, s in plant.signals.items() if s.direction == "actuator" and s.kind == "bool"]
+    if not belts or not actuators:
+        return
+    moved = 0.0
+    for name in actuators:
+        plant.reset(seed=seed)
+        plant.actuate(name, True)
+        pid = plant.place(station.name)
+        start = _part_centre(plant, pid)
+        for _ in range(steps):
+            plant.step(dt_ns)
+        end = _part_centre(plant, pid)
+        if start is None or end is None:
+            return  # a part not drawn as parts/<id>: nothing to measure it by
+        moved = max(moved, float(np.hypot(*(end - start))))
+        if moved >= CARRIED_MM:
+            return
+    need(
+        False,
+        f"a part placed at station {station.name!r} lies on {belts[0]}, but no actuator switched on moves it "
+        f"({moved:.2f} mm in {steps * dt_ns / 1e9:g} s): the belt does not carry its parts. In a top-view rig, list "
+        f"the belt (plants.components.TopBelt, or a component with carrier_at()) among the components, and do not "
+        f"override support_at() unless it returns the belt's body",
+    )
+
+
+def _under(plant: Any, station: Station, belt: Drawable) -> bool:
+    """Whether a part at ``station`` lies on the drawn belt (a side view: above its length; a top view: on it)."""
+    if belt.kind != "polygon":
+        return False
+    (x0, y0), (x1, y1) = belt.points.min(axis=0), belt.points.max(axis=0)
+    return x0 <= station.x <= x1 and (getattr(plant, "view", "") == "side" or y0 <= station.y <= y1)
+
+
+def _part_centre(plant: Any, pid: str) -> np.ndarray | None:
+    for d in plant.dynamic_drawables():
+        if d.path == f"parts/{pid}":
+            return np.asarray(d.points, dtype=float).mean(axis=0)
+    return None

@@ -25,6 +25,10 @@ A plant declares its **event vocabulary**: ``EVENTS`` (every kind it can emit) a
 ``event_subjects()`` (every name its events can be about, a part's id aside). An exercise whose check
 or scenario waits for an event its rig never emits is refused when it is loaded.
 
+A plant that handles parts declares the **properties** a scenario may give a part it places (``place("p1",
+at="OS1", colour=2)``) in ``PART_PROPERTIES``, a mapping of each name to what it means (none if it declares none):
+a name outside it is refused when the scenario is loaded, or when a live session would record it.
+
 A rig may bring its own **scenario verbs** (``set_colour``, ``jam_piston``): ``VERBS`` maps each name
 to a :class:`plcsim.plant.verbs.RigVerb`, which builds the action and names the plant method that
 carries it out, so that adding one needs no edit in ``plcsim``.
@@ -222,6 +226,19 @@ class Operated(Protocol):
 
     def operate(self, name: str, value: Any) -> None:
         """The operator sets a button or switch (a sensor with ``operator=True``)."""
+
+
+def missing_members(obj: Any, protocol: type) -> list[str]:
+    """The members of ``protocol`` (a ``Protocol`` class) that ``obj`` lacks, by name, in declaration order.
+
+    >>> class Conveyor:
+    ...     name = "belt"
+    >>> missing_members(Conveyor(), Plant)[:3]
+    ['view', 'signals', 'sensors']
+    """
+    wanted = [m for m in getattr(protocol, "__annotations__", {})]
+    wanted += [m for m, v in vars(protocol).items() if callable(v) and not m.startswith("_")]
+    return [m for m in dict.fromkeys(wanted) if not hasattr(obj, m)]
 
 
 def capable(plant: Any, capability: str) -> bool:

@@ -8,6 +8,7 @@ plant's: :mod:`plcsim.scenario.verbs` hands its builder to :func:`build_actions_
 
 from __future__ import annotations
 
+import string
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -39,7 +40,8 @@ class RigVerb:
         name: the verb (the kind of its trace event, what ``action(name)`` in a check counts).
         method: the plant method that carries it out, called as ``method(target, **args)``.
         role: what the target names (``piston``, ``part``), for messages.
-        phrase: how the action is worded, formatted with ``target`` and the action's keyword arguments.
+        phrase: how the action is worded, formatted with ``target`` and the action's keyword arguments (it names
+            every argument the verb takes: :attr:`arguments`).
         targets: the plant attribute holding the names a target may be (a mapping or a set); empty with
             ``role="part"``: the target is a part of the scenario (its plant id is passed to the method).
         state: True if whether it can be done depends on the run (a part that is gone): a failure is then
@@ -65,6 +67,13 @@ class RigVerb:
         if _build_action is None:
             raise ConfigurationError(f"rig verb {self.name!r}: its actions are built by plcsim.scenario; import it")
         return _build_action(self, target, t, when, delay, **args)
+
+    @property
+    def arguments(self) -> tuple[str, ...]:
+        """The keyword arguments it takes: those its phrase names besides the target (``offset`` of
+        ``"set the ambient light on {target} to {offset:+g} raw"``), the rig's declared vocabulary for them."""
+        fields = (f for _, f, _, _ in string.Formatter().parse(self.phrase) if f and f != "target")
+        return tuple(dict.fromkeys(fields))
 
     @property
     def on_parts(self) -> bool:

@@ -28,6 +28,7 @@ def check_names(
     subjects: Iterable[str] | None = None,
     capabilities: Iterable[str] | None = None,
     verbs: Mapping[str, Iterable[str]] | None = None,
+    properties: Iterable[str] | None = None,
 ) -> None:
     """Check every name in the scenario before the run, naming the line and the valid choices."""
     for problem in name_problems(
@@ -42,6 +43,7 @@ def check_names(
         subjects=subjects,
         capabilities=capabilities,
         verbs=verbs,
+        properties=properties,
     ):
         raise ScenarioError(": ".join(problem))
 
@@ -59,14 +61,15 @@ def name_problems(
     subjects: Iterable[str] | None = None,
     capabilities: Iterable[str] | None = None,
     verbs: Mapping[str, Iterable[str]] | None = None,
+    properties: Iterable[str] | None = None,
 ) -> list[tuple[str, str]]:
     """Every name of the scenario that does not exist: ``(file:line, "scenario ...: no ...; valid: ...")``.
 
     ``signals`` are what a fault can be put on (plant signals and wired tags), ``sensors`` what a trigger
     waits for (the plant's sensors: nothing else is polled); ``events`` the plant's event vocabulary and
     ``subjects`` the names its events are about, besides the scenario's parts; ``capabilities`` what the
-    plant declares (a verb needing another one is refused) and ``verbs`` its rig verbs with their valid
-    targets (None: no plant, not checked).
+    plant declares (a verb needing another one is refused), ``verbs`` its rig verbs with their valid
+    targets and ``properties`` the part properties a ``place`` may give (None: no plant, not checked).
     """
     signal_list = list(signals)
     sensor_list = list(sensors) if sensors is not None else signal_list
@@ -114,6 +117,18 @@ def name_problems(
                     f"{did_you_mean(name, valid)}; valid: {listed}",
                 )
             )
+        if properties is not None and a.verb == "place" and a.rig is None:
+            property_list = sorted(properties)
+            for name in a.args.get("properties") or {}:
+                if name not in property_list:
+                    valid = ", ".join(property_list) or "none"
+                    problems.append(
+                        (
+                            a.defined_at,
+                            f"scenario {scenario.name!r}: {a.describe()}: no part property {name!r}"
+                            f"{did_you_mean(name, property_list)}; valid: {valid}",
+                        )
+                    )
         need = VERB_CAPABILITY.get(a.verb) if a.rig is None else None
         if len(problems) == found and caps is not None and need is not None and need not in caps:
             problems.append(
@@ -152,10 +167,11 @@ def _rig_verb_problem(a: Action, verbs: Mapping[str, Iterable[str]] | None) -> s
 
 
 def plant_vocabulary(plant: Any) -> dict[str, Any]:
-    """What a scenario may ask of ``plant`` beyond its names: the ``events``, ``subjects``, ``capabilities`` and
-    ``verbs`` (with their valid targets) arguments of :func:`name_problems` (all None for no plant)."""
+    """What a scenario may ask of ``plant`` beyond its names: the ``events``, ``subjects``, ``capabilities``,
+    ``verbs`` (with their valid targets) and ``properties`` (of a part it places: the plant's optional
+    ``PART_PROPERTIES``, none if it declares none) arguments of :func:`name_problems` (all None for no plant)."""
     if plant is None:
-        return {"events": None, "subjects": None, "capabilities": None, "verbs": None}
+        return {"events": None, "subjects": None, "capabilities": None, "verbs": None, "properties": None}
     missing = [m for m in ("EVENTS", "CAPABILITIES", "VERBS", "event_subjects") if not hasattr(plant, m)]
     if missing:
         raise ConfigurationError(
@@ -167,4 +183,5 @@ def plant_vocabulary(plant: Any) -> dict[str, Any]:
         "subjects": sorted(plant.event_subjects()),
         "capabilities": sorted(plant.CAPABILITIES),
         "verbs": {name: verb.valid_targets(plant) for name, verb in plant.VERBS.items()},
+        "properties": sorted(getattr(plant, "PART_PROPERTIES", {})),
     }

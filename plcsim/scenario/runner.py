@@ -23,7 +23,7 @@ from plcsim.core.clock import NEVER
 from plcsim.core.errors import ConfigurationError, ExerciseError, PlcError
 from plcsim.plant.protocol import MOTOR_JAM, SENSOR_SHIFT, capable, rig_verbs, stations_of
 from plcsim.scenario.planning import Planned, Scenario, plan
-from plcsim.scenario.verbs import Action, ScenarioError
+from plcsim.scenario.verbs import Action, OneOf, ScenarioError
 from plcsim.trace.facade import Trace, TraceEvent
 
 POSE_NOISE_MM = 5.0
@@ -179,8 +179,9 @@ class ActionRunner:
             if args["noise"]:
                 offset = self.rng.uniform(-POSE_NOISE_MM, POSE_NOISE_MM) if offset is None else offset
                 angle = self.rng.uniform(-POSE_NOISE_DEG, POSE_NOISE_DEG) if angle is None else angle
+            properties = {k: v.draw(self.rng) if isinstance(v, OneOf) else v for k, v in args["properties"].items()}
             self.parts[target] = plant.place(
-                args["station"], part=target, offset_mm=offset or 0.0, angle_deg=angle or 0.0, **args["properties"]
+                args["station"], part=target, offset_mm=offset or 0.0, angle_deg=angle or 0.0, **properties
             )
             detail = f"offset {offset or 0.0:+.2f} mm, angle {angle or 0.0:+.2f} deg"
             self._refresh_polled()

@@ -23,6 +23,8 @@ The timeline as a whole is :mod:`plcsim.scenario.planning`; the names it relies 
 
 from __future__ import annotations
 
+import keyword
+import math
 import random
 from dataclasses import dataclass, field
 from typing import Any
@@ -71,6 +73,33 @@ class TimeSpec:
 
 
 @dataclass(frozen=True)
+class OneOf:
+    """A part property drawn with the scenario's seed from a few values (``place(..., bad=one_of(True, False))``),
+    so that each grading seed gives another sequence of parts."""
+
+    values: tuple[Any, ...]
+
+    def draw(self, rng: random.Random) -> Any:
+        return self.values[rng.randrange(len(self.values))]
+
+    def __repr__(self) -> str:
+        return f"one_of({', '.join(map(repr, self.values))})"
+
+
+def one_of(*values: Any) -> OneOf:
+    """A part property drawn from ``values`` with the scenario's seed, once per placement and run.
+
+    >>> import random
+    >>> bad = one_of(True, False)
+    >>> bad, [bad.draw(random.Random(seed)) for seed in range(6)]
+    (one_of(True, False), [False, True, True, True, True, False])
+    """
+    if not values:
+        raise ScenarioError(f"{defined_at()}: one_of() needs at least one value to draw from")
+    return OneOf(tuple(values))
+
+
+@dataclass(frozen=True)
 class Trigger:
     """Wait for the plant: a sensor held at a value for a time, or a plant event."""
 
@@ -89,7 +118,9 @@ class Trigger:
 
 def held(signal: str, duration: str | int = 0, value: Any = True) -> Trigger:
     """Trigger when a plant sensor has had ``value`` (default: actuated) for ``duration``."""
-    return Trigger(signal=signal, value=value, for_ns=parse_at_line(TimeSpec.parse, duration, f"held({signal!r})").lo_ns)
+    return Trigger(
+        signal=signal, value=value, for_ns=parse_at_line(TimeSpec.parse, duration, f"held({signal!r})").lo_ns
+    )
 
 
 def after_event(kind: str, subject: str | None = None) -> Trigger:
@@ -199,6 +230,38 @@ VERB_CAPABILITY = {
 """The plant capability each of plcsim's verbs needs (a verb on a rig that lacks it is refused at load time)."""
 
 
+PLACE_KEYS = frozenset(
+    {"t", "verb", "target", "at", "station", "when", "delay", "noise", "offset_mm", "angle_deg", "part"}
+)
+"""The names a ``place`` action (and its row in a saved ``.toml``) uses itself: no part property may take one."""
+
+
+def check_property_name(name: Any, where: str) -> None:
+    """Refuse a part property's name that is not a plain Python name, or is one :data:`PLACE_KEYS` holds: a property
+    is written as a keyword (``colour=2``) in a ``.py`` scenario and as a key beside the station in a ``.toml`` one,
+    so that any other name could not be read back as the property it was."""
+    if not (isinstance(name, str) and name.isidentifier() and not keyword.iskeyword(name)):
+        raise ScenarioError(f"{where}: part property name {name!r} is not a Python name (e.g. colour=2)")
+    if name in PLACE_KEYS:
+        raise ScenarioError(
+            f"{where}: part property name {name!r} is the action's own ({', '.join(sorted(PLACE_KEYS))})"
+        )
+
+
+def check_plain(value: Any, what: str) -> None:
+    """Refuse a value a scenario file cannot hold as a literal: only booleans, integers, finite numbers, text and
+    tuples or lists of them (what a page may send, as an exercise would write it)."""
+    if isinstance(value, (list, tuple)):
+        for item in value:
+            check_plain(item, what)
+    elif isinstance(value, float) and not math.isfinite(value):
+        raise ScenarioError(f"{what}={value!r}: a number must be finite")
+    elif value is not None and not isinstance(value, (bool, int, float, str)):
+        raise ScenarioError(
+            f"{what}={value!r}: a scenario holds numbers, true/false and text, not {type(value).__name__}"
+        )
+
+
 def parse_at_line(parse: Any, value: Any, what: str) -> Any:
     """``parse(value)``, an error in it reported at the instructor's line."""
     try:
@@ -216,7 +279,16 @@ def _action(verb: str, target: str, t: Any, when: Trigger | None, delay: Any = 0
 
 
 def _rig_action(verb: RigVerb, target: str, t: Any, when: Trigger | None, delay: Any, **args: Any) -> Action:
-    """The action of a call of the rig verb ``verb`` (:class:`~plcsim.plant.verbs.RigVerb` builds it here)."""
+    """The action of a call of the rig verb ``verb`` (:class:`~plcsim.plant.verbs.RigVerb` builds it here); it takes
+    the arguments its phrase names, no other."""
+    takes = verb.arguments
+    listed = ", ".join(takes) or "none"
+    for name in args:
+        if name not in takes:
+            raise ScenarioError(f"{defined_at()}: {verb.name} {target}: no argument {name!r}; its arguments: {listed}")
+    missing = [name for name in takes if name not in args]
+    if missing:
+        raise ScenarioError(f"{defined_at()}: {verb.name} {target}: give {', '.join(f'{m}=' for m in missing)}")
     action = _action(verb.name, target, t, when, delay, **args)
     action.rig = verb
     return action
@@ -286,8 +358,11 @@ def place(
 
     ``offset_mm`` and ``angle_deg`` fix the pose error, or draw it from a range with the scenario's seed:
     ``place("p1", at="table", offset_mm=(0, 15), angle_deg=(-15, 15))`` (what the offset means is the rig's:
-    along the belt, or away from a fence).
+    along the belt, or away from a fence). A property may be drawn with the seed too:
+    ``place("p1", at="S1", bad=one_of(True, False))`` (the ``part placed`` event then carries the value drawn).
     """
+    for name in properties:
+        check_property_name(name, f"place {part}")
     for what, v in (("offset_mm", offset_mm), ("angle_deg", angle_deg)):
         if isinstance(v, tuple) and not (len(v) == 2 and v[0] <= v[1]):
             raise ScenarioError(f"{defined_at()}: place {part}: {what}={v!r} must be a number or a (lo, hi) range")

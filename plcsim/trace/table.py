@@ -57,6 +57,10 @@ from plcsim.trace.rows import BLOCK, HEAD, RunLengthRows
 __all__ = ["BLOCK", "HEAD", "GeometryFrame", "TraceEvent", "TraceTable"]
 
 
+_HEAD_NAMES = ("start_ns", "end_ns", "task")
+"""The row heads as :meth:`TraceTable.save` names them: each row's execution start and end and its task."""
+_SAVED_DTYPES = {"bool": np.bool_, "int": np.int64}
+"""How :meth:`TraceTable.save` stores a signal of each type (a Real, or a column of no type: float64)."""
 _CODES = {"bool": "b", "int": "q"}
 """How a row packs a value of each type (:mod:`plcsim.trace.rows`; a Real, or a column of no type: a double)."""
 
@@ -308,7 +312,14 @@ class TraceTable:
     # -- files ---------------------------------------------------------------------------------
 
     def save(self, path: str | Path) -> Path:
-        """Save as ``.npz``: the row table, names, kinds, types, events and meta (geometry is not saved)."""
+        """Save as ``.npz``, every column named in the file itself (geometry is not saved).
+
+        ``start_ns``, ``end_ns`` and ``task`` hold, per row (one execution of a task), its simulated start and
+        end (int64 nanoseconds) and its task's number (``header``'s ``tasks`` names it, e.g. 1 for OB1);
+        ``table`` is a structured array with one field per signal under its own name (a Bool as bool, an Int as
+        int64, anything else float64); ``header`` is JSON: the signals' kinds and types, the run's meta and
+        events. Read it back with :meth:`load`, or with numpy alone: ``np.load(path)["table"]["D1"]``.
+        """
         path = Path(path)
         header = {
             "names": self.names,
@@ -318,12 +329,18 @@ class TraceTable:
             "events": [asdict(e) for e in self.events],
             "tasks": self.task_numbers,
         }
-        np.savez_compressed(path, table=self.table, header=np.array(json.dumps(header)))
+        dense = self.table
+        dtypes = [_SAVED_DTYPES.get(self.types.get(name), np.float64) for name in self.names]
+        table = np.empty(len(dense), dtype=np.dtype(list(zip(self.names, dtypes, strict=True))))
+        for k, name in enumerate(self.names):
+            table[name] = dense[:, HEAD + k]
+        heads = {name: dense[:, k].astype(np.int64) for k, name in enumerate(_HEAD_NAMES)}
+        np.savez_compressed(path, table=table, header=np.array(json.dumps(header)), **heads)
         return path
 
     @classmethod
     def load(cls, path: str | Path) -> TraceTable:
-        """Read a trace saved by :meth:`save`."""
+        """Read a trace saved by :meth:`save` (or by plcsim 0.1, whose one table had unnamed columns)."""
         with np.load(Path(path)) as data:
             header = json.loads(str(data["header"]))
             trace = cls(
@@ -334,7 +351,11 @@ class TraceTable:
                 [TraceEvent(**e) for e in header["events"]],
                 task_numbers=header.get("tasks", {}),
             )
-            trace._blocks = [data["table"]]
+            table = data["table"]
+            if table.dtype.names is not None:
+                columns = [data[name] for name in _HEAD_NAMES] + [table[name] for name in trace.names]
+                table = np.column_stack([c.astype(np.float64) for c in columns]).reshape(len(table), -1)
+            trace._blocks = [table]
         return trace
 
     def digest(self) -> str:

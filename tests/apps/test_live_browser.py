@@ -68,6 +68,54 @@ def paused_and_saved(page, screenshot) -> dict:
     return page.evaluate("window.plcsimLive.lastSaved")
 
 
+EVIL_PAGE = """<!doctype html><title>another site</title><script>
+const base = "127.0.0.1:{port}", out = {{}};
+fetch(`http://${{base}}/api/scenario.toml`, {{ mode: "no-cors" }}).catch(() => {{}});
+fetch(`http://${{base}}/api/save`, {{ method: "POST", mode: "no-cors" }}).catch(() => {{}});
+window.result = new Promise((resolve) => {{
+  const ws = new WebSocket(`ws://${{base}}/ws?token={token}`);  // even holding the token
+  ws.onopen = () => {{
+    out.ws = "open";
+    ws.send(JSON.stringify({{ op: "do", verb: "press", target: "TL" }}));
+    ws.send(JSON.stringify({{ op: "scan" }}));
+    ws.send(JSON.stringify({{ op: "save" }}));
+    setTimeout(() => resolve(out), 1000);
+  }};
+  ws.onclose = () => {{ out.ws = out.ws || "refused"; setTimeout(() => resolve(out), 500); }};
+}});
+</script>"""
+
+
+def test_another_sites_page_and_a_rebinding_page_cannot_reach_the_session(tmp_path):
+    """In the browser a teacher uses: a page of another site opens a WebSocket to the session (browsers let any page
+    open one) and fetches the old writing route; a page whose name is rebound to 127.0.0.1 loads the panel's page.
+    Neither drives, reads or writes anything, in a browser without Chromium's recent Local Network Access checks
+    (Firefox has none; against the server before these checks the page pressed TL and wrote the file)."""
+    sync_api = pytest.importorskip("playwright.sync_api", reason="playwright is not installed (the test extra has it)")
+    from plcsim.apps.live.server import open_live
+
+    saved = tmp_path / "saved.toml"
+    panel = open_live("PANEL", PANEL_DEMO, port=0, paused=True, save_scenario=saved)
+    rebinding = "--host-resolver-rules=MAP evil.example 127.0.0.1"
+    unguarded = "--disable-features=LocalNetworkAccessChecks"  # Chromium's own check: the server must not need it
+    try:
+        with sync_api.sync_playwright() as p:
+            chromium = p.chromium.launch(executable_path=_chromium(), args=[*CHROMIUM_ARGS, rebinding, unguarded])
+            page = chromium.new_page()
+            evil = EVIL_PAGE.format(port=panel.port, token=panel.token)
+            page.route("http://evil.example/", lambda route: route.fulfill(content_type="text/html", body=evil))
+            page.goto("http://evil.example/")
+            result = page.evaluate("window.result")
+            rebound = page.goto(f"http://evil.example:{panel.port}/")
+            rebound_status, rebound_text = rebound.status, page.inner_text("body")
+            chromium.close()
+    finally:
+        panel.stop()
+    assert result == {"ws": "refused"}
+    assert panel.session.recorded == [] and not saved.exists()
+    assert rebound_status == 403 and "127.0.0.1" in rebound_text
+
+
 def test_a_click_lights_the_lamp_and_the_saved_session_replays(browser, tmp_path):
     from plcsim.apps.live.server import open_live
 

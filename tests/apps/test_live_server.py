@@ -55,7 +55,7 @@ def test_the_websocket_protocol_presses_lights_saves_and_replays(tmp_path):
     program.write_text(PANEL_DEMO, encoding="utf-8")
     panel = open_live("PANEL", program, port=0, save_scenario=tmp_path / "saved.toml")
     try:
-        with connect(f"ws://127.0.0.1:{panel.port}/ws", open_timeout=10) as ws:
+        with connect(f"ws://127.0.0.1:{panel.port}/ws?token={panel.token}", open_timeout=10) as ws:
             first = json.loads(ws.recv(timeout=10))
             assert first["type"] == "layout" and "TL" in [c["name"] for c in first["controls"]]
             ws.send(json.dumps({"op": "do", "verb": "press", "target": "TL"}))
@@ -137,11 +137,19 @@ def test_the_notebook_handle_shows_the_page_inline(tmp_path):
 
 
 def _connect(connect, port: int):
-    """The CLI's server comes up within a moment of its thread starting."""
+    """The CLI's server comes up within a moment of its thread starting; the socket needs the token its page holds."""
+    import http.client
+    import re
+
     end = time.monotonic() + 30
     while True:
         try:
-            return connect(f"ws://127.0.0.1:{port}/ws", open_timeout=10)
+            conn = http.client.HTTPConnection("127.0.0.1", port, timeout=10)
+            conn.request("GET", "/")
+            page = conn.getresponse().read().decode("utf-8")
+            conn.close()
+            token = re.search(r'<meta name="plcsim-token" content="([^"]+)">', page).group(1)
+            return connect(f"ws://127.0.0.1:{port}/ws?token={token}", open_timeout=10)
         except OSError:
             if time.monotonic() > end:
                 raise

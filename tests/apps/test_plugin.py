@@ -166,3 +166,23 @@ def test_the_example_of_the_documentation_passes_the_reference_of_4_3_6(pytester
     tests = pytester.makepyfile(test_example=example)
     result = pytester.runpytest_subprocess(tests, "-p", "no:cacheprovider", "--plcsim-program", "submissions/alice.py")
     result.assert_outcomes(passed=2)
+
+
+def test_a_hostile_label_and_file_name_reach_pytests_output_as_escapes(pytester, monkeypatch):
+    """A label the jump check echoes and a file name with a screen clear: pytest's report shows their
+    escapes, and its JUnit file parses."""
+    monkeypatch.setenv("PYTHONPATH", str(Path(__file__).resolve().parents[2]))  # this checkout's plugin
+    folder = pytester.path / "subs"
+    folder.mkdir()
+    label = "\x1b[2J\x1b[1;32mPASSED\x1b[0m\u202e"
+    program = f'@label({label!r})\ndef n1(t):\n    JMP("nowhere")\n\n\nOB1 = [n1]\n'
+    (folder / "evil\x1b[2J.py").write_text(program, encoding="utf-8")
+    junit = pytester.path / "grades.xml"
+    result = pytester.runpytest_subprocess(
+        *("-p", "no:cacheprovider", "-v", "--ignore=subs", f"--junitxml={junit}"),
+        *("--plcsim-exercise", "4.3.1", "--plcsim-program", "subs"),
+    )
+    printed = "\n".join(result.outlines + result.errlines)
+    assert "\x1b" not in printed and "\u202e" not in printed
+    assert "labels in OB1: \\x1b[2J" in printed
+    ET.parse(junit)

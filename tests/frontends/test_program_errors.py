@@ -116,12 +116,32 @@ def test_network_with_a_wrong_signature():
 
 
 @pytest.mark.parametrize(
+    ("body", "words"),
+    [
+        pytest.param("    t.LED = 5\n", "LED is Bool; cannot store int 5 (use True/False", id="int-into-bool"),
+        pytest.param("    t.CISLO = True\n", "CISLO is Int; cannot store bool True", id="bool-into-int"),
+        pytest.param("    t.CISLO = 'abc'\n", "CISLO is Int", id="text-into-int"),
+        pytest.param("    t.D.R = True\n", "D.R is Real", id="bool-into-db-real"),
+        pytest.param("    t.D.R = -(1)\n    t.D.B = -1\n", "D.B is Bool; cannot store int -1", id="negative-into-bool"),
+    ],
+)
+def test_a_constant_the_tag_cannot_hold_is_refused_at_load(body, words):
+    """TIA Portal refuses these when it compiles; so does plcsim, before the CPU runs, naming file and line."""
+    with pytest.raises(ProgramError) as refused:
+        load("CISLO = Int(0); D = DB(R=Real, B=Bool)\ndef OB1(t):\n" + body)
+    message = str(refused.value)
+    line = 2 + body.count("\n")
+    assert message.startswith(f"lab1.py, line {line}: ") and words in message
+    assert "_t" not in message
+
+
+@pytest.mark.parametrize(
     ("body", "line", "words"),
     [
-        pytest.param("    t.LED = 5\n", 3, "LED is Bool; cannot store int 5", id="int-into-bool"),
-        pytest.param("    t.CISLO = True\n", 3, "CISLO is Int; cannot store bool True", id="bool-into-int"),
-        pytest.param("    t.CISLO = 'abc'\n", 3, "CISLO is Int", id="text-into-int"),
-        pytest.param("    t.D.R = True\n", 3, "D.R is Real", id="bool-into-db-real"),
+        pytest.param("    x = 5\n    t.LED = x\n", 4, "LED is Bool; cannot store int 5", id="int-into-bool"),
+        pytest.param("    x = t.LED\n    t.CISLO = x\n", 4, "CISLO is Int; cannot store bool", id="bool-into-int"),
+        pytest.param("    x = 'abc'\n    t.CISLO = x\n", 4, "CISLO is Int", id="text-into-int"),
+        pytest.param("    x = True\n    t.D.R = x\n", 4, "D.R is Real", id="bool-into-db-real"),
         pytest.param("    t.T.PT = True\n", 3, "PT must be a TIME", id="bool-into-timer-preset"),
     ],
 )
@@ -132,6 +152,7 @@ def test_type_mismatch_stores_stop_the_cpu_with_the_message(body, line, words):
     error = cpu.error
     assert (error.event, error.task, error.line) == ("error in the program", "OB1", line)
     assert words in error.message
+    assert "_t." not in error.message  # the student's names, never the merged function's
     assert cpu.outputs["LED"] is False
 
 

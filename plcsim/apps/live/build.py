@@ -22,6 +22,9 @@ from plcsim.tags.table import Tag
 
 LIVE = "live"
 """The scenario name of a live session with no base scenario."""
+REPLAY_LIMIT_NS = 3_600_000_000_000
+"""How long a saved scenario may run on a target without ``--seconds``: an hour of simulated time (or the exercise's
+longest scenario, if longer). A file from a page or a student must not make a run go on without bound."""
 
 
 @dataclass
@@ -54,6 +57,11 @@ class Target:
             found.update(getattr(pkgutil.resolve_name(p.controller), "VERBS", {}))
         found.update(getattr(rig, "VERBS", {}) if rig is not None else {})
         return found
+
+    def replay_limit_ns(self) -> int:
+        """The longest a saved scenario may run here: :data:`REPLAY_LIMIT_NS`, or the exercise's longest scenario."""
+        scenarios = self.exercise.scenarios if self.exercise is not None else ()
+        return max([REPLAY_LIMIT_NS, *(s.duration_ns for s in scenarios)])
 
     def base(self, name: str | None) -> Scenario | None:
         """The exercise's scenario ``name`` (None: none); a rig has none."""

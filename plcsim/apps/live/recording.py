@@ -1,5 +1,10 @@
 """A live session written down as a scenario, and read back: ``.toml`` (exact) or ``.py`` (the shipped format).
 
+``.toml`` is data: written by a TOML writer, read by :mod:`tomllib`, every name checked against the rig's
+vocabulary. ``.py`` is Python, run when it is read: trusted code, like an exercise file (its values are written as
+literals and its keywords as plain names, so that a saved session runs nothing a page sent; a file from elsewhere
+may hold anything). Take a page's or a student's scenario as ``.toml``.
+
 Each click of a live session becomes one scenario action at the simulated instant it was applied, so the
 session replays bit for bit: same program, seed and actions give the same trace digest.
 
@@ -31,6 +36,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
+
+import tomli_w
 
 from plcsim.core.errors import PlcError
 from plcsim.plant.verbs import RigVerb
@@ -89,7 +96,12 @@ def make_action(
 ) -> Action:
     """The action ``verb`` on ``target`` at ``t`` built by its constructor in :mod:`plcsim.scenario.verbs`, or by the
     rig's or the controller's own verb in ``rig_verbs`` (``set_ambient``, ``interrupt``). A part placed keeps its
-    properties (``colour=2``) besides the pose arguments."""
+    properties (``colour=2``) besides the pose arguments. Every value must be one a scenario file holds as a literal
+    (:func:`~plcsim.scenario.verbs.check_plain`): the arguments may come from a page or a student's file."""
+    if not (isinstance(verb, str) and isinstance(target, str)):
+        raise ScenarioError(f"an action names its verb and target as text, not {verb!r} and {target!r}")
+    for key, value in args.items():
+        verbs.check_plain(value, f"{verb} {target}: {key}")
     if verb not in _CALLS:
         if rig_verbs and verb in rig_verbs:
             return rig_verbs[verb](target, t=t, **args)
@@ -101,6 +113,8 @@ def make_action(
     pos += [args[key] for _, key in positional]
     kw = {arg: _tuples(args[key]) for arg, key in keywords if args.get(key) is not None}
     if verb == "place":
+        for key in args.keys() - _PLACE_ARGS:
+            verbs.check_property_name(key, f"place {target}")  # before the call: "t" would be its time
         kw.update({k: _tuples(v) for k, v in args.items() if k not in _PLACE_ARGS})
     made = call(*pos, t=t, **kw)
     return made[0] if isinstance(made, list) else made
@@ -163,25 +177,30 @@ class Recording:
     # -- TOML: exact --------------------------------------------------------------------------------
 
     def to_toml(self) -> str:
-        """The recording as TOML; read back with :meth:`from_toml`, it replays bit for bit."""
-        lines = [
-            f"# plcsim live session on {self.target}: replay with  {self.replay_command()}",
-            "[session]",
-            f"target = {_toml(self.target)}",
-            f"seed = {self.seed}",
-            f"scenario = {_toml(self.name)}",
-            f"ended = {_toml(time_literal(self.ended_ns))}",
-        ]
+        """The recording as TOML, written by a TOML writer (every name and text quoted as TOML quotes it); read back
+        with :meth:`from_toml`, it replays bit for bit."""
+        session: dict[str, Any] = {
+            "target": self.target,
+            "seed": self.seed,
+            "scenario": self.name,
+            "ended": time_literal(self.ended_ns),
+        }
         if self.base is not None:
-            lines.append(f"base = {_toml(self.base)}")
+            session["base"] = self.base
         if self.program is not None:
-            lines.append(f"program = {_toml(self.program)}")
+            session["program"] = self.program
+        tables = []
         for a in self.actions:
-            lines += ["", "[[action]]", f"t = {_toml(time_literal(a.t.lo_ns))}", f"verb = {_toml(a.verb)}"]  # type: ignore[union-attr]
+            table: dict[str, Any] = {"t": time_literal(a.t.lo_ns), "verb": a.verb}  # type: ignore[union-attr]
             if a.verb not in _NO_TARGET:
-                lines.append(f"target = {_toml(a.target)}")
-            lines += [f"{key} = {_toml(value)}" for key, value in action_args(a).items()]
-        return "\n".join(lines) + "\n"
+                table["target"] = a.target
+            for key, value in action_args(a).items():
+                _check_key(a, key)
+                verbs.check_plain(value, f"{a.describe()}: {key}")
+                table[key] = list(value) if isinstance(value, tuple) else value
+            tables.append(table)
+        head = f"# plcsim live session on {self.target}: replay with  {self.replay_command()}"
+        return _comment(head) + "\n" + tomli_w.dumps({"session": session, "action": tables})
 
     @classmethod
     def from_toml(
@@ -207,7 +226,7 @@ class Recording:
                 base=session.get("base"),
                 program=session.get("program"),
             )
-        except (tomllib.TOMLDecodeError, KeyError, TypeError, PlcError) as exc:
+        except (tomllib.TOMLDecodeError, KeyError, TypeError, ValueError, PlcError) as exc:
             what = f"missing key {exc}" if isinstance(exc, KeyError) else str(exc)
             raise ScenarioError(
                 f"{where}: not a plcsim live recording ({what}); it needs a [session] with target, seed and ended, "
@@ -220,7 +239,7 @@ class Recording:
         """The recording as a Python file with ``SCENARIO = Scenario(...)``, as an exercise writes one."""
         used = sorted({_CALLS[a.verb][0] for a in self.actions if a.rig is None})
         head = [
-            f"# plcsim live session on {self.target}, seed {self.seed}: replay with  {self.replay_command()}",
+            _comment(f"# plcsim live session on {self.target}, seed {self.seed}: replay with  {self.replay_command()}"),
             f"from plcsim.scenario import {', '.join(['Scenario', *used])}",
         ]
         body = ["", f"SEED = {self.seed}"]
@@ -244,7 +263,7 @@ class Recording:
     # -- files ---------------------------------------------------------------------------------------
 
     def save(self, path: str | Path) -> Path:
-        """Write the recording: ``.toml`` or ``.py`` by the suffix."""
+        """Write the recording: ``.toml`` or ``.py`` (Python: replaying it runs it) by the suffix."""
         path = Path(path)
         if path.suffix not in (".toml", ".py"):
             raise PlcError(f"{path}: save a live session as .toml (exact replay) or .py (a scenario to paste)")
@@ -262,7 +281,8 @@ def load_scenario_file(
 
     ``.toml``: a live recording (:meth:`Recording.to_toml`); ``base(name)`` gives its base scenario, ``rig_verbs``
     the verbs its rig and controllers bring.
-    ``.py``: a file defining ``SCENARIO`` (and optionally ``SEED``), as :meth:`Recording.to_python` writes.
+    ``.py``: a file defining ``SCENARIO`` (and optionally ``SEED``), as :meth:`Recording.to_python` writes; it is
+    run as Python, so only a trusted one (yours, an instructor's) may be given.
     """
     path = Path(path)
     if not path.is_file():
@@ -283,8 +303,9 @@ def load_scenario_file(
 
 
 def _call(action: Action) -> str:
+    """The action as a call of its constructor, every value a literal and every keyword a checked name."""
     if action.rig is not None:
-        args = [f"{k}={_py(v)}" for k, v in action_args(action).items()]
+        args = [f"{_keyword(action, k)}={_py(v)}" for k, v in action_args(action).items()]
         when = f"t={_py(time_literal(action.t.lo_ns))}"  # type: ignore[union-attr]
         return f"VERBS[{_py(action.verb)}]({', '.join([_py(action.target), when, *args])})"
     name, positional, keywords = _CALLS[action.verb]
@@ -293,25 +314,36 @@ def _call(action: Action) -> str:
     parts.append(f"t={_py(time_literal(action.t.lo_ns))}")  # type: ignore[union-attr]
     parts += [f"{arg}={_py(action.args[key])}" for arg, key in keywords if action.args.get(key) is not None]
     if action.verb == "place":
-        parts += [f"{k}={_py(v)}" for k, v in (action.args.get("properties") or {}).items()]
+        parts += [f"{_keyword(action, k)}={_py(v)}" for k, v in (action.args.get("properties") or {}).items()]
     return f"{name}({', '.join(parts)})"
 
 
+def _keyword(action: Action, name: str) -> str:
+    """``name`` as a keyword of the action's call; refused where it is no plain name (it would be code)."""
+    _check_key(action, name)
+    return name
+
+
+def _check_key(action: Action, name: str) -> None:
+    """A key the action writes besides its own (a part's property, a rig verb's argument) must be a plain name."""
+    if action.rig is not None:
+        if name not in action.rig.arguments:
+            arguments = ", ".join(action.rig.arguments) or "none"
+            raise ScenarioError(f"{action.describe()}: no argument {name!r}; its arguments: {arguments}")
+    elif action.verb == "place" and name not in _PLACE_ARGS:
+        verbs.check_property_name(name, action.describe())
+
+
 def _py(value: Any) -> str:
+    """A Python literal of ``value`` (text in double quotes, as ruff writes it); anything else is refused."""
+    verbs.check_plain(value, "a value")
     if isinstance(value, str):
-        return json.dumps(value)  # a JSON string is a Python string literal, in double quotes as ruff writes them
+        return json.dumps(value)  # a JSON string (ASCII, escaped) is a Python string literal
     if isinstance(value, (list, tuple)):
         return "(" + ", ".join(_py(v) for v in value) + ("," if len(value) == 1 else "") + ")"
-    return repr(value)
+    return repr(value)  # None, a bool, an int or a finite float: repr is its literal
 
 
-def _toml(value: Any) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, (int, float)):
-        return repr(value)
-    if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(value, (list, tuple)):
-        return "[" + ", ".join(_toml(v) for v in value) + "]"
-    raise PlcError(f"a live recording cannot hold {value!r} ({type(value).__name__})")
+def _comment(text: str) -> str:
+    """One comment line: a newline or another control character in a name must not end it."""
+    return "".join(c if c.isprintable() else " " for c in text)

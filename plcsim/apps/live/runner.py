@@ -91,10 +91,12 @@ class Runner:
 
     # -- the page's commands --------------------------------------------------------------------------
 
-    def command(self, message: dict[str, Any]) -> dict[str, Any] | None:
+    def command(self, message: Any) -> dict[str, Any] | None:
         """Carry out one command from the page; returns a reply for it (or None), an error as ``{"type":
         "error"}``. Commands: ``do`` (verb, target, args), ``release``, ``toggle``, ``write`` (tag, text, force),
         ``pause``, ``resume``, ``scan``, ``speed`` (value or null), ``grade``, ``save``, ``digest``, ``end``."""
+        if not isinstance(message, dict) or not isinstance(message.get("args", {}), dict):
+            return {"type": "error", "message": f"a command is an object such as {{'op': 'pause'}}, not {message!r}"}
         op = message.get("op")
         handler: Callable[[dict[str, Any]], dict[str, Any] | None] | None = getattr(self, f"_op_{op}", None)
         if handler is None:

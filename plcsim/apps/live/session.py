@@ -20,7 +20,6 @@ True
 
 from __future__ import annotations
 
-import string
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -281,14 +280,13 @@ class LiveSession:
         typed, e.g. a time of day; ``parts``: a part on the machine) and the arguments its phrase names."""
         owner = self.sim.cpu if verb.controller else self.sim.plant
         targets = "parts" if verb.on_parts else sorted(getattr(owner, verb.targets, ())) if verb.targets else []
-        args = [f for _, f, _, _ in string.Formatter().parse(verb.phrase) if f and f != "target"]
         caption = verb.name.replace("_", " ")
         return {
             "verb": verb.name,
             "caption": caption,
             "role": verb.role,
             "targets": targets,
-            "args": args,
+            "args": list(verb.arguments),
             "doc": verb.doc,
         }
 

@@ -25,6 +25,7 @@ plcsim.controllers.tecomat.assembly.AssemblyError: bad.il, line 2, column 1: no 
 
 from __future__ import annotations
 
+import contextlib
 import difflib
 import re
 from collections.abc import Mapping
@@ -73,7 +74,12 @@ class _Assembler:
                 )
         self.raw: list[Raw] = []
         self.defs: dict[str, tuple[str, str, int, int]] = {}
+        self.data = bytearray()
+        """The program's #data so far (grown in place: a copy per #data line would be quadratic)."""
+        self.constants: dict[str, int] = {}
+        """The value of each #def that is a constant, evaluated once when it is read (not for every item)."""
         self.regs: list[tuple[str, str, str, int, int, int]] = []
+        self.reg_names: set[str] = set()
         self.pending_labels: list[tuple[str, int, int]] = []
         self.raw_labels: dict[str, tuple[int, int, int]] = {}
 
@@ -95,6 +101,7 @@ class _Assembler:
         if self.pending_labels:
             name, line, col = self.pending_labels[0]
             raise self.fail(line, col, f"the label {name} marks no instruction; put it before one")
+        self.asm.data = bytes(self.data)
         self._declare()
         self.decoder.decode(self.raw)
         return self.asm
@@ -215,6 +222,8 @@ class _Assembler:
             if not value.strip():
                 raise self.fail(lineno, column, f"#def {name} needs a value: an operand (x0.0) or a constant (10)")
             self.defs[name.lower()] = (name, value.strip(), lineno, column)
+            with contextlib.suppress(NumberError):  # an operand or another name: resolved in pass 2
+                self.constants[name.lower()] = expression(value, {})
         elif key == "reg":
             self._reg(lineno, column, rest)
         elif key in ("table", "data"):
@@ -237,7 +246,7 @@ class _Assembler:
         else:
             raise self.fail(lineno, column, f"{name!r} is an address; a name must not look like one")
         key = name.lower()
-        if key in self.defs or key in self.asm.tables or any(r[1].lower() == key for r in self.regs):
+        if key in self.defs or key in self.asm.tables or key in self.reg_names:
             raise self.fail(lineno, column, f"{name!r} is declared twice")
 
     def _reg(self, lineno: int, column: int, text: str) -> None:
@@ -252,6 +261,7 @@ class _Assembler:
             if width == "bit" and count != 1:
                 raise self.fail(lineno, column, "#reg bit reserves one bit; reserve a bit table as bytes")
             self.regs.append((width, name, item, count, lineno, column))
+            self.reg_names.add(name.lower())
 
     def _table(self, lineno: int, column: int, key: str, text: str) -> None:
         width, _, body = text.partition(" ")
@@ -265,12 +275,13 @@ class _Assembler:
             raise self.fail(lineno, column, f"write #{key} {width} name = item, item, ...")
         self._name(lineno, column, name)
         values: list[int] = []
-        limit = TABLE_MAX[width] if key == "table" else MAX_DATA // (2 if width == "word" else 1)
+        size = 2 if width == "word" else 1
+        limit = TABLE_MAX[width] if key == "table" else (MAX_DATA - len(self.data)) // size
         for item in items.split(","):
             match = _ITEM.match(item.strip())
             text_value, repeat = (match.group(1), int(match.group(2))) if match else (item.strip(), 1)
             try:
-                value = expression(text_value, {k: v for k, v in self._constants().items()})
+                value = expression(text_value, self.constants)
             except NumberError as exc:
                 raise self.fail(lineno, column, f"table item {item.strip()!r}: {exc}") from None
             if not 0 <= value <= ITEM_MAX[width]:
@@ -278,25 +289,18 @@ class _Assembler:
                     lineno, column, f"table item {item.strip()!r} does not fit a {width} (0..{ITEM_MAX[width]})"
                 )
             if len(values) + repeat > limit:
+                if key == "data" and self.data:  # MAX_DATA bounds the whole program's data
+                    raise self.fail(lineno, column, f"#data {name}: the program's #data would pass {MAX_DATA} bytes")
                 raise self.fail(lineno, column, f"#{key} {name}: more than {limit} items")
             values += [value] * repeat
         if key == "data":
-            offset = len(self.asm.data)
-            self.asm.data += b"".join(v.to_bytes(2 if width == "word" else 1, "little") for v in values)
+            offset = len(self.data)
+            self.data += b"".join(v.to_bytes(size, "little") for v in values)
             self.asm.symbols[name.lower()] = Symbol(name, Operand("D", width, offset), None, lineno, "#data")
             return
         if not 1 <= len(values) <= TABLE_MAX[width]:
             raise self.fail(lineno, column, f"a {width} table has 1..{TABLE_MAX[width]} items, not {len(values)}")
         self.asm.tables[name.lower()] = Table(name, width, values, len(self.asm.tables), lineno)
-
-    def _constants(self) -> dict[str, int]:
-        out = {}
-        for key, (_, value, _, _) in self.defs.items():
-            try:
-                out[key] = expression(value, {})
-            except NumberError:
-                continue
-        return out
 
     # -- pass 2: names and registers (the operands are the decoder's) ---------------------------------
 
@@ -336,7 +340,7 @@ class _Assembler:
             target = self._resolve_def(value.lower(), *other, (*seen, key))
             return Symbol(name, target.operand, target.value, lineno, "#def")
         try:
-            return Symbol(name, None, expression(value, self._constants()), lineno, "#def")
+            return Symbol(name, None, expression(value, self.constants), lineno, "#def")
         except NumberError:
             raise self.fail(
                 lineno, column, f"#def {name} {value}: neither an operand (x0.0, rw4) nor a constant"

@@ -14,7 +14,7 @@ import ast
 from typing import Any
 
 from plcsim.controllers.s7.instructions import BLOCKS, FUNCTIONS, block_named
-from plcsim.core.errors import ProgramError, SubsetError, UnknownTagError, did_you_mean
+from plcsim.core.errors import PlcTypeError, ProgramError, SubsetError, UnknownTagError, did_you_mean
 from plcsim.core.literals import time_ms
 from plcsim.frontends.python.safe_math import SAFE_FUNCTIONS, SAFE_OPS
 from plcsim.frontends.python.subset import place
@@ -313,7 +313,9 @@ class StoreRewriter(ast.NodeTransformer):
             return self._call_stmt(STORE, [base_node, ast.Constant(key), value], node)
         if not (mtype is Bool and self.typing.type_of(value, self.env) is Bool):
             self.coercers.add(mtype)
-            where = key if is_root else f"{ast.unparse(base_node)}.{key}"
+            path = _tag_path(base_node, self.root_name or "")
+            where = key if is_root else f"{path or ast.unparse(base_node)}.{key}"
+            self._check_constant(mtype, value, where, node)
             value = ast.Call(ast.Name(coerce_name(mtype), ast.Load()), [value, ast.Constant(where)], [])
         if is_root and isinstance(base_node, ast.Name) and base_node.id == self.root_name:
             self.uses_root_dict = True
@@ -323,6 +325,18 @@ class StoreRewriter(ast.NodeTransformer):
             dict_node = ast.Attribute(base_node, "__dict__", ast.Load())
         store = ast.Assign([ast.Subscript(dict_node, ast.Constant(key), ast.Store())], value)
         return ast.copy_location(store, node)  # the whole module's locations are fixed once, after rewriting
+
+    def _check_constant(self, mtype: ElementaryType, value: ast.expr, where: str, node: ast.stmt) -> None:
+        """A constant that the store would refuse at run time (``t.DB.FLAG = 1`` into a Bool) is refused now,
+        at load, naming the file and line: the CPU would otherwise go to STOP on the first scan that stores it."""
+        try:
+            constant = ast.literal_eval(value)
+        except (ValueError, TypeError, SyntaxError, MemoryError, RecursionError):
+            return  # not a constant: the store converts (or refuses) it when it runs
+        try:
+            mtype.coerce(constant, where)
+        except PlcTypeError as exc:
+            raise ProgramError(f"{place(self.typing.filename, node)}: {exc}") from None
 
     def _call_stmt(self, func: str, args: list[ast.expr], node: ast.stmt) -> ast.stmt:
         call = ast.Expr(ast.Call(ast.Name(func, ast.Load()), args, []))

@@ -57,6 +57,8 @@ from plcsim.grading.sandbox.probes import Probes
 from plcsim.grading.sandbox.readable import readable_paths
 
 DEFAULT_ENTRY = "plcsim.grading.sandbox.child"
+TOO_SLOW = "too slow"
+"""The outcome of a submission stopped at its exercise's CPU budget (:class:`~plcsim.grading.sandbox.limits.Budget`)."""
 POSIX = hasattr(os, "waitid") and hasattr(os, "killpg") and hasattr(os, "wait4")
 """Process groups, waitid and wait4 (Linux, macOS); otherwise (Windows) the portable, weaker path."""
 MODE_VARIABLE = "PLCSIM_SANDBOX"
@@ -125,7 +127,7 @@ def run_child(
         "seed": seed,
         "scenarios": [s.name for s in scenarios],
         "geometry": geometry,
-        "limits": {"cpu_seconds": limits.cpu_seconds, "memory_mb": limits.memory_mb},
+        "limits": {"cpu_seconds": limits.cpu_limit, "memory_mb": limits.memory_mb},
         "scratch": scratch,
         "cgroup": cgroup,
         "readable": readable,
@@ -207,7 +209,7 @@ class _PosixChild:
 def _start_posix(entry: str, request: dict[str, Any], write_end: int) -> _PosixChild:
     """Fork the child from this process's fork server (:mod:`plcsim.grading.sandbox.forkserver`, Linux), or else start
     a fresh interpreter; a server that fails is replaced by a fresh start, never by a failed grade."""
-    env = _child_env(request["scratch"])
+    env = _child_env(request)
     if forkserver.enabled():
         try:
             server = forkserver.shared({k: v for k, v in env.items() if k not in _PER_CHILD_ENV})
@@ -247,13 +249,13 @@ def _run_portable(entry: str, request: dict[str, Any], limits: Any, cap: int) ->
     proc = subprocess.Popen(
         _command(entry, {**request, "fd": None, "result_file": result}),
         cwd=request["scratch"],
-        env=_child_env(request["scratch"]),
+        env=_child_env(request),
         stdin=subprocess.PIPE,
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
         creationflags=getattr(subprocess, "CREATE_NEW_PROCESS_GROUP", 0),
     )
-    watch = TreeWatch(proc.pid, limits.cpu_seconds, limits.memory_mb, result_file=result, max_bytes=cap)
+    watch = TreeWatch(proc.pid, limits.cpu_limit, limits.memory_mb, result_file=result, max_bytes=cap)
     deadline = time.monotonic() + limits.wall_seconds
     stopped = None
     try:
@@ -304,7 +306,7 @@ def _outside_watch(pid: int, limits: Any) -> Any:
     cpu, memory = outside_limits(portable=False)
     if not (cpu or memory):
         return None
-    return TreeWatch(pid, limits.cpu_seconds if cpu else None, limits.memory_mb if memory else None)
+    return TreeWatch(pid, limits.cpu_limit if cpu else None, limits.memory_mb if memory else None)
 
 
 def _collect(
@@ -382,7 +384,9 @@ def _no_result(code: int, cpu_s: float, stopped: str | None, limits: Any) -> Chi
     if stopped == "wall":
         return ChildOutcome(kind="time limit", message=f"no result within {limits.wall_seconds:g} s of wall time")
     xcpu, kill = getattr(signal, "SIGXCPU", None), getattr(signal, "SIGKILL", None)
-    if stopped == "cpu" or (signum and (signum == xcpu or (signum == kill and cpu_s >= limits.cpu_seconds))):
+    if stopped == "cpu" or (signum and (signum == xcpu or (signum == kill and cpu_s >= limits.cpu_limit))):
+        if limits.budget_binds:
+            return ChildOutcome(kind=TOO_SLOW, message=limits.budget.too_slow())
         message = f"the submission used more than {limits.cpu_seconds} s of CPU time"
         return ChildOutcome(kind="time limit", message=message)
     if stopped == "memory" or code == MEMORY_EXIT:
@@ -415,11 +419,29 @@ def gaps(cgroup: str | None, portable: bool = False) -> list[str]:
     return []
 
 
-def _child_env(scratch: str) -> dict[str, str]:
+def child_path(submission: str, module: str) -> list[str]:
+    """The child's ``PYTHONPATH``: this process's path without the current folder and the submission's
+    folder (a submission there saved as ``numpy.py`` would be imported in place of numpy, before the child
+    confines itself), unless plcsim or the exercise's package is imported from there."""
+    from plcsim.core.startup import same_folder
+    from plcsim.grading.sandbox.importable import package_root
+
+    needed = [root.parent for root in map(package_root, (sys.modules["plcsim"], sys.modules[module])) if root]
+    untrusted = [os.getcwd(), os.path.dirname(os.path.abspath(submission))]
     paths = [os.path.abspath(p or os.getcwd()) for p in sys.path]
+    return [
+        p
+        for p in dict.fromkeys(paths)
+        if os.path.exists(p)
+        and (not any(same_folder(p, u) for u in untrusted) or any(same_folder(p, str(n)) for n in needed))
+    ]
+
+
+def _child_env(request: dict[str, Any]) -> dict[str, str]:
+    scratch = request["scratch"]
     return {
         "PATH": os.environ.get("PATH", "/usr/bin:/bin"),
-        "PYTHONPATH": os.pathsep.join(p for p in paths if os.path.exists(p)),
+        "PYTHONPATH": os.pathsep.join(child_path(request["path"], request["module"])),
         "PYTHONHASHSEED": "0",
         "PYTHONDONTWRITEBYTECODE": "1",
         "HOME": scratch,

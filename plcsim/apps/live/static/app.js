@@ -8,8 +8,10 @@ const page = { layout: null, state: null, ws: null, pressed: null, controls: {},
 window.plcsimLive = page; // for the browser test and the curious
 
 // -- connection ------------------------------------------------------------------------------------
+// the session's token, put in the page by the server: its WebSocket refuses a connection without it
+const TOKEN = document.querySelector('meta[name="plcsim-token"]')?.content ?? "";
 function connect() {
-  const ws = new WebSocket(`ws://${location.host}/ws`);
+  const ws = new WebSocket(`ws://${location.host}/ws?token=${encodeURIComponent(TOKEN)}`);
   page.ws = ws;
   ws.onopen = () => setLink(true);
   ws.onclose = () => { setLink(false); setTimeout(connect, 1000); };
