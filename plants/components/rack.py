@@ -52,10 +52,13 @@ class Rack:
 
     Args:
         name: the component's name (the subject of collisions with the frame).
-        x, y, z: the crane's axes (travel, fork height, fork depth).
+        x: the crane's travel along the rack.
+        y: the fork's height (the top of its tines).
+        z: the fork's depth (+ into the rack).
         columns: the X position of each column's centre, mm (column 1 first).
         shelves: the height of each row's shelf top, mm (row 1, the lowest, first).
-        front, depth: where the rack begins along Z and how deep a place is, mm.
+        front: where the rack begins along Z, mm.
+        depth: how deep a place is, mm.
         part_size: (width along X, depth along Z, height) of a part, mm.
         tolerance: how far off a column's centre the fork may be inside the rack, mm.
         seat: the fork's Z from which a part put down or picked is carried by the shelf or the fork.
