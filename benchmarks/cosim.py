@@ -13,6 +13,8 @@ The workloads, each 1 ms scan, 1 ms physics, the trace on (one row per scan, pla
 * ``hoist`` (SKIP, 4.3.16's reference, its "one AUTO cycle" scenario): 77 s, the skip filled, up fast and
   slow, 6 s at the top while its batch pours into the mixer, down slowly. ``physics_alone_us_per_step_pouring``
   is the plant alone while the batch pours (the skip standing tipped at the top), the costliest part of its cycle.
+* ``crane`` (HBW, 4.3.18's reference, its "all nine places" scenario): 70 s, nine put-in requests at the HMI,
+  three axes driven by set-points, a part on the fork put down on each place of the rack.
 
 "Physics alone" replays, on a fresh plant and in the same process, exactly the plant calls the
 co-simulation made (actuator commands, parts placed and removed) at the same simulated times, and steps
@@ -55,6 +57,7 @@ WORKLOADS = (
     ("sorter", "4.3.17 reference", "SORT"),
     ("punch", "6.3.5 reference", "PUNCH"),
     ("hoist", "4.3.16 reference", "SKIP"),
+    ("crane", "4.3.18 reference", "HBW"),
 )
 
 
@@ -100,6 +103,9 @@ def _cosim(workload: str, seconds: int) -> tuple[float, Any, list[tuple[int, str
     elif workload == "hoist":
         exercise = get("4.3.16")
         scenario = exercise.scenario("one AUTO cycle")
+    elif workload == "crane":
+        exercise = get("4.3.18")
+        scenario = exercise.scenario("all nine places")
     else:
         exercise = get("4.3.6")
         scenario = exercise.scenario("five objects")

@@ -9,6 +9,7 @@ from collections.abc import Callable, Iterator, Mapping
 from plants.align import Align
 from plants.components import StationOccupiedError
 from plants.conveyors import Conv1, Conv2x2, Conv3, ConveyorLine
+from plants.hbw import HBW
 from plants.machine import Machine
 from plants.panel import Panel
 from plants.punch import Punch
@@ -43,6 +44,7 @@ __all__ = [
     "Conv2x2",
     "Conv3",
     "ConveyorLine",
+    "HBW",
     "Machine",
     "Panel",
     "Punch",

@@ -24,7 +24,7 @@ from plcsim.controllers.protocol import Controller
 from plcsim.controllers.s7.config import CPUConfig
 from plcsim.core.errors import ExerciseError, PlcError, did_you_mean
 from plcsim.core.literals import to_ns
-from plcsim.plant.protocol import rig_verbs, stations_of
+from plcsim.plant.protocol import rig_verbs, stations_of, traced_observables
 from plcsim.scenario.names import name_problems, plant_vocabulary
 from plcsim.scenario.planning import Scenario
 from plcsim.scenario.verbs import VERBS
@@ -211,7 +211,8 @@ class _Validation:
                         f"solution {sol.name} should fail {f!r}, which is not a check{did_you_mean(f, names)}",
                     )
         assert self.cpu is not None
-        traced = default_signals(self.cpu)
+        observed = traced_observables(self.plant)  # the plant's columns in every row (plant:Z.s)
+        traced = default_signals(self.cpu) + (observed[0] if observed else [])
         for gc in ex.checks:  # type: ignore[union-attr]
             where = self._where(gc)
             for s in gc.scenarios or ():

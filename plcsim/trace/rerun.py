@@ -301,10 +301,11 @@ def _time_column(t_ns: np.ndarray) -> Any:
 def _series_style(rr: Any, names: list[str], color: int | None = None, *, line: bool = False) -> Any:
     """Step lines (``line``: straight lines through the samples of an analog value), never aggregated:
     the viewer would otherwise average the points under one pixel, turning a one-scan pulse into a
-    plateau at 0.5 (``AggregationPolicy.Off``, rerun 0.41)."""
+    plateau at 0.5 (``AggregationPolicy.Off``, rerun 0.41). The colours are a uint32 array: a plain list of three
+    ints would be read as one RGB colour (three analog lines: a crane's X, Y, Z)."""
     return rr.SeriesLines(
         names=names,
-        colors=None if color is None else [color] * len(names),
+        colors=None if color is None else np.full(len(names), color, dtype=np.uint32),
         interpolation_mode="Linear" if line else "StepAfter",
         aggregation_policy="Off",
     )

@@ -77,8 +77,8 @@ def test_all_shipped_exercises_validate_cleanly():
     assert broken_exercises() == ()
     numbers = [e.number for e in all_exercises()]
     modules = sorted(Path(exercises.__file__).parent.glob("ex_*.py"))
-    # 4.3.x with 4.3.12, 4.3.16, 4.3.17; 6.3.1-6.3.5; the PLC836 mechanisms' P-01, P-02; the Tecomat's T-01..T-06
-    assert len(numbers) == len(modules) == 34
+    # 4.3.x with 4.3.12, 4.3.16-18; 6.3.1-6.3.5; the PLC836 mechanisms' P-01, P-02; the Tecomat's T-01..T-06
+    assert len(numbers) == len(modules) == 35
     assert numbers[:5] == ["4.3.1", "4.3.2", "4.3.3", "4.3.4", "4.3.5"] and numbers[-9] == "6.3.5"
     assert numbers[-8:-6] == ["P-01", "P-02"]
     assert numbers[-6:] == ["T-01", "T-02", "T-03", "T-04", "T-05", "T-06"]  # after the textbook's numbers

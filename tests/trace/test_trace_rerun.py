@@ -395,6 +395,17 @@ def test_plc_only_and_synthetic_traces(tmp_path):
     assert len(rr.chunk.RrdReader(tmp_path / "empty.rrd").blueprints()) == 1
 
 
+def test_three_analog_lines_keep_their_own_colours(tmp_path):
+    """A crane's X, Y and Z positions (three analog columns): their colours are one per line, not one RGB colour
+    made of the three (rerun warned and the export failed)."""
+    names = ["plant:X.s", "plant:Y.s", "plant:Z.s"]
+    tr = Trace(names, kinds=dict.fromkeys(names, "analog"), types=dict.fromkeys(names, "real"))
+    for k in range(4):
+        tr.add_row(k * 1_000_000, (k + 1) * 1_000_000, 1, (100.0 + k, 50.0 + k, float(k)))
+    got, _, values = series(read_rrd(export_rrd(tr, tmp_path / "crane.rrd")), "/signals/analog")
+    assert got == names and values[-1].tolist() == [103.0, 53.0, 3.0]
+
+
 def test_export_ignores_rerun_off(belt_trace, tmp_path, monkeypatch):
     """RERUN=off silences live logging; an explicit export still writes its file (and leaves the variable)."""
     monkeypatch.setenv("RERUN", "off")
