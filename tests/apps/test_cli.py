@@ -147,14 +147,14 @@ def test_grade_the_reference_with_json_and_junit(tmp_path, capsys):
     js, xml = tmp_path / "r" / "report.json", tmp_path / "r" / "report.xml"
     assert main(["grade", "4.3.5", "--reference", "--json", str(js), "--junit", str(xml)]) == 0
     out = capsys.readouterr().out
-    assert "PASSED  score 13 / 13" in out
+    assert "PASSED  score 11 / 11" in out
     data = json.loads(js.read_text(encoding="utf-8"))
-    assert (data["exercise"], data["passed"], data["score"], data["max_score"]) == ("4.3.5", True, 13.0, 13.0)
-    assert len(data["checks"]) == 13
+    assert (data["exercise"], data["passed"], data["score"], data["max_score"]) == ("4.3.5", True, 11.0, 11.0)
+    assert len(data["checks"]) == 11
     assert all(set(c) >= {"scenario", "check", "passed", "message"} and c["passed"] for c in data["checks"])
     root = ET.parse(xml).getroot()
-    assert (root.tag, root.get("tests"), root.get("failures")) == ("testsuites", "13", "0")
-    assert len(root.findall("testsuite/testcase")) == 13
+    assert (root.tag, root.get("tests"), root.get("failures")) == ("testsuites", "11", "0")
+    assert len(root.findall("testsuite/testcase")) == 11
 
 
 def test_grade_a_wrong_solution_exits_1(tmp_path, capsys):
@@ -163,10 +163,10 @@ def test_grade_a_wrong_solution_exits_1(tmp_path, capsys):
     js = tmp_path / "mine.json"
     assert main(["grade", "4.3.5", str(path), "--json", str(js), "-v"]) == EXIT_FAILED
     out = capsys.readouterr().out
-    assert "FAILED  score 10 / 13" in out
+    assert "FAILED  score 8 / 11" in out
     assert "expected number of times D1 rises = 3; measured 1" in out
     data = json.loads(js.read_text(encoding="utf-8"))
-    assert (data["passed"], data["score"]) == (False, 10.0)
+    assert (data["passed"], data["score"]) == (False, 8.0)
     assert data["submission"] == str(path)
 
 
