@@ -36,7 +36,9 @@ EXERCISE = Exercise(
         "entered through a parameter of data type INT, M2_ZIADANY_POCET; count the punchings done in "
         "M2_AKTUALNY_POCET (the rising edge of the lower sensor KS2 is one punching) and clear the count when the "
         "object leaves OS2. The object is sent back only after the last punching, with the press at the top "
-        "again. A required count of zero need not be handled. The operator sets M1_ZIADANY_POCET and "
+        "again, and then at once (in the same scan that sees the press back at KS1), as in task 4. If the operator "
+        "takes the object from under the press between two punchings, the press strikes no more and waits at the "
+        "top (KS1). A required count of zero need not be handled. The operator sets M1_ZIADANY_POCET and "
         "M2_ZIADANY_POCET on the HMI before loading an object."
     ),
     io=[
@@ -162,7 +164,7 @@ EXERCISE = Exercise(
         "comes on the way down to the second stroke: the program must neither count a stroke nor move the belt "
         "before the press is back at KS1 after the last one. 'Object taken from under the press' (between the first "
         "and the second stroke) grades what the program must do then, as in 6.3.4: no further stroke, the ram back at "
-        "KS1, the belt standing, and M2_AKTUALNY_POCET 0 (the object has left OS2); not the moves and their count "
+        "KS1, and M2_AKTUALNY_POCET 0 (the object has left OS2); not the moves and their count "
         "(6.3.4's note). Not a scenario: bouncing KS2. The textbook counts "
         "strokes on P(KS2), and each bounce of the contact is a rising edge, so a bouncing KS2 counts one stroke "
         "several times (the textbook's program is not debounced; 6.3.3 grades the bounce, where only levels are "
