@@ -176,8 +176,9 @@ def _add_mutate_parser(sub: Any) -> None:
     mutate = sub.add_parser(
         "mutate",
         help="mutation-test an exercise's checks: which slips in the reference do they miss?",
-        description="Derive mutants from the exercise's reference solution (negated contacts, swapped timers, "
-        "removed edges, presets off by a step, swapped or dropped networks ...), grade each, list the survivors.",
+        description="Derive mutants from the exercise's reference solution (negated contacts, forgotten contacts, "
+        "swapped timers, removed edges, presets off by a step, swapped or dropped networks ...), grade each, list "
+        "the survivors.",
     )
     mutate.add_argument("exercise", help="textbook number (4.3.6) or slug")
     mutate.add_argument("--seeds", type=int, default=3, metavar="N", help="grade each mutant on seeds 1..N (default 3)")
