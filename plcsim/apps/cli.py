@@ -1,7 +1,7 @@
 """The ``plcsim`` command: list and show exercises, run a program on a rig, grade submissions::
 
     plcsim list
-    plcsim show 4.3.7
+    plcsim show 4.3.7                 # the student's view; --solutions for instructors
     plcsim run 4.3.7 --reference --rrd out/run.rrd
     plcsim run CONV1 --program my_conveyor.py --seconds 20 --plot out/conveyor.png
     plcsim grade 4.3.7 my_alarm.py --json out/report.json --junit out/report.xml
@@ -51,13 +51,18 @@ def _parser() -> argparse.ArgumentParser:
 
     show = sub.add_parser(
         "show",
-        help="show an exercise: task, I/O table, scenarios, checks",
-        description="Show an exercise's task, I/O table, data blocks, scenarios and checks.",
+        help="show an exercise as a student reads it: task, I/O table, scenarios, requirements and checks",
+        description="Show an exercise's task, I/O table, data blocks, scenarios, the task's requirements with the "
+        "checks that grade each, and the other checks: what a student needs. Instructors add --solutions.",
     )
     show.add_argument("exercise", help="textbook number (4.3.6), slug, or an exercise file")
-    show.add_argument(
-        "--no-solutions", action="store_true", help="leave the shipped programs out (for a handout to students)"
+    which = show.add_mutually_exclusive_group()
+    which.add_argument(
+        "--solutions",
+        action="store_true",
+        help="for instructors: also the shipped programs, what each shows, and the exercise's notes",
     )
+    which.add_argument("--no-solutions", action="store_true", help="the student's view (the default)")
 
     reference = sub.add_parser(
         "reference",
@@ -245,7 +250,7 @@ def _show(args: argparse.Namespace) -> int:
     from plcsim.exercise.catalog import get
     from plcsim.grading.terminal import print_exercise
 
-    print_exercise(get(args.exercise), solutions=not args.no_solutions)
+    print_exercise(get(args.exercise), solutions=args.solutions)
     return 0
 
 

@@ -16,7 +16,7 @@ from plcsim.check import Check
 from plcsim.controllers.choice import controller_for
 from plcsim.controllers.loaded import SourceProgram
 from plcsim.core.errors import ConfigurationError, ExerciseError, defined_at
-from plcsim.exercise.validation import validate
+from plcsim.exercise.validation import plain_words, validate
 from plcsim.frontends import read_program
 from plcsim.plant.protocol import Plant
 from plcsim.scenario.planning import Scenario
@@ -88,6 +88,9 @@ class GradedCheck:
     check: Check
     scenarios: tuple[str, ...] | None = None
     defined_at: str = "?"
+    requirement: str | None = None
+    """The words of the task the check grades: the exercise's ``requirements[name]``, else the check's own
+    (:meth:`~plcsim.check.Check.grades`)."""
 
     @property
     def name(self) -> str:
@@ -112,6 +115,10 @@ class Exercise:
     "the pulse used one scan later is still one a second"}`` (a key is a mutant's description, or
     ``"line N: description"`` where the description alone names several). Mutation testing reports
     them as explained, outside the score; one that matches no mutant, or is killed, is reported.
+
+    ``requirements`` names, per check name, the words of the task text the check grades (for checks built by
+    a helper that several exercises share; a check of one exercise can say it itself with ``.grades(...)``).
+    Each must be in the task text, or the exercise does not load: a check grades only what the task states.
     """
 
     number: str
@@ -132,6 +139,7 @@ class Exercise:
     notes: str = ""
     plant_name: str = ""
     spec_equivalent: Mapping[str, str] = field(default_factory=dict)
+    requirements: Mapping[str, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.defined_at = defined_at()
@@ -139,7 +147,18 @@ class Exercise:
             if not (isinstance(reason, str) and reason.strip()):
                 raise ExerciseError(f"{self.defined_at}: spec_equivalent[{mutant!r}] needs the reason it is correct")
         self.checks = [c if isinstance(c, GradedCheck) else GradedCheck(c) for c in self.checks]
+        for gc in self.checks:
+            gc.requirement = self.requirements.get(gc.name) or gc.check.requirement
         validate(self)
+
+    def requirement_list(self) -> list[tuple[str, list[GradedCheck]]]:
+        """The requirements the checks grade, in the order the task states them, each with its checks."""
+        by_words: dict[str, list[GradedCheck]] = {}
+        for gc in self.checks:  # type: ignore[union-attr]
+            if gc.requirement:
+                by_words.setdefault(gc.requirement, []).append(gc)
+        task = plain_words(self.task)
+        return sorted(by_words.items(), key=lambda item: task.find(plain_words(item[0])))
 
     # -- building a run -----------------------------------------------------------------------
 

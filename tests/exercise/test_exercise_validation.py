@@ -542,3 +542,45 @@ def test_an_unknown_exercise_mentions_the_modules_that_did_not_load(package, mon
 def test_the_shipped_registry_loads_through_load_package():
     loaded, broken = load_package("exercises")
     assert broken == [] and [e.number for e in loaded] == [e.number for e in all_exercises()]
+
+
+# -- a check grades only what the task states ------------------------------------------------------
+
+
+def test_a_check_grading_words_the_task_does_not_state_is_refused_at_its_line():
+    line = here() + 1
+    check = never("D1").named("the belt stays off").grades("the belt never runs")
+    message = refused(lambda: conveyor(checks=[check]))
+    assert re.search(rf"{HERE}:{line}: exercise 9.9.1: check 'the belt stays off' grades 'the belt never", message)
+    assert "which the task text does not state: quote the task's own words" in message
+
+
+def test_a_requirement_is_found_in_the_task_whatever_its_case_and_spacing():
+    check = never("D1").named("the belt stays off").grades("Carry  objects\nfrom S1")
+    exercise = conveyor(checks=[check])
+    assert [(words, [c.name for c in checks]) for words, checks in exercise.requirement_list()] == [
+        ("Carry  objects\nfrom S1", ["the belt stays off"])
+    ]
+
+
+def test_requirements_by_check_name_must_name_a_check_and_quote_the_task():
+    def make(requirements):
+        return Exercise(
+            number="9.9.1",
+            slug="validation",
+            title="validation",
+            task="carry objects from S1 to S2",
+            io=IO_TABLE,
+            rig=Conv1,
+            scenarios=[IDLE],
+            checks=[never("D1").named("the belt stays off")],
+            solutions=[],
+            requirements=requirements,
+        )
+
+    assert make({"the belt stays off": "to S2"}).checks[0].requirement == "to S2"
+    assert "requirements names 'the belt stays of', which is not a check; did you mean 'the belt stays off'" in (
+        refused(lambda: make({"the belt stays of": "to S2"}))
+    )
+    wrong = refused(lambda: make({"the belt stays off": "to S3"}))
+    assert "grades 'to S3', which the task text does not state" in wrong
