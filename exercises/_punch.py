@@ -54,8 +54,15 @@ MODEL = (
     "the loading place and OS2 under the press, are wired as normally closed contacts: the input is TRUE while the "
     "beam is free and FALSE while an object interrupts it. The press's upper and lower positions are reported by "
     "the contact sensors KS1 (upper) and KS2 (lower), wired as normally open contacts (TRUE while actuated). The "
-    "press waits at the top (KS1) when the model is switched on."
+    "press waits at the top (KS1) when the model is switched on. In every task the machine is kept safe: no object "
+    "falls off the belt or is damaged by the press, no motor is driven both ways at once, the press is never driven "
+    "against an end stop, and the belt runs only while the press waits at the top (KS1), never while the press is "
+    "driven."
 )
+
+BOTH_WAYS = "no motor is driven both ways at once"
+BELT_WAITS = "the belt runs only while the press waits at the top (KS1), never while the press is driven"
+"""The words of :data:`MODEL` the machine's safety checks grade (every task states them)."""
 
 AUX = {
     "POM_P_OS1": ("%M1.0", "edge memory bit: rising edge of OS1 (object removed)"),
@@ -386,10 +393,14 @@ def interlocks(*, belt: bool = True, press: bool = True) -> list[Check]:
     checks = []
     if belt:
         checks.append(
-            never(all_of("M1_VPRED", "M1_VZAD")).named("the belt is never driven forward and backward at once")
+            never(all_of("M1_VPRED", "M1_VZAD"))
+            .named("the belt is never driven forward and backward at once")
+            .grades(BOTH_WAYS)
         )
     if press:
-        checks.append(never(all_of("M2_DOLE", "M2_HORE")).named("the press is never driven down and up at once"))
+        checks.append(
+            never(all_of("M2_DOLE", "M2_HORE")).named("the press is never driven down and up at once").grades(BOTH_WAYS)
+        )
     return checks
 
 
@@ -397,10 +408,12 @@ def machine_safe() -> list[Check]:
     """What the plant says went wrong, whatever the task: nothing falls off, nothing is damaged, no stall, no
     interlock violation (both directions of a motor, belt and press moving together)."""
     return [
-        never(event("part fell off")).named("no object falls off the belt"),
-        never(event("part damaged")).named("no object is damaged by the press"),
-        never(event("axis stalled")).named("the press is never driven against an end stop"),
-        never(event("interlock violated")).named("the machine reports no interlock violation"),
+        never(event("part fell off")).named("no object falls off the belt").grades("no object falls off the belt"),
+        never(event("part damaged")).named("no object is damaged by the press").grades("is damaged by the press"),
+        never(event("axis stalled"))
+        .named("the press is never driven against an end stop")
+        .grades("the press is never driven against an end stop"),
+        never(event("interlock violated")).named("the machine reports no interlock violation").grades(BELT_WAITS),
     ]
 
 
@@ -451,9 +464,9 @@ def belt_waits_for_the_press() -> list[Check]:
     """6.3.4 criterion 2 on the PLC's outputs: the belt never moves while the press is away from KS1 or driven (the
     machine's own word on it is :func:`machine_safe`'s interlock check)."""
     return [
-        never(all_of(any_of("M1_VPRED", "M1_VZAD"), any_of(off("KS1"), "M2_DOLE", "M2_HORE"))).named(
-            "the belt never runs while the press is away from KS1 or moving"
-        ),
+        never(all_of(any_of("M1_VPRED", "M1_VZAD"), any_of(off("KS1"), "M2_DOLE", "M2_HORE")))
+        .named("the belt never runs while the press is away from KS1 or moving")
+        .grades(BELT_WAITS),
     ]
 
 

@@ -26,6 +26,12 @@ NUMBER = "6.3.3"
 OBJECTS = 3
 BOUNCE = "bouncing limit switches"
 EXCHANGED = "object exchanged while the ram goes up"
+STARTS = "The press starts down in the scan in which it is at the top (KS1) with an object at OS2"
+REVERSES = "reverses in the scan that sees KS2"
+STOPS = "stops in the scan that sees KS1 again"
+ONCE = "The sequence may start again only after the object has been removed and a new one loaded"
+DOWN_FOR_AN_OBJECT = "moves the punching device down and then up when an object is detected by OS2"
+TAKEN = "If the object is taken away while the press goes down, the press finishes its stroke and waits at the top"
 HOLDS = ("4s", "4.5s", "4.2s")  # the operator takes the object away this long after placing it (a stroke: 2.7 s)
 
 EXERCISE = Exercise(
@@ -40,8 +46,11 @@ EXERCISE = Exercise(
         "task 1, except that the object does not move: the punching part of the model moves. The operator puts the "
         "object straight under the press (at OS2) and takes it away there; they may take a punched object away, and "
         "put the next one there, while the press is still going back up: the next stroke starts only once the press "
-        "is at the top (KS1), and the new object gets its one stroke. Remember that the press has been down for the "
-        "object in the bit OBJEKT_BOL_DOLE; the removal is the rising edge of OS2 (edge memory bit POM_P_OS2)."
+        "is at the top (KS1), and the new object gets its one stroke. The press starts down in the scan in which it "
+        "is at the top (KS1) with an object at OS2 that it has not punched yet, reverses in the scan that sees KS2 "
+        "and stops in the scan that sees KS1 again. If the object is taken away while the press goes down, the press "
+        "finishes its stroke and waits at the top. Remember that the press has been down for the object in the bit "
+        "OBJEKT_BOL_DOLE; the removal is the rising edge of OS2 (edge memory bit POM_P_OS2)."
     ),
     io=[
         *PUNCH_IO,
@@ -99,35 +108,41 @@ EXERCISE = Exercise(
     ],
     checks=[
         # criterion 1
-        never(all_of(AwaitingStroke(), "KS1", off("M2_DOLE"))).named(
-            "the press starts down within 1 scan for an object at OS2"
-        ),
-        never(all_of("KS2", "M2_DOLE")).named("the press stops at KS2 within 1 scan"),
-        never(all_of("KS2", off("M2_HORE"))).named("the press goes back up from KS2 within 1 scan"),
-        never(all_of("KS1", "M2_HORE")).named("the press stops at KS1 within 1 scan"),
+        never(all_of(AwaitingStroke(), "KS1", off("M2_DOLE")))
+        .named("the press starts down within 1 scan for an object at OS2")
+        .grades(STARTS),
+        never(all_of("KS2", "M2_DOLE")).named("the press stops at KS2 within 1 scan").grades(REVERSES),
+        never(all_of("KS2", off("M2_HORE"))).named("the press goes back up from KS2 within 1 scan").grades(REVERSES),
+        never(all_of("KS1", "M2_HORE")).named("the press stops at KS1 within 1 scan").grades(STOPS),
         # criteria 2 and 3
         only(
-            PerVisit("every object under the press is punched exactly once", constant(1)),
+            PerVisit("every object under the press is punched exactly once", constant(1)).grades(ONCE),
             "three objects",
             "jammed press",
             BOUNCE,
             EXCHANGED,
         ),
         only(
-            PerObject("every object gets exactly one stroke", "was punched", strokes_on, constant(1)),
+            PerObject("every object gets exactly one stroke", "was punched", strokes_on, constant(1)).grades(ONCE),
             "three objects",
             "jammed press",
             BOUNCE,
             EXCHANGED,
         ),
-        only(strokes_land_on_objects(), "three objects", "jammed press", BOUNCE, EXCHANGED),
+        only(strokes_land_on_objects().grades(DOWN_FOR_AN_OBJECT), "three objects", "jammed press", BOUNCE, EXCHANGED),
         only(
-            count(rises("M2_DOLE")).equals(OBJECTS).named("the press starts once per object, never without one"),
+            count(rises("M2_DOLE"))
+            .equals(OBJECTS)
+            .named("the press starts once per object, never without one")
+            .grades(ONCE),
             "three objects",
         ),
         *interlocks(belt=False),
         *machine_safe(),
-        only(final("KS1").equals(1).named("the press is back at KS1 at the end"), "object taken during the stroke"),
+        only(
+            final("KS1").equals(1).named("the press is back at KS1 at the end").grades(TAKEN),
+            "object taken during the stroke",
+        ),
     ],
     solutions=[
         solution(
