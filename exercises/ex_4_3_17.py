@@ -116,6 +116,18 @@ EXERCISE = Exercise(
             comment="occupancy and object type of the five positions (Fig. 4.149)",
         )
     },
+    aliases={  # the tag table's (Fig. 4.148) and data block's (Fig. 4.149) spelling: text issue 10, accept both
+        "Dopravník": "D1_VPRED",
+        "OS2_Farba 1": "OS3_Farba1",
+        "OS2_Farba 2": "OS4_Farba2",
+        "OS2_Farba 3": "OS5_Farba3",
+        "Piest1_Farba 1": "Piest1_Farba1",
+        "Piest2_Farba 2": "Piest2_Farba2",
+        "Piest3_Farba 3": "Piest3_Farba3",
+        "DATA.POZ3_OBS_Farba 1": "DATA.POZ3_OBS_Farba1",
+        "DATA.POZ4_OBS_Farba 2": "DATA.POZ4_OBS_Farba2",
+        "DATA.POZ5_OBS_Farba 3": "DATA.POZ5_OBS_Farba3",
+    },
     rig=Sort,
     scenarios=[
         Scenario(THREE, *loads((1, 2, 3)), duration="18s", description="colours 1, 2, 3 loaded 3.2 s apart"),

@@ -119,6 +119,10 @@ class Exercise:
     ``requirements`` names, per check name, the words of the task text the check grades (for checks built by
     a helper that several exercises share; a check of one exercise can say it itself with ``.grades(...)``).
     Each must be in the task text, or the exercise does not load: a check grades only what the task states.
+
+    ``aliases`` are the other names the textbook gives a tag or a data-block member (``{"Dopravník":
+    "D1_VPRED", "DATA.POZ3_OBS_Farba 1": "DATA.POZ3_OBS_Farba1"}``): a program may use either; a name with a
+    space is also accepted with ``_`` for the space (see :meth:`~plcsim.tags.table.TagTable.add_alias`).
     """
 
     number: str
@@ -140,6 +144,7 @@ class Exercise:
     plant_name: str = ""
     spec_equivalent: Mapping[str, str] = field(default_factory=dict)
     requirements: Mapping[str, str] = field(default_factory=dict)
+    aliases: Mapping[str, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.defined_at = defined_at()
@@ -166,7 +171,7 @@ class Exercise:
         """The exercise's tags: its I/O table and data blocks (a fresh copy of the table built once for
         them, so that the data blocks' types are the same objects in every simulation and a program
         compiled for one scenario is reused in the next: see :meth:`Program.compile`)."""
-        key = (tuple(self.io), tuple(self.dbs.items()))
+        key = (tuple(self.io), tuple(self.dbs.items()), tuple(self.aliases.items()))
         cached = self.__dict__.get("_tag_table")
         if cached is None or cached[0] != key:
             cached = self.__dict__["_tag_table"] = (key, self._build_tag_table())
@@ -182,6 +187,8 @@ class Exercise:
                 table.add(row.tag, Tag(row.address, dtype), source=f"exercise {self.number}")  # type: ignore[arg-type]
         for name, db in self.dbs.items():
             table.add(name, db, source=f"exercise {self.number}")
+        for alias, name in self.aliases.items():
+            table.add_alias(alias, name)
         return table
 
     def wires(self) -> list[Wire]:
