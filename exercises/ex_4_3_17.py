@@ -85,7 +85,14 @@ EXERCISE = Exercise(
         "the belt with suitable spacing.\n"
         "Task: with occupancy states in DB DATA, control the conveyor, the pistons (each out for 1 s) and the "
         "compressor so that each object is carried in front of its piston and pushed off there; with the last piece "
-        "the conveyor stops. Choose the analogue values of the three colours as intervals."
+        "the conveyor stops. Choose the analogue values of the three colours as intervals.\n"
+        "The colour sensor reads FARBA in raw units 0…27648, the brighter the lower: a white object (colour 1) reads "
+        "about 5000, a red one (colour 2) about 13000, a blue one (colour 3) about 21000, and the bare belt about "
+        "26500. Each reading scatters by about 500 (one standard deviation); a worn or tinted object reads up to 2000 "
+        "away from its colour's value, and daylight may add up to 1500 to every reading. An object of none of the "
+        "three colours (a polished steel one reads about 0, a black one about 27000) gets no piston and runs off the "
+        "end of the belt. The operator loads the objects at least 3 s apart; loaded closer, the sorter may lose some "
+        "(they end unsorted), but a piston still pushes only an object of its own colour."
     ),
     io=[
         IO("OS1_Vstup", "entry light barrier", "Bool", "%I0.0", "NC"),
@@ -150,20 +157,21 @@ EXERCISE = Exercise(
             SPACED,
             *spaced((3, ""), (1, "3s..3.4s"), (1, "5s..5.5s"), (2, "3s..3.3s"), (3, "4s..4.5s"), (2, "6s..6.5s")),
             duration="34s",
-            description="six objects of mixed colours at gaps of 3 to 6.5 s (never under the 3 s of §5.8)",
+            description="six objects of mixed colours at gaps of 3 to 6.5 s (never under the task's 3 s)",
         ),
         Scenario(
             EDGES,
             *spaced(*(({"colour": c, "colour_raw": raw}, "3s..3.4s") for c, raw in EDGE_RAW)),
             duration="28s",
-            description="worn and tinted objects whose colour reads 2000 raw inside an edge of its interval",
+            description="worn and tinted objects whose colour reads up to 2000 raw away from its colour's value: "
+            "4000 and 7000 (colour 1), 11000 and 15000 (colour 2), 19000 and 23000 (colour 3)",
         ),
         Scenario(
             CLOSE,
             *spaced((1, ""), (2, "1.4s..1.6s"), (3, "1.4s..1.6s"), (1, "1.4s..1.6s")),
             duration="20s",
-            description="four objects 1.5 s apart, closer than the sorter can take them (§5.8: 3 s): its positions "
-            "lose objects, which end unsorted or stuck; a piston may still only push an object of its colour",
+            description="four objects 1.5 s apart, closer than the task's 3 s: the sorter's positions lose objects, "
+            "which end unsorted or stuck; a piston may still only push an object of its colour",
         ),
         Scenario(
             DARK,

@@ -41,3 +41,29 @@ def test_the_list_of_exercises_not_yet_named_is_exact():
     )
     assert not done, f"every check of {done} names its words: take them off NOT_YET_NAMED"
     assert {"4.3.5", "6.3.3"} <= {ex.number for ex in NAMED}
+
+
+@pytest.mark.parametrize("exercise", all_exercises(), ids=[ex.number for ex in all_exercises()])
+def test_what_a_student_reads_cites_no_section_of_a_document_they_do_not_have(exercise):
+    texts = [exercise.task, *(s.description or "" for s in exercise.scenarios), *(c.name for c in exercise.checks)]
+    assert not [t for t in texts if "§" in t or "spec" in t.lower()]
+
+
+def test_the_colour_sorters_task_gives_every_colour_value_the_scenarios_use():
+    """4.3.17 asks for colour intervals: the task states the plant's typical values, its noise, the ambient offset
+    and the spread of worn objects the scenarios load, and the values of the objects of no colour."""
+    from exercises.ex_4_3_17 import AMBIENT, BLACK, EDGE_RAW, STEEL
+    from plants.components.colour_sensor import ColourSensor
+    from plants.sort import COLOURS
+
+    exercise = next(ex for ex in all_exercises() if ex.number == "4.3.17")
+    task = exercise.task
+    sensor = ColourSensor("FARBA", 0.0, 0.0, colours=COLOURS)
+    numbers = [*COLOURS.values(), sensor.bare, sensor.noise, BLACK["colour_raw"], STEEL["colour_raw"]]
+    for value in numbers:
+        assert f"about {value:.0f}" in task, value
+    spread = max(abs(raw - COLOURS[colour]) for colour, raw in EDGE_RAW)
+    assert f"up to {spread:.0f} away from its colour's value" in task
+    (ambient,) = [a for a in exercise.scenario(AMBIENT).actions if a.verb == "set_ambient"]
+    assert f"daylight may add up to {ambient.args['offset']:.0f}" in task
+    assert "raw units 0…27648" in task and "at least 3 s apart" in task
