@@ -6,6 +6,7 @@ from exercises._common import solution
 from exercises._punch import (
     COUNT_RUNG_MOVED,
     MODEL,
+    PRESS_WORDS,
     PUNCH_IO,
     TAKEN_FROM_THE_PRESS,
     constant,
@@ -14,6 +15,7 @@ from exercises._punch import (
     edge_bits,
     parameter,
     punching_checks,
+    shuttle_words,
     taken_from_the_press,
 )
 from plants import Punch
@@ -43,10 +45,13 @@ EXERCISE = Exercise(
         "Task: integrate the program of task 3 into the program of task 2: the object makes M1_ZIADANY_POCET moves "
         "to OS2 and back and is punched once at every visit to OS2; then it waits at OS1 for its removal. An object "
         "detected at OS2 must not be sent back before the punching is finished: the press must have been down "
-        "(OBJEKT_BOL_DOLE) and have returned to the upper position; once the press is back at KS1, the object is sent "
-        "back at once (in the same scan). Keep the moves in M1_AKTUALNY_POCET as in task 2. One object at a time; a "
-        "required count of zero need not be handled. If the operator takes the object from under the press, the "
-        "press strikes no more and waits at the top (KS1)."
+        "(OBJEKT_BOL_DOLE) and have returned to the upper position; once the press is back at KS1, the object is "
+        "sent back at once (in the same scan). Keep the moves made so far in M1_AKTUALNY_POCET, 0 again once the "
+        "object has been removed, as in task 2. One object at a time; a required count of zero need not be handled."
+        + " "
+        + shuttle_words(reverse_at_os2=False)
+        + " "
+        + PRESS_WORDS
     ),
     io=IO_TABLE,
     rig=Punch,
@@ -75,6 +80,15 @@ EXERCISE = Exercise(
         ),
     ],
     checks=punching_checks(constant(1), parameter(REQUIRED), "exactly one stroke", (REQUIRED,), WHOLE),
+    requirements={
+        "every stay under the press gets exactly one stroke": "is punched once at every visit to OS2",
+        "every stroke comes down on an object": "The press goes down only for an object at OS2",
+        "every object is punched M1_ZIADANY_POCET times": "is punched once at every visit to OS2",
+        "every object is carried to OS2 M1_ZIADANY_POCET times": "the object makes M1_ZIADANY_POCET moves to OS2",
+        "the belt reverses within 1 scan once the press is back at KS1 after the last stroke": (
+            "once the press is back at KS1, the object is sent back at once (in the same scan)"
+        ),
+    },
     solutions=[
         solution(
             NUMBER,
