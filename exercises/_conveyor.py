@@ -18,6 +18,14 @@ CONV1_IO = [
 ]
 
 
+CARRY = (
+    "Carry it to the end of the conveyor, where S2 detects it: start the belt in the scan in which S1 detects the "
+    "object and stop it in the scan in which S2 detects it, so that the object stays on the belt at S2. After it has "
+    "been removed, a new object can be loaded and carried"
+)
+"""4.3.5's words for carrying one object, which :func:`carries_objects` grades (4.3.7 and 4.3.8 state them too)."""
+
+
 def shuttle(parts: int) -> list:
     """Load a part at S1; the operator takes it from S2 after 1 s and loads the next one 1..2 s later."""
     actions = [place("p1", at="S1", t="0.3s..0.8s")]
@@ -31,12 +39,20 @@ def shuttle(parts: int) -> list:
 def carries_objects(objects: int) -> list[Check]:
     """The belt stops at S2, carries each object in the nominal time and starts once per object."""
     return [
-        falls("D1").within("1 scan").after(rises("S2")).named("D1 stops when the object reaches S2"),
+        falls("D1")
+        .within("1 scan")
+        .after(rises("S2"))
+        .named("D1 stops when the object reaches S2")
+        .grades("stop it in the scan in which S2 detects it"),
         rises("S2")
         .between(f"{NOMINAL_TRANSPORT_S * 0.9}s", f"{NOMINAL_TRANSPORT_S * 1.1}s")
         .after(rises("S1"))
-        .named("transport S1 -> S2 takes 4.8 s +-10 %"),
-        count(rises("D1")).equals(objects).named("the belt starts once per object"),
+        .named("transport S1 -> S2 takes 4.8 s +-10 %")
+        .grades("Carry it to the end of the conveyor, where S2 detects it"),
+        count(rises("D1"))
+        .equals(objects)
+        .named("the belt starts once per object")
+        .grades("After it has been removed, a new object can be loaded and carried"),
     ]
 
 
