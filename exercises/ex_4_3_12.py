@@ -222,6 +222,11 @@ EXERCISE = Exercise(
             )
             for m in ("OB1: networks delay and align swapped", "OB1: network delay moved to the end")
         },
+        "t.PIEST_SNIMAC_VZAD and (not t.BOL_VPRED) → not t.BOL_VPRED": (
+            "the forward stroke started without the rear sensor: the piston is back at the rear whenever an object "
+            "has waited its 1 s (the robot takes the object only after the plate is back), and with the rear sensor "
+            "dead it strokes and then waits, as the textbook's solution 2 does; nothing is reported aligned either way"
+        ),
     },
     notes=(
         "Addresses, NO wiring and the memory addresses are proposals (the textbook gives none). The rung 3 reset of "
