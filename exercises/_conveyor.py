@@ -62,6 +62,9 @@ def keeps_conveyor_control() -> list[Check]:
     while the belt already runs: the belt is never off for more than a scan while S1 (and not S2) sees an
     object, nor on for more than a scan while S2 sees one."""
     return [
-        never(all_of("S1", off("S2"), off("D1"))).for_more_than("1 scan").named("S1 starts the belt"),
-        never(all_of("S2", "D1")).for_more_than("1 scan").named("S2 stops the belt"),
+        never(all_of("S1", off("S2"), off("D1")))
+        .for_more_than("1 scan")
+        .named("S1 starts the belt")
+        .grades("S1 starts the belt"),
+        never(all_of("S2", "D1")).for_more_than("1 scan").named("S2 stops the belt").grades("S2 stops it"),
     ]
