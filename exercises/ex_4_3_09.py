@@ -38,7 +38,10 @@ EXERCISE = Exercise(
         "is on the conveyor even where no sensor sees it, and with them move objects from D1 to D3: an object moves "
         "to the next conveyor only if its conveyor is occupied and the next one is free. At the last position (D3) "
         "the occupancy is cleared when the object is removed by hand. Objects are loaded at D1_OS. Edge memory "
-        "bits: SB1-SB3 (and SB4, see the notes)."
+        "bits: SB1-SB3 (and SB4, see the notes). A conveyor runs only to carry its object to a free next one (or "
+        "to take one from the previous); it stops in the scan in which the object reaches the next sensor (D3 in the "
+        "scan in which D3_OS sees it). Never more than one object is on a conveyor, and none falls off. A hand "
+        "that shades a sensor of the stopped line occupies nothing and starts nothing."
     ),
     io=[
         IO("D1_VPRED", "conveyor 1 forward", "Bool", "%Q0.0"),
@@ -142,6 +145,41 @@ EXERCISE = Exercise(
             "queue of three",
         ),
     ],
+    requirements={
+        "D1 runs only while D1 is occupied and D2 free": (
+            "an object moves to the next conveyor only if its conveyor is occupied and the next one is free"
+        ),
+        "D2 runs only to take an object from D1 or to pass its own to a free D3": (
+            "A conveyor runs only to carry its object to a free next one (or to take one from the previous)"
+        ),
+        "D3 runs only while D2 is occupied and D3 free": (
+            "A conveyor runs only to carry its object to a free next one (or to take one from the previous)"
+        ),
+        "D1_OBS is TRUE exactly while an object is on D1": (
+            "that stay TRUE while the object is on the conveyor even where no sensor sees it"
+        ),
+        "D2_OBS is TRUE exactly while an object is on D2": (
+            "that stay TRUE while the object is on the conveyor even where no sensor sees it"
+        ),
+        "D3_OBS is TRUE exactly while an object is on D3": (
+            "that stay TRUE while the object is on the conveyor even where no sensor sees it"
+        ),
+        "never more than one object on a conveyor": "Never more than one object is on a conveyor",
+        "no object falls off": "and none falls off",
+        "D1 stops within 1 scan when the object reaches D2_OS": (
+            "it stops in the scan in which the object reaches the next sensor"
+        ),
+        "D3 stops within 1 scan when the object reaches D3_OS": "D3 in the scan in which D3_OS sees it",
+        "D2 stops within 1 scan when the only object reaches D3_OS": (
+            "it stops in the scan in which the object reaches the next sensor"
+        ),
+        "the object is carried to D3_OS": "with them move objects from D1 to D3",
+        "a hand at D2_OS on the stopped line occupies nothing and starts nothing": (
+            "A hand that shades a sensor of the stopped line occupies nothing and starts nothing"
+        ),
+        "after the removal at D3 the next object moves up to D3": "with them move objects from D1 to D3",
+        "after the removal at D3 the object waiting at D1 moves up to D2": "with them move objects from D1 to D3",
+    },
     solutions=[
         solution(
             NUMBER,
