@@ -92,7 +92,14 @@ EXERCISE = Exercise(
         "away from its colour's value, and daylight may add up to 1500 to every reading. An object of none of the "
         "three colours (a polished steel one reads about 0, a black one about 27000) gets no piston and runs off the "
         "end of the belt. The operator loads the objects at least 3 s apart; loaded closer, the sorter may lose some "
-        "(they end unsorted), but a piston still pushes only an object of its own colour."
+        "(they end unsorted), but a piston still pushes only an object of its own colour.\n"
+        "Each piston goes out only just after an object of its colour has passed its sensor, and is out for 1 s "
+        "each time, also when the compressor fails to build pressure; with the objects loaded in the order of their "
+        "colours no two pistons are out at once. Within 1 scan the compressor runs exactly while a piston is out, "
+        "and the belt exactly while a position is occupied; every object's position is marked occupied, with the "
+        "object's colour as its type, and no position is marked without its object except while its piston is out "
+        "(an object of no colour may leave the last position marked). Every object of a colour lands in its own bin, "
+        "none ends unsorted."
     ),
     io=[
         IO("OS1_Vstup", "entry light barrier", "Bool", "%I0.0", "NC"),
@@ -282,6 +289,53 @@ EXERCISE = Exercise(
             *ONE_AT_A_TIME,
         ),
     ],
+    requirements={
+        "bin 1 receives colour 1 only": "Every object of a colour lands in its own bin",
+        "bin 2 receives colour 2 only": "Every object of a colour lands in its own bin",
+        "bin 3 receives colour 3 only": "Every object of a colour lands in its own bin",
+        "no object lands in another colour's bin": "but a piston still pushes only an object of its own colour",
+        "no object ends unsorted": "none ends unsorted",
+        "the object of no colour, and only it, runs off the end into the unsorted bin": (
+            "gets no piston and runs off the end of the belt"
+        ),
+        "with no air the pulse is 1 s too": "also when the compressor fails to build pressure",
+        "the compressor runs whenever a piston is out (within 1 scan)": (
+            "Within 1 scan the compressor runs exactly while a piston is out"
+        ),
+        "the compressor is off when no piston is out (within 1 scan)": (
+            "Within 1 scan the compressor runs exactly while a piston is out"
+        ),
+        "Piest1_Farba1 is out for 1 s each time": "is out for 1 s each time",
+        "Piest2_Farba2 is out for 1 s each time": "is out for 1 s each time",
+        "Piest3_Farba3 is out for 1 s each time": "is out for 1 s each time",
+        "Piest1_Farba1 goes out only just after an object of colour 1 passed OS3_Farba1": (
+            "Each piston goes out only just after an object of its colour has passed its sensor"
+        ),
+        "Piest2_Farba2 goes out only just after an object of colour 2 passed OS4_Farba2": (
+            "Each piston goes out only just after an object of its colour has passed its sensor"
+        ),
+        "Piest3_Farba3 goes out only just after an object of colour 3 passed OS5_Farba3": (
+            "Each piston goes out only just after an object of its colour has passed its sensor"
+        ),
+        "the belt does not run with every position free (within 1 scan)": (
+            "and the belt exactly while a position is occupied"
+        ),
+        "the belt runs while a position is occupied (within 1 scan)": (
+            "and the belt exactly while a position is occupied"
+        ),
+        "the belt stops after the last piece": "with the last piece the conveyor stops",
+        "every object's position is marked occupied (within 1 scan)": "every object's position is marked occupied",
+        "no position is marked occupied without its object, but while its piston is out (within 1 scan)": (
+            "no position is marked without its object except while its piston is out"
+        ),
+        "no position before the last is marked occupied without its object (within 1 scan)": (
+            "an object of no colour may leave the last position marked"
+        ),
+        "each position's type is the colour of its object (within 1 scan)": "with the object's colour as its type",
+        "no two pistons are out at once": (
+            "with the objects loaded in the order of their colours no two pistons are out at once"
+        ),
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="the textbook's rungs 1-10 (Figs. 4.150-4.159)"),
         solution(

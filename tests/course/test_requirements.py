@@ -1,9 +1,8 @@
 """Fair to the student: every check names the words of the task it grades (issue 27).
 
 The exercise refuses to load when a check's words are not in its task (tests/exercise/test_exercise_validation.py);
-here, every check of the exercises below names its words, so that ``plcsim show`` prints each requirement a grade
-depends on. The exercises not yet gone through are listed by name, and the list is kept exact: an exercise whose
-checks all name their words must leave it.
+here, every check of every shipped exercise names its words, so that ``plcsim show`` prints each requirement a
+grade depends on, and what a student reads cites nothing they do not have and gives the numbers they need.
 """
 
 from __future__ import annotations
@@ -12,15 +11,10 @@ import pytest
 
 from exercises import all_exercises
 
-NOT_YET_NAMED = {
-    "4.3.12", "4.3.17",
-}  # fmt: skip
-"""The exercises whose checks do not all name the task's words yet."""
-
-NAMED = [ex for ex in all_exercises() if ex.number not in NOT_YET_NAMED]
+EXERCISES = all_exercises()
 
 
-@pytest.mark.parametrize("exercise", NAMED, ids=[ex.number for ex in NAMED])
+@pytest.mark.parametrize("exercise", EXERCISES, ids=[ex.number for ex in EXERCISES])
 def test_every_check_names_the_words_of_the_task_it_grades(exercise):
     task = " ".join(exercise.task.split()).lower()
     unnamed = [c.name for c in exercise.checks if not c.requirement]
@@ -31,17 +25,7 @@ def test_every_check_names_the_words_of_the_task_it_grades(exercise):
     assert sorted(listed) == sorted(c.name for c in exercise.checks)
 
 
-def test_the_list_of_exercises_not_yet_named_is_exact():
-    numbers = {ex.number for ex in all_exercises()}
-    assert numbers >= NOT_YET_NAMED
-    done = sorted(
-        n for n in NOT_YET_NAMED if all(c.requirement for c in next(e for e in all_exercises() if e.number == n).checks)
-    )
-    assert not done, f"every check of {done} names its words: take them off NOT_YET_NAMED"
-    assert {"4.3.5", "6.3.1", "6.3.2", "6.3.3", "6.3.4", "6.3.5"} <= {ex.number for ex in NAMED}
-
-
-@pytest.mark.parametrize("exercise", all_exercises(), ids=[ex.number for ex in all_exercises()])
+@pytest.mark.parametrize("exercise", EXERCISES, ids=[ex.number for ex in EXERCISES])
 def test_what_a_student_reads_cites_no_section_of_a_document_they_do_not_have(exercise):
     texts = [exercise.task, *(s.description or "" for s in exercise.scenarios), *(c.name for c in exercise.checks)]
     assert not [t for t in texts if "§" in t or "spec" in t.lower()]
@@ -54,7 +38,7 @@ def test_the_colour_sorters_task_gives_every_colour_value_the_scenarios_use():
     from plants.components.colour_sensor import ColourSensor
     from plants.sort import COLOURS
 
-    exercise = next(ex for ex in all_exercises() if ex.number == "4.3.17")
+    exercise = next(ex for ex in EXERCISES if ex.number == "4.3.17")
     task = exercise.task
     sensor = ColourSensor("FARBA", 0.0, 0.0, colours=COLOURS)
     numbers = [*COLOURS.values(), sensor.bare, sensor.noise, BLACK["colour_raw"], STEEL["colour_raw"]]
