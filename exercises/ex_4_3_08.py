@@ -194,6 +194,10 @@ EXERCISE = Exercise(
     ],
     spec_equivalent={
         **SPEC_EQUIVALENT,
+        "t.ALARM and t.Clock_1Hz → t.ALARM and (not t.Clock_1Hz)": (
+            "the LED lit while Clock_1Hz is FALSE: the other phase of the same blink, 0.5 s lit and 0.5 s dark while "
+            "ALARM is TRUE and dark otherwise, which is all the task asks"
+        ),
         "OB1: network stop_belt moved to the end": (
             "as stop_belt and acknowledge swapped: ACK clears ALARM before the reset rung runs, so the waiting "
             "object restarts the belt in the scan that read ACK (criterion 4 of 4.3.7: 'only after ACK')"
