@@ -77,6 +77,14 @@ EXERCISE = Exercise(
             "object is loaded, carried to D3_OS and taken away",
         ),
         Scenario(
+            "a hand at D3_OS",
+            place("hand", at="D3_OS", t="0.3s..0.8s", noise=False),
+            remove("hand", t="1.5s..2s"),
+            duration="4s",
+            description="the line is stopped and empty; a hand shades D3_OS for about a second: it occupies nothing "
+            "and starts nothing",
+        ),
+        Scenario(
             "queue of three",
             place("p1", at="D1_OS", t="0.3s..0.8s"),
             place("p2", at="D1_OS", when=after_event("part entered", "D2_OS"), delay="0.5s..1.5s"),
@@ -105,14 +113,19 @@ EXERCISE = Exercise(
         always(all_of(ON_D1 <= 1, ON_D2 <= 1, ON_D3 <= 1)).named("never more than one object on a conveyor"),
         never(event("part fell off")).named("no object falls off"),
         # criterion 2: stopping at the sensors
-        falls("D1_VPRED")
-        .within("1 scan")
-        .after(rises("D2_OS"), provided=ON_D2 > 0)
-        .named("D1 stops within 1 scan when the object reaches D2_OS"),
-        falls("D3_VPRED")
-        .within("1 scan")
-        .after(rises("D3_OS"))
-        .named("D3 stops within 1 scan when the object reaches D3_OS"),
+        *(
+            only(check, "one object and a hand", "queue of three")  # no object reaches a sensor in 'a hand at D3_OS'
+            for check in (
+                falls("D1_VPRED")
+                .within("1 scan")
+                .after(rises("D2_OS"), provided=ON_D2 > 0)
+                .named("D1 stops within 1 scan when the object reaches D2_OS"),
+                falls("D3_VPRED")
+                .within("1 scan")
+                .after(rises("D3_OS"))
+                .named("D3 stops within 1 scan when the object reaches D3_OS"),
+            )
+        ),
         only(
             falls("D2_VPRED")
             .within("1 scan")
