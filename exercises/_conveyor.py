@@ -18,6 +18,14 @@ CONV1_IO = [
 ]
 
 
+CARRY = (
+    "Carry it to the end of the conveyor, where S2 detects it: start the belt in the scan in which S1 detects the "
+    "object and stop it in the scan in which S2 detects it, so that the object stays on the belt at S2. After it has "
+    "been removed, a new object can be loaded and carried"
+)
+"""4.3.5's words for carrying one object, which :func:`carries_objects` grades (4.3.7 and 4.3.8 state them too)."""
+
+
 def shuttle(parts: int) -> list:
     """Load a part at S1; the operator takes it from S2 after 1 s and loads the next one 1..2 s later."""
     actions = [place("p1", at="S1", t="0.3s..0.8s")]
@@ -31,12 +39,20 @@ def shuttle(parts: int) -> list:
 def carries_objects(objects: int) -> list[Check]:
     """The belt stops at S2, carries each object in the nominal time and starts once per object."""
     return [
-        falls("D1").within("1 scan").after(rises("S2")).named("D1 stops when the object reaches S2"),
+        falls("D1")
+        .within("1 scan")
+        .after(rises("S2"))
+        .named("D1 stops when the object reaches S2")
+        .grades("stop it in the scan in which S2 detects it"),
         rises("S2")
         .between(f"{NOMINAL_TRANSPORT_S * 0.9}s", f"{NOMINAL_TRANSPORT_S * 1.1}s")
         .after(rises("S1"))
-        .named("transport S1 -> S2 takes 4.8 s +-10 %"),
-        count(rises("D1")).equals(objects).named("the belt starts once per object"),
+        .named("transport S1 -> S2 takes 4.8 s +-10 %")
+        .grades("Carry it to the end of the conveyor, where S2 detects it"),
+        count(rises("D1"))
+        .equals(objects)
+        .named("the belt starts once per object")
+        .grades("After it has been removed, a new object can be loaded and carried"),
     ]
 
 
@@ -46,6 +62,9 @@ def keeps_conveyor_control() -> list[Check]:
     while the belt already runs: the belt is never off for more than a scan while S1 (and not S2) sees an
     object, nor on for more than a scan while S2 sees one."""
     return [
-        never(all_of("S1", off("S2"), off("D1"))).for_more_than("1 scan").named("S1 starts the belt"),
-        never(all_of("S2", "D1")).for_more_than("1 scan").named("S2 stops the belt"),
+        never(all_of("S1", off("S2"), off("D1")))
+        .for_more_than("1 scan")
+        .named("S1 starts the belt")
+        .grades("S1 starts the belt"),
+        never(all_of("S2", "D1")).for_more_than("1 scan").named("S2 stops the belt").grades("S2 stops it"),
     ]

@@ -54,8 +54,15 @@ MODEL = (
     "the loading place and OS2 under the press, are wired as normally closed contacts: the input is TRUE while the "
     "beam is free and FALSE while an object interrupts it. The press's upper and lower positions are reported by "
     "the contact sensors KS1 (upper) and KS2 (lower), wired as normally open contacts (TRUE while actuated). The "
-    "press waits at the top (KS1) when the model is switched on."
+    "press waits at the top (KS1) when the model is switched on. In every task the machine is kept safe: no object "
+    "falls off the belt or is damaged by the press, no motor is driven both ways at once, the press is never driven "
+    "against an end stop, and the belt runs only while the press waits at the top (KS1), never while the press is "
+    "driven."
 )
+
+BOTH_WAYS = "no motor is driven both ways at once"
+BELT_WAITS = "the belt runs only while the press waits at the top (KS1), never while the press is driven"
+"""The words of :data:`MODEL` the machine's safety checks grade (every task states them)."""
 
 AUX = {
     "POM_P_OS1": ("%M1.0", "edge memory bit: rising edge of OS1 (object removed)"),
@@ -386,10 +393,14 @@ def interlocks(*, belt: bool = True, press: bool = True) -> list[Check]:
     checks = []
     if belt:
         checks.append(
-            never(all_of("M1_VPRED", "M1_VZAD")).named("the belt is never driven forward and backward at once")
+            never(all_of("M1_VPRED", "M1_VZAD"))
+            .named("the belt is never driven forward and backward at once")
+            .grades(BOTH_WAYS)
         )
     if press:
-        checks.append(never(all_of("M2_DOLE", "M2_HORE")).named("the press is never driven down and up at once"))
+        checks.append(
+            never(all_of("M2_DOLE", "M2_HORE")).named("the press is never driven down and up at once").grades(BOTH_WAYS)
+        )
     return checks
 
 
@@ -397,10 +408,12 @@ def machine_safe() -> list[Check]:
     """What the plant says went wrong, whatever the task: nothing falls off, nothing is damaged, no stall, no
     interlock violation (both directions of a motor, belt and press moving together)."""
     return [
-        never(event("part fell off")).named("no object falls off the belt"),
-        never(event("part damaged")).named("no object is damaged by the press"),
-        never(event("axis stalled")).named("the press is never driven against an end stop"),
-        never(event("interlock violated")).named("the machine reports no interlock violation"),
+        never(event("part fell off")).named("no object falls off the belt").grades("no object falls off the belt"),
+        never(event("part damaged")).named("no object is damaged by the press").grades("is damaged by the press"),
+        never(event("axis stalled"))
+        .named("the press is never driven against an end stop")
+        .grades("the press is never driven against an end stop"),
+        never(event("interlock violated")).named("the machine reports no interlock violation").grades(BELT_WAITS),
     ]
 
 
@@ -410,15 +423,50 @@ def shuttle(ignore: tuple[str, ...] = (), *, reverse_at_os2: bool = True) -> lis
     returning object stops at OS1. ``ignore``: objects the operator takes off the belt on purpose."""
     fresh = Parts("OS1", "OS2", ignore, "objects loaded that have not been at OS2 yet")
     checks = [
-        never(all_of(off("OS1"), fresh > 0, off("M1_VPRED"))).named(
-            "an object loaded at OS1 starts the belt forward within 1 scan"
-        ),
-        never(all_of(off("OS2"), "M1_VPRED")).named("the belt stops within 1 scan when the object reaches OS2"),
+        never(all_of(off("OS1"), fresh > 0, off("M1_VPRED")))
+        .named("an object loaded at OS1 starts the belt forward within 1 scan")
+        .grades("the belt starts forward in the scan in which OS1 sees a loaded object"),
+        never(all_of(off("OS2"), "M1_VPRED"))
+        .named("the belt stops within 1 scan when the object reaches OS2")
+        .grades("stops in the scan in which OS2 sees it"),
     ]
     if reverse_at_os2:
-        checks.append(never(all_of(off("OS2"), off("M1_VZAD"))).named("the belt reverses within 1 scan at OS2"))
-    checks.append(never(all_of(off("OS1"), "M1_VZAD")).named("the returning object stops at OS1 within 1 scan"))
+        checks.append(
+            never(all_of(off("OS2"), off("M1_VZAD")))
+            .named("the belt reverses within 1 scan at OS2")
+            .grades("and reverses in that same scan")
+        )
+    checks.append(
+        never(all_of(off("OS1"), "M1_VZAD"))
+        .named("the returning object stops at OS1 within 1 scan")
+        .grades("the returning object stops in the scan in which OS1 sees it")
+    )
     return checks
+
+
+def shuttle_words(*, reverse_at_os2: bool = True) -> str:
+    """The task's sentence that :func:`shuttle` and :func:`waits_at_os1` grade (every shuttling task states it)."""
+    reverse = ", and reverses in that same scan" if reverse_at_os2 else ""
+    return (
+        f"Each move starts and stops at once: the belt starts forward in the scan in which OS1 sees a loaded object "
+        f"and stops in the scan in which OS2 sees it{reverse}; the returning object stops in the scan in which OS1 "
+        f"sees it and {WAITS}."
+    )
+
+
+WAITS = "waits there until the operator takes it away"
+COUNTED = "0 again once the object has been removed"
+"""The words of the tasks that :func:`waits_at_os1` and :func:`counts_arrivals` grade."""
+PRESS_WORDS = (
+    "The press goes down only for an object at OS2; if the operator takes the object from under the press, the press "
+    "strikes no more and waits at the top (KS1)."
+)
+"""6.3.4's and 6.3.5's sentence on the press, which :func:`taken_checks` grades."""
+TAKEN_ON_ITS_WAY = (
+    "If the operator takes an object off the belt on its way to OS2 (no sensor sees that), the next object loaded at "
+    "OS1 is served as usual."
+)
+"""6.3.1's and 6.3.2's fault scenario 'object taken on its way', as their tasks state it."""
 
 
 def waits_at_os1(ignore: tuple[str, ...] = ()) -> Check:
@@ -430,14 +478,16 @@ def waits_at_os1(ignore: tuple[str, ...] = ()) -> Check:
         constant(1),
         events=(("part removed", None),),
         ignore=ignore,
-    )
+    ).grades(WAITS)
 
 
 def counts_arrivals(ignore: tuple[str, ...] = ()) -> Check:
     """6.3.2 criterion 2 (kept by 6.3.4 and 6.3.5): M1_AKTUALNY_POCET follows the object's arrivals at OS2
     (``ignore``: objects taken off the belt before they arrived, whose removal no sensor sees)."""
-    return always(parts_equal("M1_AKTUALNY_POCET", Arrivals(ignore))).named(
-        "M1_AKTUALNY_POCET counts the object's arrivals at OS2 and is 0 after its removal"
+    return (
+        always(parts_equal("M1_AKTUALNY_POCET", Arrivals(ignore)))
+        .named("M1_AKTUALNY_POCET counts the object's arrivals at OS2 and is 0 after its removal")
+        .grades(COUNTED)
     )
 
 
@@ -451,27 +501,28 @@ def belt_waits_for_the_press() -> list[Check]:
     """6.3.4 criterion 2 on the PLC's outputs: the belt never moves while the press is away from KS1 or driven (the
     machine's own word on it is :func:`machine_safe`'s interlock check)."""
     return [
-        never(all_of(any_of("M1_VPRED", "M1_VZAD"), any_of(off("KS1"), "M2_DOLE", "M2_HORE"))).named(
-            "the belt never runs while the press is away from KS1 or moving"
-        ),
+        never(all_of(any_of("M1_VPRED", "M1_VZAD"), any_of(off("KS1"), "M2_DOLE", "M2_HORE")))
+        .named("the belt never runs while the press is away from KS1 or moving")
+        .grades(BELT_WAITS),
     ]
 
 
 def taken_checks() -> list[Check | GradedCheck]:
     """What a program must do when the object is taken from under the press between two strokes (or after its
-    stroke): no stroke without an object (6.3.3 criterion 2, kept by 6.3.4), the ram back at KS1, and the belt
-    standing, for there is nothing to carry back (the removal is the rising edge of OS2 with the belt standing,
-    which every program sees)."""
-    empty = Parts("OS1", label="objects in the machine") == 0
+    stroke): no stroke without an object (6.3.3 criterion 2, kept by 6.3.4) and the ram back at KS1. Not what the
+    belt does then: the task does not say (the textbook's programs stand, a step sequencer waiting for the object's
+    return may run the belt back to OS1), so a check of it would fail correct programs."""
     return [
-        never(all_of("OS2", "M2_DOLE")).named("the press goes down only for an object at OS2"),
+        never(all_of("OS2", "M2_DOLE"))
+        .named("the press goes down only for an object at OS2")
+        .grades("The press goes down only for an object at OS2"),
         only(
-            never(all_of(empty, any_of("M1_VPRED", "M1_VZAD"))).named(
-                "the belt stands once the object is taken from under the press"
-            ),
+            final("KS1")
+            .equals(1)
+            .named("the press finishes its stroke and waits at KS1")
+            .grades("the press strikes no more and waits at the top (KS1)"),
             TAKEN_FROM_THE_PRESS,
         ),
-        only(final("KS1").equals(1).named("the press finishes its stroke and waits at KS1"), TAKEN_FROM_THE_PRESS),
     ]
 
 

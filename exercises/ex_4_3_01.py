@@ -18,7 +18,9 @@ EXERCISE = Exercise(
     task=(
         "A digital input should switch a digital output on. The push-button TLACIDLO (push-button) is wired to "
         "the input module as a normally open (NO) contact; the output LED (lamp) lights a lamp.\n"
-        "Task: while the button is pressed the LED is lit; when the button is released the LED goes out."
+        "Task: while the button is pressed the LED is lit; when the button is released the LED goes out. The LED "
+        "follows the button in the scan that reads it, so the lamp lights within 2 scans of a press, and every "
+        "press lights it."
     ),
     io=[
         IO("TLACIDLO", "push-button", "Bool", "%I0.0", "NO", comment="address proposed; the textbook gives none"),
@@ -38,6 +40,11 @@ EXERCISE = Exercise(
         rises("LED").within("2 scans").after(action("press", "TLACIDLO")).named("LED lights within 2 scans"),
         count(rises("LED")).equals(12).named("every press is reproduced on the LED"),
     ],
+    requirements={
+        "LED equals the button in every scan": "The LED follows the button in the scan that reads it",
+        "LED lights within 2 scans": "the lamp lights within 2 scans of a press",
+        "every press is reproduced on the LED": "every press lights it",
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="NO contact -> coil"),
         solution(NUMBER, "solution-2", "alternative", "NC contact -> negated coil"),

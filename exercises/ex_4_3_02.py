@@ -19,7 +19,10 @@ EXERCISE = Exercise(
         "As in 4.3.1, the push-button TLACIDLO (push-button) should switch the output LED (lamp), but this time "
         "the button is wired to the input module as a normally closed (NC) contact: the input is TRUE while the "
         "button is NOT pressed and FALSE while it is pressed.\n"
-        "Task: while the button is pressed the LED is lit; when the button is released the LED goes out.\n"
+        "Task: while the button is pressed the LED is lit; when the button is released the LED goes out. The LED "
+        "follows the button in the scan that reads it, so the lamp lights within 2 scans of a press and goes out "
+        "within 2 scans of the release, and every press lights it. A broken wire reads as a pressed button (the "
+        "input is FALSE) and lights the LED.\n"
         "(Every solution of 4.3.1 works here once its NO and NC contact instructions are swapped.)"
     ),
     io=[
@@ -66,6 +69,17 @@ EXERCISE = Exercise(
             "broken wire",
         ),
     ],
+    requirements={
+        "LED is lit exactly while the NC input is FALSE (pressed)": (
+            "The LED follows the button in the scan that reads it"
+        ),
+        "LED lights within 2 scans of a press": "the lamp lights within 2 scans of a press",
+        "LED goes out within 2 scans of the release": "goes out within 2 scans of the release",
+        "every press is reproduced on the LED": "every press lights it",
+        "a broken wire reads as 'pressed' and lights the LED": (
+            "A broken wire reads as a pressed button (the input is FALSE) and lights the LED"
+        ),
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="NC contact -> coil"),
         solution(NUMBER, "solution-2", "alternative", "NC contact -> SET, NO contact -> RESET"),

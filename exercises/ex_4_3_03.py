@@ -27,7 +27,8 @@ EXERCISE = Exercise(
     task=(
         "The push-button TLACIDLO (push-button) is wired as a normally open (NO) contact; the output LED (lamp) "
         "lights a lamp.\n"
-        "Task: pressing the button switches the LED on; after the button is released the LED stays lit. "
+        "Task: pressing the button switches the LED on, in the first scan that sees the button; after the button is "
+        "released the LED stays lit. Until the button is first pressed the LED is off. "
         "Implement the program without the SET instruction. (The task has no switch-off condition.)"
     ),
     io=[
@@ -66,6 +67,14 @@ EXERCISE = Exercise(
         holds("LED").until(action("stop_cpu")).named("once lit, the LED stays lit (until the CPU is stopped)"),
         program_uses_no("SET").named("no SET instruction"),
     ],
+    requirements={
+        "the LED stays off until the button is pressed": "Until the button is first pressed the LED is off",
+        "the LED lights in the first scan that sees the button": (
+            "pressing the button switches the LED on, in the first scan that sees the button"
+        ),
+        "once lit, the LED stays lit (until the CPU is stopped)": "after the button is released the LED stays lit",
+        "no SET instruction": "Implement the program without the SET instruction",
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="self-holding contact: LED := TLACIDLO OR LED"),
         solution(

@@ -50,7 +50,8 @@ EXERCISE = Exercise(
     task=(
         "Two push-buttons, TLACIDLO_ZAP (ON button) and TLACIDLO_VYP (OFF button), are wired as normally open "
         "(NO) contacts; the output LED (lamp) lights a lamp.\n"
-        "Task: pressing TLACIDLO_ZAP switches the LED on; releasing it does not affect the LED (it stays lit). "
+        "Task: pressing TLACIDLO_ZAP switches the LED on, in the scan that sees it; releasing it does not affect the "
+        "LED (it stays lit). "
         "Pressing TLACIDLO_VYP switches the LED off; releasing it does not affect the LED. When both buttons "
         "are pressed, the output is off. Implement the program without SET and RESET."
     ),
@@ -83,6 +84,20 @@ EXERCISE = Exercise(
         program_uses_no("SET").named("no SET instruction"),
         program_uses_no("RESET").named("no RESET instruction"),
     ],
+    requirements={
+        "the ON button alone switches the LED on within 1 scan": (
+            "pressing TLACIDLO_ZAP switches the LED on, in the scan that sees it"
+        ),
+        "the OFF button switches the LED off, also when both are pressed": (
+            "When both buttons are pressed, the output is off"
+        ),
+        "releasing the ON button leaves the LED on": "releasing it does not affect the LED (it stays lit)",
+        "releasing the OFF button leaves the LED off": (
+            "Pressing TLACIDLO_VYP switches the LED off; releasing it does not affect the LED"
+        ),
+        "no SET instruction": "Implement the program without SET and RESET",
+        "no RESET instruction": "Implement the program without SET and RESET",
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="(ZAP OR LED) AND NOT VYP: self-holding, stop-dominant"),
         solution(

@@ -61,7 +61,10 @@ EXERCISE = Exercise(
         "another object is still in the middle, so after the object at the end has been removed the program must "
         "know whether objects are left between S1 and S2: count them. Keep the count in POCET (number of "
         "objects, Int), either as an up/down counter CTUD whose CV output is wired to POCET, or with ADD/SUB on "
-        "the edges of S1 and S2."
+        "the edges of S1 and S2. The belt starts in the scan in which S1 sees an object loaded on the empty belt, "
+        "restarts in the scan in which the removal frees S2 while objects remain, and runs only while an object is "
+        "on it, never while S2 sees one, so that no object falls off. A bouncing sensor makes extra edges, and the "
+        "count takes each edge as it comes (the textbook shows what that does to POCET)."
     ),
     io=[
         *CONV1_IO,
@@ -140,6 +143,23 @@ EXERCISE = Exercise(
         ),
         never(event("part fell off")).named("no object falls off the belt"),
     ],
+    requirements={
+        "every loaded object arrives at S2": (
+            "objects loaded at the beginning (and detected by S1) are carried to the end of the conveyor"
+        ),
+        "the belt never runs while S2 sees an object": "never while S2 sees one",
+        "an object loaded on the empty belt starts it": (
+            "The belt starts in the scan in which S1 sees an object loaded on the empty belt"
+        ),
+        "after a removal the belt restarts while objects remain": (
+            "restarts in the scan in which the removal frees S2 while objects remain"
+        ),
+        "the belt never runs with no object between S1 and S2": "runs only while an object is on it",
+        "POCET equals the number of objects between S1 and S2": "Keep the count in POCET (number of objects, Int)",
+        "POCET is 0 when the belt is empty": "Keep the count in POCET (number of objects, Int)",
+        "POCET counts the S1 edges up and the S2 edges down": "the count takes each edge as it comes",
+        "no object falls off the belt": "so that no object falls off",
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="CTUD: CU := S1, CD := S2, CV => POCET; D1 := NOT S2 AND CV > 0"),
         solution(

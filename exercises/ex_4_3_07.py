@@ -7,7 +7,7 @@ reference within the spec's tolerances; ``SPEC_EQUIVALENT`` gives each with the 
 from __future__ import annotations
 
 from exercises._common import solution
-from exercises._conveyor import CONV1_IO, carries_objects, shuttle
+from exercises._conveyor import CARRY, CONV1_IO, carries_objects, shuttle
 from plants import Conv1
 from plcsim.check import all_of, always, count, event, falls, holds, implies, never, off, rises
 from plcsim.exercise import IO, Exercise, GradedCheck, only
@@ -55,6 +55,20 @@ NEW_OBJECT_DURING_ALARM = Scenario(
 )
 
 
+WATCHDOG = (
+    "If S2 does not detect the object within the protection time of 10 s, the conveyor stops and an alarm is raised: "
+    "the memory bit ALARM (alarm) is set and stays set until the operator acknowledges it with ACK (acknowledge, an "
+    "HMI button); ACK clears it in the scan that reads it. While ALARM is TRUE the conveyor stays off; after ACK an "
+    "object at S1 starts it again."
+)
+"""4.3.7's watchdog as its task states it, which :func:`watchdog_checks` grades (4.3.8 keeps it and states it)."""
+WATCHDOG_WORDS = {
+    "no false alarm in normal operation": "If S2 does not detect the object within the protection time of 10 s",
+    "the belt stays off while ALARM is TRUE": "While ALARM is TRUE the conveyor stays off",
+}
+"""The words of :data:`WATCHDOG` that the checks 4.3.7 and 4.3.8 build themselves grade."""
+
+
 def watchdog_checks(jams: tuple[str, ...], alarms: tuple[str, ...]) -> list[GradedCheck]:
     """Criteria 2 and 3 of 4.3.7 (also graded in 4.3.8, whose conveyor has "the control of 4.3.7"): in the
     scenarios ``jams`` the belt stops and ALARM rises 10 s after the belt started; in ``alarms`` ALARM latches
@@ -64,18 +78,33 @@ def watchdog_checks(jams: tuple[str, ...], alarms: tuple[str, ...]) -> list[Grad
             falls("D1")
             .between("10s", "10s + 2 scans")
             .after(rises("D1"))
-            .named("the belt stops 10 s after it started without reaching S2"),
+            .named("the belt stops 10 s after it started without reaching S2")
+            .grades("If S2 does not detect the object within the protection time of 10 s, the conveyor stops"),
             *jams,
         ),
         only(
             rises("ALARM")
             .between("10s - 1 scan", "10s + 2 scans")
             .after(rises("D1"))
-            .named("ALARM is raised 10 s after the belt started"),
+            .named("ALARM is raised 10 s after the belt started")
+            .grades("an alarm is raised: the memory bit ALARM (alarm) is set"),
             *jams,
         ),
-        only(holds("ALARM").until(rises("ACK")).named("ALARM latches until ACK"), *alarms),
-        only(falls("ALARM").within("1 scan").after(rises("ACK")).named("ACK clears ALARM within 1 scan"), *alarms),
+        only(
+            holds("ALARM")
+            .until(rises("ACK"))
+            .named("ALARM latches until ACK")
+            .grades("stays set until the operator acknowledges it with ACK"),
+            *alarms,
+        ),
+        only(
+            falls("ALARM")
+            .within("1 scan")
+            .after(rises("ACK"))
+            .named("ACK clears ALARM within 1 scan")
+            .grades("ACK clears it in the scan that reads it"),
+            *alarms,
+        ),
     ]
 
 
@@ -101,11 +130,11 @@ EXERCISE = Exercise(
         "The conveyor of 4.3.5: sensors S1 (belt start) and S2 (belt end), both normally open, output D1 "
         "(conveyor forward). With the program of 4.3.5 the belt would run forever if the object fell off or "
         "jammed.\n"
-        "Task: an object loaded at the beginning is detected by S1 and carried to the end, where S2 detects it; "
-        "after it has been removed a new one can be loaded. One object at a time. If S2 does not detect the "
-        "object within the protection time of 10 s, the conveyor stops and an alarm is raised: the memory bit "
-        "ALARM (alarm) is set and stays set until the operator acknowledges it with ACK (acknowledge, an HMI "
-        "button). While ALARM is TRUE the conveyor stays off; after ACK an object at S1 starts it again "
+        "Task: an object loaded at the beginning is detected by S1. "
+        + CARRY
+        + ". One object at a time. "
+        + WATCHDOG
+        + " "
         "(textbook version 3)."
     ),
     io=[
@@ -164,6 +193,12 @@ EXERCISE = Exercise(
             "new object during the alarm",
         ),
     ],
+    requirements={
+        **WATCHDOG_WORDS,
+        "after ACK the waiting object is carried to S2": "after ACK an object at S1 starts it again",
+        "the belt never runs while S2 sees an object": "so that the object stays on the belt at S2",
+        "no object falls off the belt": "so that the object stays on the belt at S2",
+    },
     solutions=[
         solution(
             NUMBER,

@@ -16,8 +16,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from exercises._common import solution
-from exercises._conveyor import CONV1_IO, carries_objects
-from exercises.ex_4_3_07 import NEW_OBJECT_DURING_ALARM, SPEC_EQUIVALENT, THREE_OBJECTS, watchdog_checks
+from exercises._conveyor import CARRY, CONV1_IO, carries_objects
+from exercises.ex_4_3_07 import (
+    NEW_OBJECT_DURING_ALARM,
+    SPEC_EQUIVALENT,
+    THREE_OBJECTS,
+    WATCHDOG,
+    WATCHDOG_WORDS,
+    watchdog_checks,
+)
 from plants import Conv1
 from plcsim.check import Condition, Context, all_of, always, durations, duty, implies, never, off
 from plcsim.exercise import IO, Exercise, only
@@ -91,7 +98,9 @@ EXERCISE = Exercise(
         "internal memory bit can be shown in a visualisation, but a signal lamp or a siren needs an output.\n"
         "Task: signal the alarm on the output LED (alarm lamp). The LED blinks while ALARM is TRUE, 0.5 s lit and "
         "0.5 s dark, and is dark otherwise. Use the CPU's clock memory (Clock_1Hz, enabled at MB0 in the "
-        "hardware configuration) or a timer."
+        "hardware configuration) or a timer.\n"
+        "Keep the control of 4.3.7: an object loaded at the beginning is detected by S1. " + CARRY + ". One object "
+        "at a time. " + WATCHDOG
     ),
     io=[
         *CONV1_IO,
@@ -143,6 +152,13 @@ EXERCISE = Exercise(
             NEW_OBJECT_DURING_ALARM.name,
         ),
     ],
+    requirements={
+        **WATCHDOG_WORDS,
+        "each flash lasts 0.5 s": "0.5 s lit",
+        "the LED is dark 0.5 s between flashes": "0.5 s dark",
+        "duty cycle 50 % +- 2 % over 10 periods": "The LED blinks while ALARM is TRUE, 0.5 s lit and 0.5 s dark",
+        "the LED is dark whenever ALARM is FALSE": "and is dark otherwise",
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="LED := ALARM AND Clock_1Hz (clock memory at MB0)"),
         solution(
@@ -178,6 +194,10 @@ EXERCISE = Exercise(
     ],
     spec_equivalent={
         **SPEC_EQUIVALENT,
+        "t.ALARM and t.Clock_1Hz → t.ALARM and (not t.Clock_1Hz)": (
+            "the LED lit while Clock_1Hz is FALSE: the other phase of the same blink, 0.5 s lit and 0.5 s dark while "
+            "ALARM is TRUE and dark otherwise, which is all the task asks"
+        ),
         "OB1: network stop_belt moved to the end": (
             "as stop_belt and acknowledge swapped: ACK clears ALARM before the reset rung runs, so the waiting "
             "object restarts the belt in the scan that read ACK (criterion 4 of 4.3.7: 'only after ACK')"

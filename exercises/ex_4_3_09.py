@@ -38,7 +38,10 @@ EXERCISE = Exercise(
         "is on the conveyor even where no sensor sees it, and with them move objects from D1 to D3: an object moves "
         "to the next conveyor only if its conveyor is occupied and the next one is free. At the last position (D3) "
         "the occupancy is cleared when the object is removed by hand. Objects are loaded at D1_OS. Edge memory "
-        "bits: SB1-SB3 (and SB4, see the notes)."
+        "bits: SB1-SB3 (and SB4, see the notes). A conveyor runs only to carry its object to a free next one (or "
+        "to take one from the previous); it stops in the scan in which the object reaches the next sensor (D3 in the "
+        "scan in which D3_OS sees it). Never more than one object is on a conveyor, and none falls off. A hand "
+        "that shades a sensor of the stopped line occupies nothing and starts nothing."
     ),
     io=[
         IO("D1_VPRED", "conveyor 1 forward", "Bool", "%Q0.0"),
@@ -74,6 +77,14 @@ EXERCISE = Exercise(
             "object is loaded, carried to D3_OS and taken away",
         ),
         Scenario(
+            "a hand at D3_OS",
+            place("hand", at="D3_OS", t="0.3s..0.8s", noise=False),
+            remove("hand", t="1.5s..2s"),
+            duration="4s",
+            description="the line is stopped and empty; a hand shades D3_OS for about a second: it occupies nothing "
+            "and starts nothing",
+        ),
+        Scenario(
             "queue of three",
             place("p1", at="D1_OS", t="0.3s..0.8s"),
             place("p2", at="D1_OS", when=after_event("part entered", "D2_OS"), delay="0.5s..1.5s"),
@@ -102,14 +113,19 @@ EXERCISE = Exercise(
         always(all_of(ON_D1 <= 1, ON_D2 <= 1, ON_D3 <= 1)).named("never more than one object on a conveyor"),
         never(event("part fell off")).named("no object falls off"),
         # criterion 2: stopping at the sensors
-        falls("D1_VPRED")
-        .within("1 scan")
-        .after(rises("D2_OS"), provided=ON_D2 > 0)
-        .named("D1 stops within 1 scan when the object reaches D2_OS"),
-        falls("D3_VPRED")
-        .within("1 scan")
-        .after(rises("D3_OS"))
-        .named("D3 stops within 1 scan when the object reaches D3_OS"),
+        *(
+            only(check, "one object and a hand", "queue of three")  # no object reaches a sensor in 'a hand at D3_OS'
+            for check in (
+                falls("D1_VPRED")
+                .within("1 scan")
+                .after(rises("D2_OS"), provided=ON_D2 > 0)
+                .named("D1 stops within 1 scan when the object reaches D2_OS"),
+                falls("D3_VPRED")
+                .within("1 scan")
+                .after(rises("D3_OS"))
+                .named("D3 stops within 1 scan when the object reaches D3_OS"),
+            )
+        ),
         only(
             falls("D2_VPRED")
             .within("1 scan")
@@ -142,6 +158,41 @@ EXERCISE = Exercise(
             "queue of three",
         ),
     ],
+    requirements={
+        "D1 runs only while D1 is occupied and D2 free": (
+            "an object moves to the next conveyor only if its conveyor is occupied and the next one is free"
+        ),
+        "D2 runs only to take an object from D1 or to pass its own to a free D3": (
+            "A conveyor runs only to carry its object to a free next one (or to take one from the previous)"
+        ),
+        "D3 runs only while D2 is occupied and D3 free": (
+            "A conveyor runs only to carry its object to a free next one (or to take one from the previous)"
+        ),
+        "D1_OBS is TRUE exactly while an object is on D1": (
+            "that stay TRUE while the object is on the conveyor even where no sensor sees it"
+        ),
+        "D2_OBS is TRUE exactly while an object is on D2": (
+            "that stay TRUE while the object is on the conveyor even where no sensor sees it"
+        ),
+        "D3_OBS is TRUE exactly while an object is on D3": (
+            "that stay TRUE while the object is on the conveyor even where no sensor sees it"
+        ),
+        "never more than one object on a conveyor": "Never more than one object is on a conveyor",
+        "no object falls off": "and none falls off",
+        "D1 stops within 1 scan when the object reaches D2_OS": (
+            "it stops in the scan in which the object reaches the next sensor"
+        ),
+        "D3 stops within 1 scan when the object reaches D3_OS": "D3 in the scan in which D3_OS sees it",
+        "D2 stops within 1 scan when the only object reaches D3_OS": (
+            "it stops in the scan in which the object reaches the next sensor"
+        ),
+        "the object is carried to D3_OS": "with them move objects from D1 to D3",
+        "a hand at D2_OS on the stopped line occupies nothing and starts nothing": (
+            "A hand that shades a sensor of the stopped line occupies nothing and starts nothing"
+        ),
+        "after the removal at D3 the next object moves up to D3": "with them move objects from D1 to D3",
+        "after the removal at D3 the object waiting at D1 moves up to D2": "with them move objects from D1 to D3",
+    },
     solutions=[
         solution(
             NUMBER,

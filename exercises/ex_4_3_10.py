@@ -58,7 +58,11 @@ EXERCISE = Exercise(
         "object loaded on D1 and seen by D1_OS1 is carried to the end of D1 if that position is free; from D1_OS2 "
         "it goes on to D2; when D2_OS1 sees it, D1 stops and the object continues to the end of D2, where it "
         "stops and waits for removal by hand, which clears the occupancy. Consider one object per conveyor. Do not "
-        "use edge instructions."
+        "use edge instructions. Each conveyor stops in the scan in which its stop sensor sees the object, and the "
+        "removal at D2_OS2 clears D2_POZ2_OBS in the scan that sees it. An object put straight in front of D1_OS2 "
+        "on the idle model (not loaded at D1_OS1) is not registered and starts nothing. A broken sensor wire reads "
+        "FALSE, 'object present': at D2_OS2 it stops D2 at once. No object falls off, and D2 never runs while its "
+        "end position is occupied."
     ),
     io=[
         IO("D1_OS1", "D1 start sensor", "Bool", "%I0.0", "NC"),
@@ -170,6 +174,31 @@ EXERCISE = Exercise(
         # criterion 6
         program_uses_no("EDGE").named("no edge instructions").points(0.5),
     ],
+    requirements={
+        "both objects end at D2_OS2": "carry objects from the start of D1 to the end of D2",
+        "D1 stops within 1 scan when D2_OS1 sees the object": (
+            "Each conveyor stops in the scan in which its stop sensor sees the object"
+        ),
+        "D2 stops within 1 scan when D2_OS2 sees the object": (
+            "Each conveyor stops in the scan in which its stop sensor sees the object"
+        ),
+        "D1 never sends an object to an occupied D2": "onto D2 only if D2 is free",
+        "never more than one object on D2": "onto D2 only if D2 is free",
+        "an object put at D1_OS2 on the idle model is not registered and starts nothing": (
+            "is not registered and starts nothing"
+        ),
+        "removing the object at D2_OS2 clears D2_POZ2_OBS within 1 scan": (
+            "the removal at D2_OS2 clears D2_POZ2_OBS in the scan that sees it"
+        ),
+        "D1_POZ1_OBS matches the object at D1 position 1": "that indicate an object even where no sensor sees it",
+        "D1_POZ2_OBS matches the object at D1 position 2": "that indicate an object even where no sensor sees it",
+        "D2_POZ1_OBS matches the object at D2 position 1": "that indicate an object even where no sensor sees it",
+        "D2_POZ2_OBS matches the object at D2 position 2": "that indicate an object even where no sensor sees it",
+        "a broken D2_OS2 wire stops D2 at once (it reads 'object present')": "at D2_OS2 it stops D2 at once",
+        "no object falls off": "No object falls off",
+        "D2 never runs with its end position occupied": "D2 never runs while its end position is occupied",
+        "no edge instructions": "Do not use edge instructions",
+    },
     solutions=[
         solution(
             NUMBER,

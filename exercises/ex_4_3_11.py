@@ -22,7 +22,8 @@ EXERCISE = Exercise(
         "of such a signal is often used: with the given frequency a variable becomes TRUE (otherwise it is FALSE), "
         "and can be used e.g. to increment a variable.\n"
         "Task: create a memory bit Takt1s (1-second pulse) that becomes TRUE every second, for one scan, and is "
-        "FALSE the rest of the time.\n"
+        "FALSE the rest of the time. The program runs with a 1 ms and with a 100 ms cycle; a pulse may come at most 2 "
+        "scans late at the 1 ms cycle and at most 1 scan late at the 100 ms cycle.\n"
         "The CPU has clock memory enabled at MB0 (Clock_1Hz = %M0.5, toggling every 0.5 s) and system memory at "
         "MB1 (AlwaysTRUE = %M1.2). Timers are IEC_TIMER instances declared in your program."
     ),
@@ -60,6 +61,12 @@ EXERCISE = Exercise(
             SLOW,
         ),
     ],
+    requirements={
+        "Takt1s is TRUE for exactly one scan at a time": "for one scan, and is FALSE the rest of the time",
+        "Takt1s pulses once a second (60 +- 1 pulses in 60 s)": "becomes TRUE every second",
+        "at a 1 ms cycle the pulses come every 1 s (+ at most 2 scans)": "at most 2 scans late at the 1 ms cycle",
+        "at a 100 ms cycle the pulses come every 1 s (+ at most 1 scan)": "at most 1 scan late at the 100 ms cycle",
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="solution 1: rising edge of Clock_1Hz, exactly every 1.000 s"),
         solution(

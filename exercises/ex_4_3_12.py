@@ -36,7 +36,13 @@ EXERCISE = Exercise(
         "PIEST_SNIMAC_VPRED (front) and PIEST_SNIMAC_VZAD (rear).\n"
         "Task: when the object is detected by the optical sensor, align it after 1 s by moving the piston forward "
         "and back. Use the memory bits ZAROVNAJ (alignment in progress), OBJ_ZAROVNANY (object aligned) and "
-        "BOL_VPRED (the piston was forward: blocks a repeated forward stroke), or a step variable KROK."
+        "BOL_VPRED (the piston was forward: blocks a repeated forward stroke), or a step variable KROK. The piston "
+        "starts forward 1 s after the object is detected (at most 2 scans later) and makes one full stroke per "
+        "object, forward to the front sensor and back to the rear, and none more while the object stays; its "
+        "output is off once the stroke is done. An object seen for less than 1 s gets no stroke. Each object ends "
+        "against the fence (within 1 mm) and square (within 2°). OBJ_ZAROVNANY tells the robot it may take the "
+        "object: it comes only once the piston is back at the rear sensor and stays while the aligned object is "
+        "there, so it never comes when the piston jams or the rear sensor is dead; the next object is aligned again."
     ),
     io=[
         IO("OS", "optical object sensor", "Bool", "%I0.0", "NO", comment="address and wiring proposed (§5.5)"),
@@ -150,6 +156,29 @@ EXERCISE = Exercise(
             DEAD,
         ),
     ],
+    requirements={
+        "the piston starts 1 s after the object is detected": (
+            "The piston starts forward 1 s after the object is detected (at most 2 scans later)"
+        ),
+        "one full stroke per object (two objects, two strokes)": "makes one full stroke per object",
+        "the piston is back at the rear after each stroke": "forward to the front sensor and back to the rear",
+        "the piston output is off at the end": "its output is off once the stroke is done",
+        "each object ends within 1 mm of the fence": "Each object ends against the fence (within 1 mm)",
+        "each object ends square within 2°": "and square (within 2°)",
+        "no second stroke while the object stays (10 s)": "and none more while the object stays",
+        "OBJ_ZAROVNANY stays TRUE while the aligned object is there": "stays while the aligned object is there",
+        "an object seen for less than 1 s gets no stroke": "An object seen for less than 1 s gets no stroke",
+        "a new object is aligned again": "the next object is aligned again",
+        "a jammed piston is not reported as an aligned object": (
+            "so it never comes when the piston jams or the rear sensor is dead"
+        ),
+        "OBJ_ZAROVNANY only once the piston is back at the rear": (
+            "it comes only once the piston is back at the rear sensor"
+        ),
+        "with the rear sensor dead nothing is reported aligned": (
+            "so it never comes when the piston jams or the rear sensor is dead"
+        ),
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="solution 1 (Figs. 4.108-4.112) with the resets the text omits"),
         solution(NUMBER, "solution-2", "alternative", "solution 2 (Figs. 4.114-4.120): step variable KROK"),
@@ -222,6 +251,11 @@ EXERCISE = Exercise(
             )
             for m in ("OB1: networks delay and align swapped", "OB1: network delay moved to the end")
         },
+        "t.PIEST_SNIMAC_VZAD and (not t.BOL_VPRED) → not t.BOL_VPRED": (
+            "the forward stroke started without the rear sensor: the piston is back at the rear whenever an object "
+            "has waited its 1 s (the robot takes the object only after the plate is back), and with the rear sensor "
+            "dead it strokes and then waits, as the textbook's solution 2 does; nothing is reported aligned either way"
+        ),
     },
     notes=(
         "Addresses, NO wiring and the memory addresses are proposals (the textbook gives none). The rung 3 reset of "

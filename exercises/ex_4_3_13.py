@@ -26,7 +26,9 @@ EXERCISE = Exercise(
         "Task: after STROJ_START is set, the machine performs the sequence 'switch the machine output on and off' "
         "three times. On lasts 1 s, off lasts 2 s. Then STROJ_KONIEC (sequence finished) is TRUE and the machine "
         "stays off while STROJ_START remains set. Withdrawing STROJ_START stops the machine and resets the "
-        "sequence, so that the next STROJ_START runs it again."
+        "sequence, so that the next STROJ_START runs it again. The machine starts in the scan in which STROJ_START is "
+        "set; each phase may be up to 2 scans off its length, and the whole sequence up to 3 scans longer than its "
+        "9 s. Withdrawing STROJ_START switches the machine off and resets STROJ_KONIEC in the scan that reads it."
     ),
     io=[
         IO("STROJ_ZAP", "machine on", "Bool", "%Q0.0", comment="address proposed; the textbook gives none"),
@@ -104,6 +106,26 @@ EXERCISE = Exercise(
         .except_for("1 scan")
         .named("without STROJ_START the machine is off and STROJ_KONIEC is reset (within 1 scan)"),
     ],
+    requirements={
+        "the machine starts as soon as STROJ_START is set": (
+            "The machine starts in the scan in which STROJ_START is set"
+        ),
+        "each ON phase lasts 1 s (+-2 scans)": "On lasts 1 s",
+        "each OFF phase lasts 2 s (+-2 scans)": "off lasts 2 s",
+        "exactly three ON phases": "three times",
+        "a new STROJ_START runs a new sequence of three": "so that the next STROJ_START runs it again",
+        "after a withdrawal a new STROJ_START runs a full sequence": (
+            "Withdrawing STROJ_START stops the machine and resets the sequence"
+        ),
+        "the whole sequence lasts 9 s (+ at most 3 scans)": "the whole sequence up to 3 scans longer than its 9 s",
+        "after the sequence the machine stays off": "the machine stays off while STROJ_START remains set",
+        "STROJ_KONIEC comes and stays TRUE while STROJ_START remains set": (
+            "Then STROJ_KONIEC (sequence finished) is TRUE"
+        ),
+        "without STROJ_START the machine is off and STROJ_KONIEC is reset (within 1 scan)": (
+            "Withdrawing STROJ_START switches the machine off and resets STROJ_KONIEC in the scan that reads it"
+        ),
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="solution 1: 3 s TON with RT, CTU (PV 3), ON while ET < 1 s"),
         solution(NUMBER, "solution-2", "alternative", "solution 2: the counter replaced by ADD and MOVE"),

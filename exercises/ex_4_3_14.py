@@ -56,7 +56,8 @@ EXERCISE = Exercise(
         "time of the last reset) and NULUJ (Bool, 'zero it': triggers the reset). Increment SEKUNDY every second "
         "while the motor is on. When NULUJ becomes TRUE, set SEKUNDY to zero, write the current date and time to "
         "DATUM_CAS and reset NULUJ. SEKUNDY and DATUM_CAS are retentive, NULUJ is not. Keep the conveyor control "
-        "of 4.3.5 (S1 starts the belt, S2 stops it)."
+        "of 4.3.5 (S1 starts the belt, S2 stops it). Over T seconds of running, SEKUNDY grows by T +- 1. NULUJ "
+        "takes effect, and is reset, in the scan that reads it."
     ),
     io=CONV1_IO,
     dbs={
@@ -99,6 +100,14 @@ EXERCISE = Exercise(
         stores_reset_time(),
         only(survives_power_cycle(seconds_meter, METER), "power cycle"),
     ],
+    requirements={
+        "the meter counts the seconds the belt ran": "Over T seconds of running, SEKUNDY grows by T +- 1",
+        "the meter stands still while the belt is off": "Increment SEKUNDY every second while the motor is on",
+        "NULUJ zeroes the meter in the same scan": "NULUJ takes effect, and is reset, in the scan that reads it",
+        "NULUJ resets itself in the same scan": "NULUJ takes effect, and is reset, in the scan that reads it",
+        "NULUJ stores the date and time of the reset": "write the current date and time to DATUM_CAS",
+        "the meter survives a power cycle (retain)": "SEKUNDY and DATUM_CAS are retentive",
+    },
     solutions=[
         solution(
             NUMBER, "reference", explanation="Takt1s = P(Clock_1Hz); ADD while D1; NULUJ: MOVE 0, RD_LOC_T, R NULUJ"

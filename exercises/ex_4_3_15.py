@@ -46,7 +46,10 @@ EXERCISE = Exercise(
         "(DTL, date and time of the last reset) and NULUJ (Bool, triggers the reset).\n"
         "Task: increment SEKUNDY every second while the motor D1 is on. When 60 s are reached, increment MINUTY and "
         "reset SEKUNDY; when MINUTY reaches 60, increment HODINY and reset MINUTY. NULUJ zeroes all three and stores "
-        "the date and time as in 4.3.14."
+        "the date and time as in 4.3.14: write the current date and time to DATUM_CAS and reset NULUJ, in the scan "
+        "that reads NULUJ. Over T seconds of running, the meter grows by T +- 1 s; at the end of every scan SEKUNDY "
+        "and MINUTY are within 0..59. SEKUNDY, MINUTY, HODINY and DATUM_CAS are retentive, NULUJ is not. Keep the "
+        "conveyor control of 4.3.5 (S1 starts the belt, S2 stops it)."
     ),
     io=CONV1_IO,
     dbs={
@@ -96,6 +99,20 @@ EXERCISE = Exercise(
         stores_reset_time(),
         only(survives_power_cycle(hms_meter, *SIGNALS), "power cycle"),
     ],
+    requirements={
+        "the meter counts the seconds the belt ran": "Over T seconds of running, the meter grows by T +- 1 s",
+        "SEKUNDY stays within 0..59 at the end of every scan": (
+            "at the end of every scan SEKUNDY and MINUTY are within 0..59"
+        ),
+        "MINUTY stays within 0..59 at the end of every scan": (
+            "at the end of every scan SEKUNDY and MINUTY are within 0..59"
+        ),
+        "the meter stands still while the belt is off": "increment SEKUNDY every second while the motor D1 is on",
+        "NULUJ zeroes the meter in the same scan": "NULUJ zeroes all three",
+        "NULUJ resets itself in the same scan": "reset NULUJ, in the scan that reads NULUJ",
+        "NULUJ stores the date and time of the reset": "write the current date and time to DATUM_CAS",
+        "the meter survives a power cycle (retain)": "SEKUNDY, MINUTY, HODINY and DATUM_CAS are retentive",
+    },
     solutions=[
         solution(
             NUMBER,

@@ -85,7 +85,21 @@ EXERCISE = Exercise(
         "the belt with suitable spacing.\n"
         "Task: with occupancy states in DB DATA, control the conveyor, the pistons (each out for 1 s) and the "
         "compressor so that each object is carried in front of its piston and pushed off there; with the last piece "
-        "the conveyor stops. Choose the analogue values of the three colours as intervals."
+        "the conveyor stops. Choose the analogue values of the three colours as intervals.\n"
+        "The colour sensor reads FARBA in raw units 0…27648, the brighter the lower: a white object (colour 1) reads "
+        "about 5000, a red one (colour 2) about 13000, a blue one (colour 3) about 21000, and the bare belt about "
+        "26500. Each reading scatters by about 500 (one standard deviation); a worn or tinted object reads up to 2000 "
+        "away from its colour's value, and daylight may add up to 1500 to every reading. An object of none of the "
+        "three colours (a polished steel one reads about 0, a black one about 27000) gets no piston and runs off the "
+        "end of the belt. The operator loads the objects at least 3 s apart; loaded closer, the sorter may lose some "
+        "(they end unsorted), but a piston still pushes only an object of its own colour.\n"
+        "Each piston goes out only just after an object of its colour has passed its sensor, and is out for 1 s "
+        "each time, also when the compressor fails to build pressure; with the objects loaded in the order of their "
+        "colours no two pistons are out at once. Within 1 scan the compressor runs exactly while a piston is out, "
+        "and the belt exactly while a position is occupied; every object's position is marked occupied, with the "
+        "object's colour as its type, and no position is marked without its object except while its piston is out "
+        "(an object of no colour may leave the last position marked). Every object of a colour lands in its own bin, "
+        "none ends unsorted."
     ),
     io=[
         IO("OS1_Vstup", "entry light barrier", "Bool", "%I0.0", "NC"),
@@ -116,6 +130,18 @@ EXERCISE = Exercise(
             comment="occupancy and object type of the five positions (Fig. 4.149)",
         )
     },
+    aliases={  # the tag table's (Fig. 4.148) and data block's (Fig. 4.149) spelling: text issue 10, accept both
+        "Dopravník": "D1_VPRED",
+        "OS2_Farba 1": "OS3_Farba1",
+        "OS2_Farba 2": "OS4_Farba2",
+        "OS2_Farba 3": "OS5_Farba3",
+        "Piest1_Farba 1": "Piest1_Farba1",
+        "Piest2_Farba 2": "Piest2_Farba2",
+        "Piest3_Farba 3": "Piest3_Farba3",
+        "DATA.POZ3_OBS_Farba 1": "DATA.POZ3_OBS_Farba1",
+        "DATA.POZ4_OBS_Farba 2": "DATA.POZ4_OBS_Farba2",
+        "DATA.POZ5_OBS_Farba 3": "DATA.POZ5_OBS_Farba3",
+    },
     rig=Sort,
     scenarios=[
         Scenario(THREE, *loads((1, 2, 3)), duration="18s", description="colours 1, 2, 3 loaded 3.2 s apart"),
@@ -138,20 +164,21 @@ EXERCISE = Exercise(
             SPACED,
             *spaced((3, ""), (1, "3s..3.4s"), (1, "5s..5.5s"), (2, "3s..3.3s"), (3, "4s..4.5s"), (2, "6s..6.5s")),
             duration="34s",
-            description="six objects of mixed colours at gaps of 3 to 6.5 s (never under the 3 s of §5.8)",
+            description="six objects of mixed colours at gaps of 3 to 6.5 s (never under the task's 3 s)",
         ),
         Scenario(
             EDGES,
             *spaced(*(({"colour": c, "colour_raw": raw}, "3s..3.4s") for c, raw in EDGE_RAW)),
             duration="28s",
-            description="worn and tinted objects whose colour reads 2000 raw inside an edge of its interval",
+            description="worn and tinted objects whose colour reads up to 2000 raw away from its colour's value: "
+            "4000 and 7000 (colour 1), 11000 and 15000 (colour 2), 19000 and 23000 (colour 3)",
         ),
         Scenario(
             CLOSE,
             *spaced((1, ""), (2, "1.4s..1.6s"), (3, "1.4s..1.6s"), (1, "1.4s..1.6s")),
             duration="20s",
-            description="four objects 1.5 s apart, closer than the sorter can take them (§5.8: 3 s): its positions "
-            "lose objects, which end unsorted or stuck; a piston may still only push an object of its colour",
+            description="four objects 1.5 s apart, closer than the task's 3 s: the sorter's positions lose objects, "
+            "which end unsorted or stuck; a piston may still only push an object of its colour",
         ),
         Scenario(
             DARK,
@@ -262,6 +289,53 @@ EXERCISE = Exercise(
             *ONE_AT_A_TIME,
         ),
     ],
+    requirements={
+        "bin 1 receives colour 1 only": "Every object of a colour lands in its own bin",
+        "bin 2 receives colour 2 only": "Every object of a colour lands in its own bin",
+        "bin 3 receives colour 3 only": "Every object of a colour lands in its own bin",
+        "no object lands in another colour's bin": "but a piston still pushes only an object of its own colour",
+        "no object ends unsorted": "none ends unsorted",
+        "the object of no colour, and only it, runs off the end into the unsorted bin": (
+            "gets no piston and runs off the end of the belt"
+        ),
+        "with no air the pulse is 1 s too": "also when the compressor fails to build pressure",
+        "the compressor runs whenever a piston is out (within 1 scan)": (
+            "Within 1 scan the compressor runs exactly while a piston is out"
+        ),
+        "the compressor is off when no piston is out (within 1 scan)": (
+            "Within 1 scan the compressor runs exactly while a piston is out"
+        ),
+        "Piest1_Farba1 is out for 1 s each time": "is out for 1 s each time",
+        "Piest2_Farba2 is out for 1 s each time": "is out for 1 s each time",
+        "Piest3_Farba3 is out for 1 s each time": "is out for 1 s each time",
+        "Piest1_Farba1 goes out only just after an object of colour 1 passed OS3_Farba1": (
+            "Each piston goes out only just after an object of its colour has passed its sensor"
+        ),
+        "Piest2_Farba2 goes out only just after an object of colour 2 passed OS4_Farba2": (
+            "Each piston goes out only just after an object of its colour has passed its sensor"
+        ),
+        "Piest3_Farba3 goes out only just after an object of colour 3 passed OS5_Farba3": (
+            "Each piston goes out only just after an object of its colour has passed its sensor"
+        ),
+        "the belt does not run with every position free (within 1 scan)": (
+            "and the belt exactly while a position is occupied"
+        ),
+        "the belt runs while a position is occupied (within 1 scan)": (
+            "and the belt exactly while a position is occupied"
+        ),
+        "the belt stops after the last piece": "with the last piece the conveyor stops",
+        "every object's position is marked occupied (within 1 scan)": "every object's position is marked occupied",
+        "no position is marked occupied without its object, but while its piston is out (within 1 scan)": (
+            "no position is marked without its object except while its piston is out"
+        ),
+        "no position before the last is marked occupied without its object (within 1 scan)": (
+            "an object of no colour may leave the last position marked"
+        ),
+        "each position's type is the colour of its object (within 1 scan)": "with the object's colour as its type",
+        "no two pistons are out at once": (
+            "with the objects loaded in the order of their colours no two pistons are out at once"
+        ),
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="the textbook's rungs 1-10 (Figs. 4.150-4.159)"),
         solution(

@@ -7,6 +7,8 @@ from plcsim.exercise import Exercise, only
 from plcsim.scenario import Scenario, press
 
 NUMBER = "4.3.19"
+IN_OB30 = "Enter the program in OB30"
+"""What every check grades: the task's program entered in OB30, as the task gives it."""
 FROM_0, AFTER_0, SHORT = "pressed from 0 s", "pressed after the 0 s call", "short presses, then a long one"
 
 EXERCISE = Exercise(
@@ -70,6 +72,14 @@ EXERCISE = Exercise(
         ),
         never(falls("LED")).named("once set, the LED stays lit"),
     ],
+    requirements={
+        "pressed from 0 s: the LED is set by the call at 0 s": IN_OB30,
+        "pressed after the 0 s call: the LED stays off until the call at 1 s": IN_OB30,
+        "pressed after the 0 s call: the LED is set by the call at 1 s": IN_OB30,
+        "a press between two calls is never seen": IN_OB30,
+        "a press held over a call is seen by that call (4 s)": IN_OB30,
+        "once set, the LED stays lit": IN_OB30,
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="TL -> S LED in OB30 (1 s)"),
         solution(

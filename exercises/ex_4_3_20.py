@@ -7,6 +7,8 @@ from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, press
 
 NUMBER = "4.3.20"
+IN_OB30 = "enter the program in OB30 (networks in this order)"
+"""What every check grades: the task's program entered in OB30, as the task gives it."""
 FROM_0, AFTER_0, SHORT = "pressed from 0 s", "pressed after the 0 s call", "short presses, then a long one"
 
 EXERCISE = Exercise(
@@ -96,6 +98,31 @@ EXERCISE = Exercise(
         .after(rises("START"), at_least=0)
         .named("the LED follows START one call (1 s) later"),
     ],
+    requirements={
+        "pressed from 0 s: START is set by the call at 0 s": IN_OB30,
+        "pressed from 0 s: the LED stays off until the call at 1 s": (
+            "enter the program in OB30 (networks in this order)"
+        ),
+        "pressed from 0 s: the LED lights at the call at 1 s": IN_OB30,
+        "pressed after the 0 s call: START stays FALSE until 1 s": IN_OB30,
+        "pressed after the 0 s call: START is set by the call at 1 s": (
+            "enter the program in OB30 (networks in this order)"
+        ),
+        "pressed after the 0 s call: the LED stays off until the call at 2 s": (
+            "enter the program in OB30 (networks in this order)"
+        ),
+        "pressed after the 0 s call: the LED lights at the call at 2 s": (
+            "enter the program in OB30 (networks in this order)"
+        ),
+        "a press between two calls is never seen": IN_OB30,
+        "a press held over the 3 s call lights the LED at the call at 4 s": (
+            "enter the program in OB30 (networks in this order)"
+        ),
+        "once lit, the LED stays lit (START is set, not assigned)": (
+            "enter the program in OB30 (networks in this order)"
+        ),
+        "the LED follows START one call (1 s) later": IN_OB30,
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="LED := START, then TL -> S START, in OB30 (1 s)"),
         solution(

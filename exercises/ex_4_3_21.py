@@ -12,6 +12,8 @@ from plcsim.exercise import Exercise, only
 from plcsim.scenario import Scenario, press
 
 NUMBER = "4.3.21"
+IN_OB30 = "enter the program in OB30"
+"""What every check grades: the task's program entered in OB30, as the task gives it."""
 FROM_0, AFTER_0, ONE_CALL = "pressed from 0 s", "pressed after the 0 s call", "presses seen by one call only"
 
 EXERCISE = Exercise(
@@ -91,6 +93,17 @@ EXERCISE = Exercise(
         ),
         never(falls("LED")).named("once set, the LED stays lit"),
     ],
+    requirements={
+        "pressed from 0 s: the LED stays off until the call at 1 s": IN_OB30,
+        "pressed from 0 s: the timer started at 0 s sets the LED at the call at 1 s": IN_OB30,
+        "pressed after the 0 s call: the LED stays off until the call at 2 s": IN_OB30,
+        "pressed after the 0 s call: the timer started at 1 s sets the LED at the call at 2 s": (
+            "enter the program in OB30"
+        ),
+        "a press released before the second call after it never sets the LED": IN_OB30,
+        "a press held over two calls sets the LED at the second one (5 s)": IN_OB30,
+        "once set, the LED stays lit": IN_OB30,
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="TON_L (TL, 100 ms) -> S LED in OB30 (1 s)"),
         solution(

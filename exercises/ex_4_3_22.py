@@ -10,6 +10,8 @@ from plcsim.tags import DB
 from plcsim.tags.types import Int
 
 NUMBER = "4.3.22"
+IN_OB30 = "enter the program in OB30"
+"""What the checks grade: the task's program entered in OB30, as the task gives it."""
 CASE_A, CASE_B = "case a", "case b"
 RESTART, RETAIN = "case b with a restart", "case b, SB1 retentive"
 
@@ -25,7 +27,9 @@ EXERCISE = Exercise(
         "instant (0 s), then at 1 s, 2 s ...\n"
         "Task: enter the program in OB30 and analyse how often the ADD executes for the two press timings of "
         "Figs. 4.187 and 4.188. TL as the calls at 0, 1, 2, 3, 4, 5 s see it: case a 0 0 0 1 1 0 (with a short "
-        "press between 0.1 s and 0.6 s); case b 1 1 1 1 1 0 (pressed already at STOP->RUN)."
+        "press between 0.1 s and 0.6 s); case b 1 1 1 1 1 0 (pressed already at STOP->RUN). Analyse case b also "
+        "when the CPU is stopped and started again (STOP->RUN) while TL is held, once with SB1 an ordinary memory "
+        "bit and once with MB0, which holds SB1, configured retentive."
     ),
     io=[
         IO("TL", "push-button", "Bool", "%I0.0", "NO", comment="address proposed; the textbook gives none"),
@@ -95,6 +99,18 @@ EXERCISE = Exercise(
             final("D.CISLO").equals(0).named("with SB1 retentive, TL held through STOP->RUN gives no new edge"), RETAIN
         ),
     ],
+    requirements={
+        "case a: the short press and the calls at 0, 1, 2 s add nothing": IN_OB30,
+        "case a: the edge is seen by the call at 3 s": IN_OB30,
+        "case b: the edge is seen by the call at 0 s (SB1 cleared at STOP->RUN)": IN_OB30,
+        "D.CISLO is incremented exactly once": IN_OB30,
+        "after STOP->RUN with TL held, the first call counts the edge again": (
+            "when the CPU is stopped and started again (STOP->RUN) while TL is held"
+        ),
+        "with SB1 retentive, TL held through STOP->RUN gives no new edge": (
+            "once with MB0, which holds SB1, configured retentive"
+        ),
+    },
     solutions=[
         solution(NUMBER, "reference", explanation="-|P|- TL (SB1) -> ADD D.CISLO + 1 in OB30 (1 s)"),
         solution(

@@ -6,6 +6,8 @@ from exercises._common import solution
 from exercises._punch import (
     MODEL,
     PUNCH_IO,
+    TAKEN_ON_ITS_WAY,
+    WAITS,
     PerObject,
     arrivals,
     constant,
@@ -15,6 +17,7 @@ from exercises._punch import (
     machine_safe,
     removed,
     shuttle,
+    shuttle_words,
 )
 from plants import Punch
 from plcsim.check import count, rises
@@ -22,6 +25,7 @@ from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, after_event, held, place, remove
 
 NUMBER = "6.3.1"
+CARRIED = "carries an object loaded in front of OS1 to the end of the conveyor at OS2 and then returns it"
 
 TAKEN = ("taken",)  # the object the operator takes off the belt on its way to the press
 OBJECTS = 3
@@ -37,7 +41,7 @@ EXERCISE = Exercise(
         "then returns it to the loading place at OS1. There the conveyor stops and waits for the object to be "
         "removed. After the removal a new object can be loaded. Consider one object at a time. Remember that the "
         "object has been at OS2 in the bit OBJEKT_PRI_OS2; the removal is the object leaving OS1 while the conveyor "
-        "stands (edge memory bit POM_P_OS1)."
+        "stands (edge memory bit POM_P_OS1)." + " " + shuttle_words() + " " + TAKEN_ON_ITS_WAY
     ),
     io=[
         *PUNCH_IO,
@@ -94,6 +98,11 @@ EXERCISE = Exercise(
         ),
         *machine_safe(),
     ],
+    requirements={
+        "every object is carried to OS2 exactly once": CARRIED,
+        "every object waits at OS1 until it is taken away": WAITS,
+        "the belt starts forward once per object": CARRIED,
+    },
     solutions=[
         solution(
             NUMBER,

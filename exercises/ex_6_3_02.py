@@ -6,6 +6,7 @@ from exercises._common import solution
 from exercises._punch import (
     MODEL,
     PUNCH_IO,
+    TAKEN_ON_ITS_WAY,
     PerObject,
     arrivals,
     counts,
@@ -16,6 +17,7 @@ from exercises._punch import (
     machine_safe,
     parameter,
     shuttle,
+    shuttle_words,
     waits_at_os1,
 )
 from plants import Punch
@@ -39,6 +41,10 @@ EXERCISE = Exercise(
         "moves made so far in M1_AKTUALNY_POCET (Int), 0 again once the object has been removed, either as the CV "
         "of an up counter CTU or with ADD on the arrivals at OS2. One object at a time; a required count of zero "
         "need not be handled. The operator sets M1_ZIADANY_POCET on the HMI before loading an object."
+        + " "
+        + shuttle_words()
+        + " "
+        + TAKEN_ON_ITS_WAY
     ),
     io=[
         *PUNCH_IO,
@@ -99,6 +105,9 @@ EXERCISE = Exercise(
         *interlocks(press=False),
         *machine_safe(),
     ],
+    requirements={
+        "every object is carried to OS2 M1_ZIADANY_POCET times": "The object makes the required number of moves",
+    },
     solutions=[
         solution(
             NUMBER,

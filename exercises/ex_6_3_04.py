@@ -6,6 +6,7 @@ from exercises._common import solution
 from exercises._punch import (
     COUNT_RUNG_MOVED,
     MODEL,
+    PRESS_WORDS,
     PUNCH_IO,
     TAKEN_FROM_THE_PRESS,
     constant,
@@ -14,6 +15,7 @@ from exercises._punch import (
     edge_bits,
     parameter,
     punching_checks,
+    shuttle_words,
     taken_from_the_press,
 )
 from plants import Punch
@@ -43,8 +45,13 @@ EXERCISE = Exercise(
         "Task: integrate the program of task 3 into the program of task 2: the object makes M1_ZIADANY_POCET moves "
         "to OS2 and back and is punched once at every visit to OS2; then it waits at OS1 for its removal. An object "
         "detected at OS2 must not be sent back before the punching is finished: the press must have been down "
-        "(OBJEKT_BOL_DOLE) and have returned to the upper position. Keep the moves in M1_AKTUALNY_POCET as in task "
-        "2. One object at a time; a required count of zero need not be handled."
+        "(OBJEKT_BOL_DOLE) and have returned to the upper position; once the press is back at KS1, the object is "
+        "sent back at once (in the same scan). Keep the moves made so far in M1_AKTUALNY_POCET, 0 again once the "
+        "object has been removed, as in task 2. One object at a time; a required count of zero need not be handled."
+        + " "
+        + shuttle_words(reverse_at_os2=False)
+        + " "
+        + PRESS_WORDS
     ),
     io=IO_TABLE,
     rig=Punch,
@@ -69,16 +76,33 @@ EXERCISE = Exercise(
             *taken_from_the_press({REQUIRED: 2}),
             duration="14s",
             description="M1_ZIADANY_POCET = 2; the operator takes the object from under the press while the ram goes "
-            "back up after its first stroke (0.3..1.2 s after it): the ram returns to KS1 and the machine stands",
+            "back up after its first stroke (0.3..1.2 s after it): the ram returns to KS1 and strikes no more",
         ),
     ],
     checks=punching_checks(constant(1), parameter(REQUIRED), "exactly one stroke", (REQUIRED,), WHOLE),
+    requirements={
+        "every stay under the press gets exactly one stroke": "is punched once at every visit to OS2",
+        "every stroke comes down on an object": "The press goes down only for an object at OS2",
+        "every object is punched M1_ZIADANY_POCET times": "is punched once at every visit to OS2",
+        "every object is carried to OS2 M1_ZIADANY_POCET times": "the object makes M1_ZIADANY_POCET moves to OS2",
+        "the belt reverses within 1 scan once the press is back at KS1 after the last stroke": (
+            "once the press is back at KS1, the object is sent back at once (in the same scan)"
+        ),
+    },
     solutions=[
         solution(
             NUMBER,
             "reference",
             explanation="6.3.2 solution 2 as rungs 1-4, 6.3.3 as rungs 5-7; rung 2 reverses only when "
             "OBJEKT_BOL_DOLE AND KS1; OBJEKT_BOL_DOLE cleared when the object leaves OS2",
+        ),
+        solution(
+            NUMBER,
+            "solution-steps",
+            "alternative",
+            "(not from the textbook) a step sequencer on one Int step: forward, down, up, back; taken from under the "
+            "press, the object is never seen back at OS1 and the belt runs back towards it (the task does not say "
+            "what the belt should do then)",
         ),
         solution(
             NUMBER,
@@ -104,13 +128,14 @@ EXERCISE = Exercise(
         "The textbook builds task 4 from task 2's solution 2 (ADD), so OBJEKT_PRI_OS2 and M1_AKTUALNY_POCET are "
         "kept. Criterion 2 is graded twice: on the PLC's outputs (the belt never runs while the press is away from "
         "KS1 or driven) and on the machine's word (no interlock violation, no damaged object). 'Jammed press' is a "
-        "fault of the machine: the program must keep the belt still until the stroke is finished. 'Object taken "
-        "from under the press' grades what the program must do then: no new stroke (the press goes down only for an "
-        "object at OS2), the ram back at KS1, the belt standing (nothing to carry back). It does not grade the "
-        "moves and their count: the textbook's removal is the rising edge of OS1 with the belt standing, so its "
-        "M1_AKTUALNY_POCET keeps the move of the object taken, and an object loaded next would make only the "
-        "moves left (with one required it would not start at all: the program takes it for the returned object); "
-        "the task does not say what a removal at the press should do to the series, so the scenario loads no next "
-        "object. A removal while the belt carries the object is 6.3.2's scenario: no sensor sees it."
+        "fault of the machine: the program must keep the belt still until the stroke is finished. 'Object taken from "
+        "under the press' grades what the program must do then: no new stroke (the press goes down only for an "
+        "object at OS2) and the ram back at KS1. It grades neither what the belt does then (the task does not say: "
+        "the textbook's program stands, a step sequencer waiting for the object's return may run the belt back to "
+        "OS1) nor the moves and their count: the textbook's removal is the rising edge of OS1 with the belt "
+        "standing, so its M1_AKTUALNY_POCET keeps the move of the object taken, and an object loaded next would make "
+        "only the moves left (with one required it would not start at all: the program takes it for the returned "
+        "object); the task does not say what a removal at the press should do to the series, so the scenario loads "
+        "no next object. A removal while the belt carries the object is 6.3.2's scenario: no sensor sees it."
     ),
 )

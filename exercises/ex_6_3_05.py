@@ -6,6 +6,7 @@ from exercises._common import solution
 from exercises._punch import (
     COUNT_RUNG_MOVED,
     MODEL,
+    PRESS_WORDS,
     PUNCH_IO,
     TAKEN_FROM_THE_PRESS,
     counts,
@@ -14,6 +15,7 @@ from exercises._punch import (
     parameter,
     product,
     punching_checks,
+    shuttle_words,
     taken_from_the_press,
 )
 from plants import Punch
@@ -23,6 +25,7 @@ from plcsim.scenario import Scenario, after_event, free_motor, jam_motor
 
 NUMBER = "6.3.5"
 MOVES, STROKES = "M1_ZIADANY_POCET", "M2_ZIADANY_POCET"
+PER_VISIT = "the required number of punchings at each visit to OS2"
 WHOLE = ("two moves, three strokes", "two strokes, then one", "jammed press")
 
 EXERCISE = Exercise(
@@ -35,9 +38,15 @@ EXERCISE = Exercise(
         "Task: modify the program of task 4 so that the required number of punchings at each visit to OS2 can be "
         "entered through a parameter of data type INT, M2_ZIADANY_POCET; count the punchings done in "
         "M2_AKTUALNY_POCET (the rising edge of the lower sensor KS2 is one punching) and clear the count when the "
-        "object leaves OS2. The object is sent back only after the last punching, with the press at the top "
-        "again. A required count of zero need not be handled. The operator sets M1_ZIADANY_POCET and "
-        "M2_ZIADANY_POCET on the HMI before loading an object."
+        "object leaves OS2. The object is sent back only after the last punching, with the press at the top again, "
+        "and then at once (in the same scan that sees the press back at KS1), as in task 4. As in task 4, the object "
+        "makes M1_ZIADANY_POCET moves to OS2 and back, and the moves made so far are kept in M1_AKTUALNY_POCET, 0 "
+        "again once the object has been removed. A required count of zero need not be handled. The operator sets "
+        "M1_ZIADANY_POCET and M2_ZIADANY_POCET on the HMI before loading an object."
+        + " "
+        + shuttle_words(reverse_at_os2=False)
+        + " "
+        + PRESS_WORDS
     ),
     io=[
         *PUNCH_IO,
@@ -92,6 +101,16 @@ EXERCISE = Exercise(
             "M2_AKTUALNY_POCET is 0 whenever no object is under the press"
         ),
     ],
+    requirements={
+        "every stay under the press gets M2_ZIADANY_POCET strokes": PER_VISIT,
+        "every stroke comes down on an object": "The press goes down only for an object at OS2",
+        "every object is punched M1_ZIADANY_POCET × M2_ZIADANY_POCET times": PER_VISIT,
+        "every object is carried to OS2 M1_ZIADANY_POCET times": "the object makes M1_ZIADANY_POCET moves to OS2",
+        "the belt reverses within 1 scan once the press is back at KS1 after the last stroke": (
+            "and then at once (in the same scan that sees the press back at KS1)"
+        ),
+        "M2_AKTUALNY_POCET is 0 whenever no object is under the press": "clear the count when the object leaves OS2",
+    },
     solutions=[
         solution(
             NUMBER,
@@ -162,7 +181,7 @@ EXERCISE = Exercise(
         "comes on the way down to the second stroke: the program must neither count a stroke nor move the belt "
         "before the press is back at KS1 after the last one. 'Object taken from under the press' (between the first "
         "and the second stroke) grades what the program must do then, as in 6.3.4: no further stroke, the ram back at "
-        "KS1, the belt standing, and M2_AKTUALNY_POCET 0 (the object has left OS2); not the moves and their count "
+        "KS1, and M2_AKTUALNY_POCET 0 (the object has left OS2); not the moves and their count "
         "(6.3.4's note). Not a scenario: bouncing KS2. The textbook counts "
         "strokes on P(KS2), and each bounce of the contact is a rising edge, so a bouncing KS2 counts one stroke "
         "several times (the textbook's program is not debounced; 6.3.3 grades the bounce, where only levels are "

@@ -27,7 +27,8 @@ EXERCISE = Exercise(
         "A motor (contactor output MOTOR, Y0.0) is started by the push-button START (X0.0) and stopped by the "
         "push-button STOP (X0.1); both are normally open (NO) contacts. Write the program in the Tecomat's "
         "instruction list (a .il file).\n"
-        "Task: pressing START starts the motor, and it keeps running when START is released. Pressing STOP stops "
+        "Task: pressing START starts the motor in the cycle that sees it, and it keeps running when START is "
+        "released. Pressing STOP stops "
         "it, and it stays stopped when STOP is released. When both buttons are pressed, the motor is stopped "
         "(STOP dominates). A self-holding contact (LD, OR, ANC, WR) or SET and RES may be used."
     ),
@@ -57,6 +58,14 @@ EXERCISE = Exercise(
         holds("MOTOR").until(becomes("STOP")).named(HOLDS_ON),
         holds(off("MOTOR")).until(becomes(all_of("START", off("STOP")))).named(HOLDS_OFF),
     ],
+    requirements={
+        "START alone switches the motor on within 1 cycle": "pressing START starts the motor in the cycle that sees it",
+        "STOP switches the motor off, also when both are pressed (stop-dominant)": (
+            "When both buttons are pressed, the motor is stopped (STOP dominates)"
+        ),
+        "releasing START leaves the motor running": "it keeps running when START is released",
+        "releasing STOP leaves the motor stopped": "it stays stopped when STOP is released",
+    },
     solutions=[
         il_solution(NUMBER, "reference", explanation="EX-01: (START OR MOTOR) AND NOT STOP, stop-dominant"),
         il_solution(NUMBER, "set-reset", "alternative", "EX-09: SET then RES; RES last, so STOP wins"),

@@ -38,6 +38,7 @@ EXERCISE = Exercise(
     task=(
         "A sensor signal arrives on input signal (X0.0, NO). Only 1-pulses longer than 250 ms may pass to the "
         "output vystup (Y0.0), and the output is delayed by 250 ms: it comes on 250 ms after the signal came on "
+        "(at most one 10 ms unit and one cycle later) "
         "and goes off in the cycle the signal goes off. A shorter pulse, or a pulse broken by a drop-out, must not "
         "reach the output. Write it in the Tecomat's instruction list with a TON timer on a register word of "
         "your own (#reg word casovac) and the 10 ms time base (code .0)."
@@ -73,6 +74,18 @@ EXERCISE = Exercise(
         only(rises("vystup").between("250ms", "260ms + 1 scan").after(rises("signal")).named(DELAY), "long pulses"),
         always(implies(off("signal"), off("vystup"))).named(FALLS),
     ],
+    requirements={
+        "a pulse shorter than 250 ms never reaches vystup": (
+            "A shorter pulse, or a pulse broken by a drop-out, must not reach the output"
+        ),
+        "every pulse longer than 250 ms reaches vystup, once": (
+            "Only 1-pulses longer than 250 ms may pass to the output vystup (Y0.0)"
+        ),
+        "vystup rises 250 ms after signal rises (+ one 10 ms unit and 1 cycle)": (
+            "it comes on 250 ms after the signal came on (at most one 10 ms unit and one cycle later)"
+        ),
+        "vystup falls in the cycle that sees signal fall": "goes off in the cycle the signal goes off",
+    },
     solutions=[
         il_solution(NUMBER, "reference", explanation="EX-18 as printed: LD signal, LD 25, TON casovac.0, WR vystup"),
         il_solution(

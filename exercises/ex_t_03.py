@@ -72,6 +72,13 @@ EXERCISE = Exercise(
         only(final("citac").equals(8).named(TOTAL), "eight products"),
         only(always(implies("nuluj", value("citac") == 0)).named(RESET), "reset"),
     ],
+    requirements={
+        "citac is the number of products that reached S1 since the last reset, in every cycle": (
+            "each product that reaches the sensor adds 1"
+        ),
+        "after eight products citac is 8": "each product that reaches the sensor adds 1",
+        "nuluj clears citac and holds it at 0 while pressed": "clears the count; while it is held the count stays 0",
+    },
     solutions=[
         il_solution(NUMBER, "reference", explanation="EX-15 as printed (LD snimac, LD nuluj, CTU citac), D1 on"),
         il_solution(

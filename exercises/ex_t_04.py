@@ -12,6 +12,8 @@ from plcsim.exercise import IO, Exercise
 from plcsim.scenario import Scenario, switch
 
 NUMBER = "T-04"
+ONE_OF_EIGHT = "code n lights the lamp vystupn (Y0.n) and no other"
+"""What every check grades, in the task's words."""
 INPUTS = ("a", "b", "c")
 LAMPS = tuple(f"vystup{n}" for n in range(8))
 GRAY = (0, 1, 3, 2, 6, 7, 5, 4)
@@ -82,6 +84,16 @@ EXERCISE = Exercise(
         )
         for n in range(8)
     ],
+    requirements={
+        "c b a = 000 lights vystup0 alone (Y0 = 01H)": ONE_OF_EIGHT,
+        "c b a = 001 lights vystup1 alone (Y0 = 02H)": ONE_OF_EIGHT,
+        "c b a = 010 lights vystup2 alone (Y0 = 04H)": ONE_OF_EIGHT,
+        "c b a = 011 lights vystup3 alone (Y0 = 08H)": ONE_OF_EIGHT,
+        "c b a = 100 lights vystup4 alone (Y0 = 10H)": ONE_OF_EIGHT,
+        "c b a = 101 lights vystup5 alone (Y0 = 20H)": ONE_OF_EIGHT,
+        "c b a = 110 lights vystup6 alone (Y0 = 40H)": ONE_OF_EIGHT,
+        "c b a = 111 lights vystup7 alone (Y0 = 80H)": ONE_OF_EIGHT,
+    },
     solutions=[
         il_solution(NUMBER, "reference", explanation="EX-24 as printed: LD c, LD b, LD a, STK, AND %111, LTB, WR Y0"),
         il_solution(

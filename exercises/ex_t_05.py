@@ -19,6 +19,8 @@ from plcsim.exercise import IO, Exercise
 from plcsim.scenario import Scenario
 
 NUMBER = "T-05"
+SWITCH_TIMES = "(on at the start of the first minute, off at the start of the last)"
+"""What both checks grade, in the task's words."""
 ON_TIMES = (0x800, 0x832, 0x92D, 0xA32, 0xB28, 0xE0A, 0xF05)
 OFF_TIMES = (0x82D, 0x923, 0xA1E, 0xB23, 0xC19, 0xE37, 0xF32)
 """The task's times as SW7 holds them (hour in the high byte): 08:00 ... 15:05 and 08:45 ... 15:50."""
@@ -78,6 +80,10 @@ EXERCISE = Exercise(
         always(implies(SCHEDULE, "vystup")).named(INSIDE),
         always(implies(not_(SCHEDULE), off("vystup"))).named(OUTSIDE),
     ],
+    requirements={
+        "vystup is on from each switch-on time to its switch-off time (08:00-08:45 ... 15:05-15:50)": SWITCH_TIMES,
+        "vystup is off outside those intervals": SWITCH_TIMES,
+    },
     solutions=[
         il_solution(NUMBER, "reference", explanation="EX-28 with the task's off-times $A1E (10:30) and $B23 (11:35)"),
         il_solution(

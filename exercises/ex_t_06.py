@@ -39,7 +39,9 @@ EXERCISE = Exercise(
         "A hydraulic feed slide is moved by the solenoid valves em1 (forward, Y0.0) and em2 (backward, Y0.1); the "
         "limit switch k1 (X0.2) marks its initial position, k5 (X0.3) the end of the working stroke. When the "
         "push-buttons start1 (X0.0) and start2 (X0.1) are pressed together while the slide is at k1, it runs one "
-        "working cycle: forward to k5, a wait of 5 s there, back to k1. A start is possible only from k1. Write "
+        "working cycle: forward to k5, a wait of 5 s there, back to k1. A start is possible only from k1. Each "
+        "valve opens and closes in the cycle that sees its condition (em2 at most one cycle after the 5 s), and em1 "
+        "and em2 are never open together. Write "
         "it in the Tecomat's instruction list with SET/RES and a TON on the 1 s time base (code .2). The STOP "
         "button and the speed valve em3 of the manual's task are left out, as its program leaves them out."
     ),
@@ -83,6 +85,18 @@ EXERCISE = Exercise(
         never(all_of("em1", "em2")).named(APART),
         only(never(event("interlock violated")).named("the two valves never fight"), "starts refused"),
     ],
+    requirements={
+        "EM1 opens in the cycle that sees START1 and START2 pressed together at K1": (
+            "Each valve opens and closes in the cycle that sees its condition"
+        ),
+        "EM1 opens once per working cycle: a start away from K1 is refused": "A start is possible only from k1",
+        "EM1 closes in the cycle that sees K5": "Each valve opens and closes in the cycle that sees its condition",
+        "EM2 opens 5 s after the slide reaches K5 (+ 1 cycle)": "em2 at most one cycle after the 5 s",
+        "EM2 stays open from K5 back to K1": "forward to k5, a wait of 5 s there, back to k1",
+        "EM2 closes in the cycle that sees K1": "Each valve opens and closes in the cycle that sees its condition",
+        "EM1 and EM2 are never open together": "em1 and em2 are never open together",
+        "the two valves never fight": "em1 and em2 are never open together",
+    },
     solutions=[
         il_solution(NUMBER, "reference", explanation="EX-19 as printed: SET em1 at k1, RES at k5; TON k5 5 s SETs em2"),
         il_solution(

@@ -1,7 +1,7 @@
 """The ``plcsim`` command: list and show exercises, run a program on a rig, grade submissions::
 
     plcsim list
-    plcsim show 4.3.7
+    plcsim show 4.3.7                 # the student's view; --solutions for instructors
     plcsim run 4.3.7 --reference --rrd out/run.rrd
     plcsim run CONV1 --program my_conveyor.py --seconds 20 --plot out/conveyor.png
     plcsim grade 4.3.7 my_alarm.py --json out/report.json --junit out/report.xml
@@ -53,13 +53,18 @@ def _parser() -> argparse.ArgumentParser:
 
     show = sub.add_parser(
         "show",
-        help="show an exercise: task, I/O table, scenarios, checks",
-        description="Show an exercise's task, I/O table, data blocks, scenarios and checks.",
+        help="show an exercise as a student reads it: task, I/O table, scenarios, requirements and checks",
+        description="Show an exercise's task, I/O table, data blocks, scenarios, the task's requirements with the "
+        "checks that grade each, and the other checks: what a student needs. Instructors add --solutions.",
     )
     show.add_argument("exercise", help="textbook number (4.3.6), slug, or an exercise file")
-    show.add_argument(
-        "--no-solutions", action="store_true", help="leave the shipped programs out (for a handout to students)"
+    which = show.add_mutually_exclusive_group()
+    which.add_argument(
+        "--solutions",
+        action="store_true",
+        help="for instructors: also the shipped programs, what each shows, and the exercise's notes",
     )
+    which.add_argument("--no-solutions", action="store_true", help="the student's view (the default)")
     show.add_argument(
         "--ladder",
         nargs="?",
@@ -232,8 +237,9 @@ def _add_mutate_parser(sub: Any) -> None:
     mutate = sub.add_parser(
         "mutate",
         help="mutation-test an exercise's checks: which slips in the reference do they miss?",
-        description="Derive mutants from the exercise's reference solution (negated contacts, swapped timers, "
-        "removed edges, presets off by a step, swapped or dropped networks ...), grade each, list the survivors.",
+        description="Derive mutants from the exercise's reference solution (negated contacts, forgotten contacts, "
+        "swapped timers, removed edges, presets off by a step, swapped or dropped networks ...), grade each, list "
+        "the survivors.",
     )
     mutate.add_argument("exercise", help="textbook number (4.3.6) or slug")
     mutate.add_argument("--seeds", type=int, default=3, metavar="N", help="grade each mutant on seeds 1..N (default 3)")
@@ -319,7 +325,7 @@ def _show(args: argparse.Namespace) -> int:
         picture.title = f"{exercise.number} {exercise.title}: {solution.name}"
         default = f"{exercise.number.replace('.', '_')}-{solution.name}.svg"
         return _write_ladder(picture, Path(args.output or default))
-    print_exercise(exercise, solutions=not args.no_solutions)
+    print_exercise(exercise, solutions=args.solutions)
     return 0
 
 

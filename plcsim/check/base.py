@@ -152,6 +152,7 @@ class Check:
 
     name: str | None = None
     weight: float = 1.0
+    requirement: str | None = None
     extra_signals: tuple[str, ...] = ()
     exercise_conditions: tuple[Any, ...] = ()
     as_exercise_condition: ClassVar[Callable[[Any], Any]]
@@ -175,6 +176,13 @@ class Check:
     def named(self, name: str) -> Check:
         """Give the check the name reports show."""
         self.name = name
+        return self
+
+    def grades(self, requirement: str) -> Check:
+        """Name the words of the task the check grades (``"The belt stops when the object reaches S2"``): the
+        exercise refuses to load unless its task text states them, and ``plcsim show`` prints them with the
+        check, so that a student reads every requirement a grade depends on."""
+        self.requirement = requirement
         return self
 
     def plotting(self, *signals: str) -> Check:

@@ -16,7 +16,7 @@ from plcsim.check import Check
 from plcsim.controllers.choice import controller_for
 from plcsim.controllers.loaded import SourceProgram
 from plcsim.core.errors import ConfigurationError, ExerciseError, defined_at
-from plcsim.exercise.validation import validate
+from plcsim.exercise.validation import plain_words, validate
 from plcsim.frontends import read_program
 from plcsim.plant.protocol import Plant
 from plcsim.scenario.planning import Scenario
@@ -88,6 +88,9 @@ class GradedCheck:
     check: Check
     scenarios: tuple[str, ...] | None = None
     defined_at: str = "?"
+    requirement: str | None = None
+    """The words of the task the check grades: the exercise's ``requirements[name]``, else the check's own
+    (:meth:`~plcsim.check.Check.grades`)."""
 
     @property
     def name(self) -> str:
@@ -116,6 +119,14 @@ class Exercise:
     ``hmi`` is the operator panel the task describes where its controls are tags, not plant signals (the HMI
     bits of a data block): each Bool tag named is offered on the live page as a ``"switch"`` (a click flips it)
     or a ``"button"`` (TRUE while held): ``{"DB_SKIP.AUTO": "switch", "DB_SKIP.MAN_HORE": "button"}``.
+
+    ``requirements`` names, per check name, the words of the task text the check grades (for checks built by
+    a helper that several exercises share; a check of one exercise can say it itself with ``.grades(...)``).
+    Each must be in the task text, or the exercise does not load: a check grades only what the task states.
+
+    ``aliases`` are the other names the textbook gives a tag or a data-block member (``{"Dopravník":
+    "D1_VPRED", "DATA.POZ3_OBS_Farba 1": "DATA.POZ3_OBS_Farba1"}``): a program may use either; a name with a
+    space is also accepted with ``_`` for the space (see :meth:`~plcsim.tags.table.TagTable.add_alias`).
     """
 
     number: str
@@ -140,6 +151,8 @@ class Exercise:
     cpu_budget_s: float | None = None
     """The CPU seconds a graded submission may use in all scenarios together; None (the default): ten times
     what the reference uses, measured once per batch, at least 10 s (:mod:`plcsim.grading.sandbox.limits`)."""
+    requirements: Mapping[str, str] = field(default_factory=dict)
+    aliases: Mapping[str, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.defined_at = defined_at()
@@ -150,7 +163,18 @@ class Exercise:
         if budget is not None and (isinstance(budget, bool) or not isinstance(budget, int | float) or not budget > 0):
             raise ExerciseError(f"{self.defined_at}: cpu_budget_s is a positive number of seconds, not {budget!r}")
         self.checks = [c if isinstance(c, GradedCheck) else GradedCheck(c) for c in self.checks]
+        for gc in self.checks:
+            gc.requirement = self.requirements.get(gc.name) or gc.check.requirement
         validate(self)
+
+    def requirement_list(self) -> list[tuple[str, list[GradedCheck]]]:
+        """The requirements the checks grade, in the order the task states them, each with its checks."""
+        by_words: dict[str, list[GradedCheck]] = {}
+        for gc in self.checks:  # type: ignore[union-attr]
+            if gc.requirement:
+                by_words.setdefault(gc.requirement, []).append(gc)
+        task = plain_words(self.task)
+        return sorted(by_words.items(), key=lambda item: task.find(plain_words(item[0])))
 
     # -- building a run -----------------------------------------------------------------------
 
@@ -158,7 +182,7 @@ class Exercise:
         """The exercise's tags: its I/O table and data blocks (a fresh copy of the table built once for
         them, so that the data blocks' types are the same objects in every simulation and a program
         compiled for one scenario is reused in the next: see :meth:`Program.compile`)."""
-        key = (tuple(self.io), tuple(self.dbs.items()))
+        key = (tuple(self.io), tuple(self.dbs.items()), tuple(self.aliases.items()))
         cached = self.__dict__.get("_tag_table")
         if cached is None or cached[0] != key:
             cached = self.__dict__["_tag_table"] = (key, self._build_tag_table())
@@ -174,6 +198,8 @@ class Exercise:
                 table.add(row.tag, Tag(row.address, dtype), source=f"exercise {self.number}")  # type: ignore[arg-type]
         for name, db in self.dbs.items():
             table.add(name, db, source=f"exercise {self.number}")
+        for alias, name in self.aliases.items():
+            table.add_alias(alias, name)
         return table
 
     def wires(self) -> list[Wire]:

@@ -223,6 +223,23 @@ class _Validation:
                         f"{did_you_mean(s, scenario_names)}; scenarios: {_choices(scenario_names)}",
                     )
             self._check(gc, where, traced)
+        self._requirements()
+
+    def _requirements(self) -> None:
+        """Each check's requirement is words of the task text, and ``requirements`` names only checks."""
+        ex = self.exercise
+        names = [c.name for c in ex.checks]
+        for name in ex.requirements:
+            if name not in names:
+                self.add(ex.defined_at, f"requirements names {name!r}, which is not a check{did_you_mean(name, names)}")
+        task = plain_words(ex.task)
+        for gc in ex.checks:  # type: ignore[union-attr]
+            if gc.requirement is not None and plain_words(gc.requirement) not in task:
+                self.add(
+                    self._where(gc),
+                    f"check {gc.name!r} grades {gc.requirement!r}, which the task text does not state: quote the "
+                    "task's own words, or state the requirement in the task",
+                )
 
     def _where(self, gc: GradedCheck) -> str:
         own = getattr(gc.check, "defined_at", "?")
@@ -312,6 +329,15 @@ class _Validation:
             f"{label} looks for the action {which!r}, which none of its scenarios does"
             f"{did_you_mean(target or '', done)}; they {verb}: {_choices(done)}",
         )
+
+
+def plain_words(text: str) -> str:
+    """``text`` as a requirement is looked up in a task: lower case, any run of white space one space.
+
+    >>> plain_words("The belt  stops\\nat S2.")
+    'the belt stops at s2.'
+    """
+    return " ".join(text.split()).lower()
 
 
 def _spans_of(check: Check) -> Iterator[Span]:

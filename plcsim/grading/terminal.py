@@ -120,13 +120,14 @@ def print_exercise_list(exercises: Sequence[Any], console: Console | None = None
     print_records(console or Console(), columns, rows, title=title)
 
 
-def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool = True) -> None:
-    """An exercise's task, I/O table, data blocks, scenarios, checks and (unless ``solutions`` is False:
-    a handout for students) the programs shipped with it."""
+def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool = False) -> None:
+    """An exercise as a student reads it: the task, the I/O table, data blocks, scenarios, the requirements of
+    the task each check grades, and the checks; with ``solutions`` (for instructors) also the programs shipped
+    with it, what each shows, and the exercise's notes (they give the reference's logic away)."""
     console = console or Console()
     console.print(
         Panel(
-            ex.task,
+            Text(ex.task),
             title=f"[bold]{ex.number} {ex.title}[/]" + (f" ({ex.title_sk})" if ex.title_sk else ""),
             expand=False,
         )
@@ -151,11 +152,8 @@ def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool =
         console.print(dbt)
     console.print("[bold]Scenarios[/]")
     for s in ex.scenarios:
-        console.print(f"  • {s.name} ({format_ns(s.duration_ns)}): {s.description or ''}")
-    console.print("[bold]Checks[/]")
-    for c in ex.checks:
-        where = f"  [dim]({', '.join(c.scenarios)})[/]" if c.scenarios else ""
-        console.print(f"  • {c.name}{where}")
+        console.print(Text(f"  • {s.name} ({format_ns(s.duration_ns)}): {s.description or ''}"))
+    _print_requirements(ex, console)
     if solutions:
         from plcsim.exercise.catalog import command_name
 
@@ -164,8 +162,24 @@ def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool =
         )
         for s in ex.solutions:
             console.print(Text(f"  • {s.name} [{s.kind}]: {s.explanation}"))
-    if ex.notes:
-        console.print(Panel(ex.notes, title="notes", expand=False, border_style="dim"))
+        if ex.notes:
+            console.print(Panel(Text(ex.notes), title="notes for instructors", expand=False, border_style="dim"))
+
+
+def _print_requirements(ex: Any, console: Console) -> None:
+    """The task's requirements, each with the checks that grade it; then the checks that name none."""
+    requirements = ex.requirement_list()
+    if requirements:
+        console.print("[bold]Requirements[/] (the words of the task each check grades)")
+        for k, (words, checks) in enumerate(requirements, 1):
+            console.print(Text(f'  {k}. "{words}"'))
+            for c in checks:
+                console.print(Text(f"       • {c.name}" + (f"  ({', '.join(c.scenarios)})" if c.scenarios else "")))
+    rest = [c for c in ex.checks if not c.requirement]
+    if rest:
+        console.print("[bold]Checks[/]" if not requirements else "[bold]Other checks[/]")
+        for c in rest:
+            console.print(Text(f"  • {c.name}" + (f"  ({', '.join(c.scenarios)})" if c.scenarios else "")))
 
 
 def print_run_summary(sim: Any, wall_s: float, console: Console | None = None, *, events: int = 12) -> None:

@@ -6,19 +6,22 @@ kept as written except a ``#def`` constant's value; a mnemonic keeps the case it
 (``ld`` -> ``ldc``), as the language is case-insensitive. The operators use only the 57 instructions
 the manual defines (:mod:`plcsim.controllers.tecomat.mnemonics`):
 
-========== ==================================================================================
-negate     a contact negated: LD <-> LDC, AND <-> ANC, OR <-> ORC, XOR <-> XOC, WR <-> WRC
-           (an operand that is a register or a bit, not a number)
-set-reset  SET <-> RES
-and-or     a series connection for a parallel one: AND <-> OR, ANC <-> ORC
-timer      TON <-> TOF <-> IMP (RTO takes three inputs, so it is no slip for these)
-time-base  a timer's time-base code one step off: ``ton casovac.0`` -> ``casovac.1`` (10 ms -> 100 ms)
-boundary   a comparison at its boundary: ``GT n`` -> ``GT n-1`` (> for >=) and ``LT n`` -> ``LT n+1``
-           (< for <=), the set having no GE or LE; the flags S0.1 (<) <-> S0.2 (<=)
-constant   a ``#def NAME 25`` value, or an immediate operand of LD, EQ, LT, GT, moved by one step
-drop       one instruction dropped (its line keeps its label and comment)
-swap       two adjacent instructions of a process exchanged (comment lines between them stay)
-========== ==================================================================================
+=============== ================================================================================
+negate          a contact negated: LD <-> LDC, AND <-> ANC, OR <-> ORC, XOR <-> XOC, WR <-> WRC
+                (an operand that is a register or a bit, not a number)
+set-reset       SET <-> RES
+and-or          a series connection for a parallel one: AND <-> OR, ANC <-> ORC
+drop-operand    one operand of a series or parallel connection dropped, a forgotten contact: an AND, ANC, OR,
+                ORC, XOR or XOC of a contact dropped, or the connection's first contact (``LD a`` / ``AND b`` ->
+                ``LD b``); negating one operand is negate's mutant (each operand is one line)
+timer           TON <-> TOF <-> IMP (RTO takes three inputs, so it is no slip for these)
+time-base       a timer's time-base code one step off: ``ton casovac.0`` -> ``casovac.1`` (10 ms -> 100 ms)
+boundary        a comparison at its boundary: ``GT n`` -> ``GT n-1`` (> for >=) and ``LT n`` -> ``LT n+1``
+                (< for <=), the set having no GE or LE; the flags S0.1 (<) <-> S0.2 (<=)
+constant        a ``#def NAME 25`` value, or an immediate operand of LD, EQ, LT, GT, moved by one step
+drop            one instruction dropped (its line keeps its label and comment)
+swap            two adjacent instructions of a process exchanged (comment lines between them stay)
+=============== ================================================================================
 
 A constant step is the preset step of :mod:`plcsim.mutate.mutant` (one unit in the decimal place below the
 leading digit, at least 1: ``#def zpozdeni 25`` -> 24 / 26, ``LD 1`` -> 0 / 2), written in the
@@ -30,10 +33,11 @@ jump target: they are not mutated, and no swap moves an instruction across them.
 ...     print(mutant)
 line 1: LD START → LDC START
 line 1: LD START dropped
+line 1: LD START dropped: a forgotten contact, ANC STOP → LDC STOP
 line 1: LD START ⇄ ANC STOP (lines 1 and 2)
 line 2: ANC STOP → AND STOP
 line 2: ANC STOP → ORC STOP
-line 2: ANC STOP dropped
+line 2: ANC STOP dropped: a forgotten contact
 """
 
 from __future__ import annotations
@@ -55,6 +59,8 @@ _NEGATED = {"LD": "LDC", "AND": "ANC", "OR": "ORC", "XOR": "XOC", "WR": "WRC"}
 NEGATE = {**_NEGATED, **{v: k for k, v in _NEGATED.items()}}
 SET_RESET = {"SET": "RES", "RES": "SET"}
 AND_OR = {"AND": "OR", "OR": "AND", "ANC": "ORC", "ORC": "ANC"}
+SERIES_PARALLEL = ("AND", "ANC", "OR", "ORC", "XOR", "XOC")
+"""The instructions that connect one more contact (their operand) to the result: the operands drop-operand drops."""
 TIMERS = ("TON", "TOF", "IMP")
 COMPARE = ("EQ", "LT", "GT")
 _FLAGS = {"S0.1": "S0.2", "S0.2": "S0.1"}
@@ -172,6 +178,8 @@ def _sites(raw: list[str]) -> Iterator[Site]:
         if ins.key in _STRUCTURE:
             previous = None
             continue
+        if previous is not None and not ins.lead.strip():
+            yield from _first_operand_dropped(previous, ins, constants)
         yield from _instruction_sites(ins, constants)
         if previous is not None and not ins.lead.strip():  # a label marks a place: nothing moves across it
             a, b = previous, ins
@@ -210,6 +218,8 @@ def _instruction_sites(ins: _Instruction, constants: set[str]) -> Iterator[Site]
         yield change("set-reset", SET_RESET[key])
     if key in AND_OR:
         yield change("and-or", AND_OR[key])
+    if key in SERIES_PARALLEL and arg and not is_number:
+        yield "drop-operand", k, f"{ins.text} dropped: a forgotten contact", {k: (ins.lead + ins.line.comment).rstrip()}
     if key in TIMERS:
         for other in TIMERS:
             if other != key:
@@ -236,6 +246,23 @@ def _instruction_sites(ins: _Instruction, constants: set[str]) -> Iterator[Site]
         for step in preset_steps(value):
             new = _written_like(arg, step)
             yield "constant", k, f"{ins.text} → {ins.mnemonic} {new}", {k: ins.with_arg(new)}
+
+
+def _first_operand_dropped(first: _Instruction, then: _Instruction, constants: set[str]) -> Iterator[Site]:
+    """``LD a`` / ``AND b`` -> ``LD b``: the first contact of a series or parallel connection forgotten, the next one
+    loaded in its place (``ANC b`` and ``ORC b`` -> ``LDC b``)."""
+    if first.key not in ("LD", "LDC") or then.key not in SERIES_PARALLEL:
+        return
+    a, b = first.arg.strip(), then.arg.strip()
+    if not (a and b) or any(_is_number(x) or x.lower() in constants for x in (a, b)):
+        return
+    load = then.cased("LDC" if then.key in ("ANC", "ORC", "XOC") else "LD")
+    yield (
+        "drop-operand",
+        first.line.number,
+        f"{first.text} dropped: a forgotten contact, {then.text} → {load} {then.arg}".rstrip(),
+        {first.line.number: (first.lead + first.line.comment).rstrip(), then.line.number: then.with_mnemonic(load)},
+    )
 
 
 def _def_sites(line: _Line) -> Iterator[Site]:

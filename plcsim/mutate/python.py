@@ -3,21 +3,25 @@
 Every mutant is the reference program with one small change of its source (an AST transform,
 regenerated with :func:`ast.unparse`), the kind of slip a student makes:
 
-========== ==================================================================================
-negate     a contact negated: a Bool tag read ``t.X`` <-> ``not t.X``
-nc-as-no   an input wired NC read as if it were NO: every read of it negated at once
-timer      TON <-> TOF <-> TP
-edge       an edge removed: ``P(x, "M")`` / ``N(...)`` / ``R_TRIG(CLK=x)`` -> the plain signal ``x``
-edge-kind  a rising edge for a falling one: P <-> N, P_TRIG <-> N_TRIG, R_TRIG <-> F_TRIG
-preset     a PT/PV preset, a ``TIME("..")`` or an integer compared with, moved by one step
-boundary   a comparison at its boundary: < <-> <=, > <-> >=, == <-> !=
-coil       SET for RESET: ``t.X = True`` <-> ``t.X = False``
-and-or     a series connection for a parallel one: ``and`` <-> ``or``
-swap       two adjacent networks of an OB, or two adjacent if-blocks of a network, exchanged
-drop       a network of an OB, or one statement of a block, dropped
-move       a network moved to the end of its OB
-task       a cyclic interrupt's networks (OB30) run in OB1 instead, every scan
-========== ==================================================================================
+=============== ================================================================================
+negate          a contact negated: a Bool tag read ``t.X`` <-> ``not t.X``
+nc-as-no        an input wired NC read as if it were NO: every read of it negated at once
+timer           TON <-> TOF <-> TP
+edge            an edge removed: ``P(x, "M")`` / ``N(...)`` / ``R_TRIG(CLK=x)`` -> the plain signal ``x``
+edge-kind       a rising edge for a falling one: P <-> N, P_TRIG <-> N_TRIG, R_TRIG <-> F_TRIG
+preset          a PT/PV preset, a ``TIME("..")`` or an integer compared with, moved by one step
+boundary        a comparison at its boundary: < <-> <=, > <-> >=, == <-> !=
+coil            SET for RESET: ``t.X = True`` <-> ``t.X = False``
+and-or          a series connection for a parallel one: ``and`` <-> ``or``
+drop-operand    one operand of an ``and``/``or`` dropped: a forgotten contact (``a and b`` -> ``a``), such as an
+                interlock
+negate-operand  one operand of an ``and``/``or`` negated, whatever it is (a comparison, an edge, a bracket): an NO
+                contact where an NC one is needed (on a tag read, the same mutant as negate's)
+swap            two adjacent networks of an OB, or two adjacent if-blocks of a network, exchanged
+drop            a network of an OB, or one statement of a block, dropped
+move            a network moved to the end of its OB
+task            a cyclic interrupt's networks (OB30) run in OB1 instead, every scan
+=============== ================================================================================
 
 A preset moves by the preset step of :mod:`plcsim.mutate.mutant`. The timer boxes and the edge boxes
 come from the S7 instruction descriptions (:data:`plcsim.controllers.s7.instructions.BLOCKS`): the
@@ -122,6 +126,7 @@ def _sites(tree: ast.Module, typing: Typing, nc_inputs: set[str]) -> Iterator[Si
             other = ast.Or() if isinstance(node.op, ast.And) else ast.And()
             after = _text(ast.BoolOp(other, node.values))
             yield "and-or", node.lineno, f"{_text(node)} → {after}", _set_attr(index[id(node)], "op", other)
+            yield from _operand_sites(node, index)
     for node in (n for f in functions for n in ast.walk(f)):
         for name in ("body", "orelse"):
             block = getattr(node, name, None)
@@ -217,6 +222,23 @@ def _call_sites(node: ast.Call, index: dict[int, int], parents: dict[int, ast.AS
             yield from _preset_sites(kw.value, f"{kw.arg} ", index)
     if isinstance(func, ast.Name) and func.id == "TIME" and node.args and isinstance(node.args[0], ast.Constant):
         yield from _preset_sites(node.args[0], "TIME ", index)
+
+
+def _operand_sites(node: ast.BoolOp, index: dict[int, int]) -> Iterator[Site]:
+    """Each operand of an ``and``/``or`` dropped (a forgotten contact: ``a and b and c`` -> ``a and c``) and
+    negated (an NO contact where an NC one is needed, for any operand: a comparison, an edge, a bracket; a
+    negated tag read is the same mutant as the operator negate's and is left out as a duplicate)."""
+    k = index[id(node)]
+    for i, operand in enumerate(node.values):
+        rest = [v for j, v in enumerate(node.values) if j != i]
+        after = rest[0] if len(rest) == 1 else ast.BoolOp(node.op, rest)
+        yield "drop-operand", operand.lineno, f"{_text(node)} → {_text(after)}", _drop_operand(k, i)
+        if isinstance(operand, ast.UnaryOp) and isinstance(operand.op, ast.Not):
+            flipped: ast.expr = operand.operand
+        else:
+            flipped = ast.UnaryOp(ast.Not(), operand)
+        negated = ast.BoolOp(node.op, [*node.values[:i], flipped, *node.values[i + 1 :]])
+        yield "negate-operand", operand.lineno, f"{_text(node)} → {_text(negated)}", _negate_operand(k, i)
 
 
 def _compare_sites(node: ast.Compare, index: dict[int, int]) -> Iterator[Site]:
@@ -363,6 +385,30 @@ def _set_value(k_assign: int, value: bool) -> Edit:
 
 def _set_op(k_compare: int, i: int, op: type[ast.cmpop]) -> Edit:
     return lambda nodes: nodes[k_compare].ops.__setitem__(i, op())  # type: ignore[attr-defined]
+
+
+def _drop_operand(k_boolop: int, i: int) -> Edit:
+    """One operand of the ``and``/``or`` at ``k_boolop`` left out; of two, the other stands alone."""
+
+    def edit(nodes: list[ast.AST]) -> None:
+        node = nodes[k_boolop]
+        node.values.pop(i)  # type: ignore[attr-defined]
+        if len(node.values) == 1:  # type: ignore[attr-defined]
+            _replace(nodes, node, node.values[0])  # type: ignore[attr-defined]
+
+    return edit
+
+
+def _negate_operand(k_boolop: int, i: int) -> Edit:
+    """The ``i``-th operand of the ``and``/``or`` at ``k_boolop`` negated (``not x`` -> ``x``)."""
+
+    def edit(nodes: list[ast.AST]) -> None:
+        values = nodes[k_boolop].values  # type: ignore[attr-defined]
+        operand = values[i]
+        negated = isinstance(operand, ast.UnaryOp) and isinstance(operand.op, ast.Not)
+        values[i] = operand.operand if negated else ast.UnaryOp(ast.Not(), operand)
+
+    return edit
 
 
 def _swap_block(k: int, field_name: str, i: int) -> Edit:

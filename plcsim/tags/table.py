@@ -147,10 +147,13 @@ class TagEntry:
 class TagTable:
     """The declared names of one CPU: PLC tags, symbols, data blocks and instances.
 
-    The exercise declares its I/O table here; a program adds its own names.
+    The exercise declares its I/O table here; a program adds its own names. ``aliases`` are other names a
+    program may use for a declared tag or data-block member (the textbook's table and prose spell some apart:
+    ``Dopravník`` is ``D1_VPRED``); the front ends read an alias as the name it stands for.
     """
 
     entries: dict[str, TagEntry] = field(default_factory=dict)
+    aliases: dict[str, str] = field(default_factory=dict)
 
     def add(self, name: str, decl: Tag | DataBlock | Member | DataType, *, source: str = "") -> TagEntry:
         """Declare ``name``; raises DeclarationError if the name is taken."""
@@ -177,6 +180,26 @@ class TagTable:
         self.entries[name] = entry
         return entry
 
+    def add_alias(self, alias: str, name: str) -> None:
+        """Let a program write ``alias`` for ``name`` (a tag, or ``DB.member``); an alias with spaces, which no
+        program can write as ``t.X``, is also accepted with each space written ``_``.
+
+        >>> table = TagTable()
+        >>> _ = table.add("D1_VPRED", Tag("%Q0.0"))
+        >>> table.add_alias("Piest1 Dopravník", "D1_VPRED")
+        >>> sorted(table.aliases)
+        ['Piest1 Dopravník', 'Piest1_Dopravník']
+        """
+        head, _, member = name.partition(".")
+        entry = self.entries.get(head)
+        members = getattr(entry.member.type, "members", {}) if entry is not None else {}
+        if entry is None or (member and member not in members):
+            raise UnknownTagError(f"alias {alias!r} stands for {name!r}, which is not declared")
+        for spelling in dict.fromkeys((alias, alias.replace(" ", "_"))):
+            if spelling.partition(".")[0] in self.entries and spelling != name and "." not in spelling:
+                raise DeclarationError(f"alias {spelling!r} is already a declared name; choose another alias")
+            self.aliases[spelling] = name
+
     def __contains__(self, name: object) -> bool:
         return name in self.entries
 
@@ -198,7 +221,7 @@ class TagTable:
 
     def copy(self) -> TagTable:
         """A shallow copy to which a program can add its own names."""
-        return TagTable(dict(self.entries))
+        return TagTable(dict(self.entries), dict(self.aliases))
 
     def schema(self) -> StructType:
         """The root struct type of ``t``: one member per name."""

@@ -73,8 +73,10 @@ def test_list_never_cuts_a_name_at_any_width(command, width, capsys, monkeypatch
 
 
 def test_show(capsys):
+    """The student's view by default: the task, its requirements with the checks that grade each, and no shipped
+    program or instructor's note (they give the reference's logic away)."""
     assert main(["show", "4.3.5"]) == 0
-    out = capsys.readouterr().out
+    out = " ".join(capsys.readouterr().out.split())  # the terminal's width must not matter
     assert "4.3.5 Conveyor control 1 (one object)" in out
     for text in (
         "I/O table",
@@ -82,11 +84,30 @@ def test_show(capsys):
         "%Q0.2",
         "three objects (25 s)",
         "placed mid-belt (4 s)",
-        "D1 stops when the object reaches S2  (three objects)",
-        "reference [reference]: S1 -> SET D1, S2 -> RESET D1",  # the kind is text, not Rich markup
-        "wrong-coil",
+        'Requirements (the words of the task each check grades) 1. "Carry it to the end of the conveyor, where S2 '
+        'detects it" • transport S1 -> S2 takes 4.8 s +-10 % (three objects)',
+        '3. "stop it in the scan in which S2 detects it" • D1 stops when the object reaches S2 (three objects)',
     ):
         assert text in out, text
+    for check in get("4.3.5").checks:
+        assert f'"{" ".join(check.requirement.split())}"' in out, check.name
+    for hidden in ("Shipped programs", "reference [reference]", "wrong-coil", "SET D1"):
+        assert hidden not in out, hidden
+
+
+def test_show_solutions_is_the_instructors_view(capsys):
+    assert main(["show", "6.3.3", "--solutions"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    for text in (
+        "reference [reference]: S M2_DOLE for an object at OS2",  # the kind is text, not Rich markup
+        "wrong-no-ks1-interlock [wrong]",
+        "notes for instructors",
+    ):
+        assert text in out, text
+    assert main(["show", "6.3.3"]) == 0
+    student = " ".join(capsys.readouterr().out.split())
+    assert "S M2_DOLE" not in student and "notes for instructors" not in student
+    assert "the next stroke starts only once the press is at the top (KS1)" in student
 
 
 def test_show_by_slug(capsys):
@@ -177,14 +198,14 @@ def test_grade_the_reference_with_json_and_junit(tmp_path, capsys):
     js, xml = tmp_path / "r" / "report.json", tmp_path / "r" / "report.xml"
     assert main(["grade", "4.3.5", "--reference", "--json", str(js), "--junit", str(xml)]) == 0
     out = capsys.readouterr().out
-    assert "PASSED  score 13 / 13" in out
+    assert "PASSED  score 11 / 11" in out
     data = json.loads(js.read_text(encoding="utf-8"))
-    assert (data["exercise"], data["passed"], data["score"], data["max_score"]) == ("4.3.5", True, 13.0, 13.0)
-    assert len(data["checks"]) == 13
+    assert (data["exercise"], data["passed"], data["score"], data["max_score"]) == ("4.3.5", True, 11.0, 11.0)
+    assert len(data["checks"]) == 11
     assert all(set(c) >= {"scenario", "check", "passed", "message"} and c["passed"] for c in data["checks"])
     root = ET.parse(xml).getroot()
-    assert (root.tag, root.get("tests"), root.get("failures")) == ("testsuites", "13", "0")
-    assert len(root.findall("testsuite/testcase")) == 13
+    assert (root.tag, root.get("tests"), root.get("failures")) == ("testsuites", "11", "0")
+    assert len(root.findall("testsuite/testcase")) == 11
 
 
 def test_grade_a_wrong_solution_exits_1(tmp_path, capsys):
@@ -193,10 +214,10 @@ def test_grade_a_wrong_solution_exits_1(tmp_path, capsys):
     js = tmp_path / "mine.json"
     assert main(["grade", "4.3.5", str(path), "--json", str(js), "-v"]) == EXIT_FAILED
     out = capsys.readouterr().out
-    assert "FAILED  score 10 / 13" in out
+    assert "FAILED  score 8 / 11" in out
     assert "expected number of times D1 rises = 3; measured 1" in out
     data = json.loads(js.read_text(encoding="utf-8"))
-    assert (data["passed"], data["score"]) == (False, 10.0)
+    assert (data["passed"], data["score"]) == (False, 8.0)
     assert data["submission"] == str(path)
 
 

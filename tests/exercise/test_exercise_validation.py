@@ -552,3 +552,45 @@ def test_an_hmi_control_must_be_a_tag_of_the_exercise_and_a_switch_or_a_button()
     message = refused(lambda: dataclasses.replace(good, hmi={"ACK": "switch", "D1": "lamp"}))
     assert "hmi names 'ACK', which the exercise does not have" in message
     assert "hmi['D1'] is 'lamp'; a control is 'switch' or 'button'" in message
+
+
+# -- a check grades only what the task states ------------------------------------------------------
+
+
+def test_a_check_grading_words_the_task_does_not_state_is_refused_at_its_line():
+    line = here() + 1
+    check = never("D1").named("the belt stays off").grades("the belt never runs")
+    message = refused(lambda: conveyor(checks=[check]))
+    assert re.search(rf"{HERE}:{line}: exercise 9.9.1: check 'the belt stays off' grades 'the belt never", message)
+    assert "which the task text does not state: quote the task's own words" in message
+
+
+def test_a_requirement_is_found_in_the_task_whatever_its_case_and_spacing():
+    check = never("D1").named("the belt stays off").grades("Carry  objects\nfrom S1")
+    exercise = conveyor(checks=[check])
+    assert [(words, [c.name for c in checks]) for words, checks in exercise.requirement_list()] == [
+        ("Carry  objects\nfrom S1", ["the belt stays off"])
+    ]
+
+
+def test_requirements_by_check_name_must_name_a_check_and_quote_the_task():
+    def make(requirements):
+        return Exercise(
+            number="9.9.1",
+            slug="validation",
+            title="validation",
+            task="carry objects from S1 to S2",
+            io=IO_TABLE,
+            rig=Conv1,
+            scenarios=[IDLE],
+            checks=[never("D1").named("the belt stays off")],
+            solutions=[],
+            requirements=requirements,
+        )
+
+    assert make({"the belt stays off": "to S2"}).checks[0].requirement == "to S2"
+    assert "requirements names 'the belt stays of', which is not a check; did you mean 'the belt stays off'" in (
+        refused(lambda: make({"the belt stays of": "to S2"}))
+    )
+    wrong = refused(lambda: make({"the belt stays off": "to S3"}))
+    assert "grades 'to S3', which the task text does not state" in wrong

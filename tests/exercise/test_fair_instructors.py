@@ -116,7 +116,7 @@ def test_the_command_grades_lists_and_shows_by_path(tmp_path, capsys):
     assert (data["exercise"], data["score"], data["max_score"], data["passed"]) == ("9.8.1", 1.0, 1.0, True)
     assert main(["list", "--exercises", str(folder)]) == 0
     assert "lamp-lamp_d" in capsys.readouterr().out
-    assert main(["show", str(folder / "lamp_d.py")]) == 0
+    assert main(["show", str(folder / "lamp_d.py"), "--solutions"]) == 0
     assert "Shipped programs" in capsys.readouterr().out
     assert main(["show", str(folder / "lamp_d.py"), "--no-solutions"]) == 0
     handout = capsys.readouterr().out

@@ -78,7 +78,7 @@ def test_the_schema_refuses_what_a_reader_could_not_rely_on(reports):
 def test_gradescope_results(reports):
     failed = gradescope_results(reports["failed"], visibility="after_published")
     assert failed["score"] == sum(t["score"] for t in failed["tests"]) == reports["failed"].score
-    assert sum(t["max_score"] for t in failed["tests"]) == reports["failed"].max_score == 13.0
+    assert sum(t["max_score"] for t in failed["tests"]) == reports["failed"].max_score == 11.0
     assert {t["status"] for t in failed["tests"]} == {"passed", "failed"}
     assert {t["visibility"] for t in failed["tests"]} == {"after_published"} == {failed["visibility"]}
     stops = next(t for t in failed["tests"] if t["name"] == "three objects: D1 stops when the object reaches S2")

@@ -71,6 +71,9 @@ def test_the_operators_give_the_expected_mutants_of_a_small_program():
         ("nc-as-no", "line 5: NC input S2 read as NO: every read negated (line 5)"),
         ("negate", "line 5: t.S1 → not t.S1"),
         ("and-or", "line 5: P(t.S1, 'M1') and (not t.S2) → P(t.S1, 'M1') or not t.S2"),
+        ("drop-operand", "line 5: P(t.S1, 'M1') and (not t.S2) → not t.S2"),
+        ("negate-operand", "line 5: P(t.S1, 'M1') and (not t.S2) → not P(t.S1, 'M1') and (not t.S2)"),
+        ("drop-operand", "line 5: P(t.S1, 'M1') and (not t.S2) → P(t.S1, 'M1')"),
         ("edge", "line 5: P(t.S1, 'M1') → t.S1"),
         ("edge-kind", "line 5: P(t.S1, 'M1') → N(t.S1, 'M1')"),
         ("coil", "line 6: t.D1 = True → t.D1 = False"),
@@ -82,6 +85,9 @@ def test_the_operators_give_the_expected_mutants_of_a_small_program():
         ("drop", "line 10: statement dropped: t.T.TON(IN=t.D1, PT='10s')"),
         ("negate", "line 11: t.T.Q → not t.T.Q"),
         ("and-or", "line 11: t.T.Q or t.CNT > 5 → t.T.Q and t.CNT > 5"),
+        ("drop-operand", "line 11: t.T.Q or t.CNT > 5 → t.CNT > 5"),
+        ("drop-operand", "line 11: t.T.Q or t.CNT > 5 → t.T.Q"),
+        ("negate-operand", "line 11: t.T.Q or t.CNT > 5 → t.T.Q or not t.CNT > 5"),
         ("boundary", "line 11: t.CNT > 5 → t.CNT >= 5"),
         ("preset", "line 11: t.CNT > 5 → t.CNT > 4"),
         ("preset", "line 11: t.CNT > 5 → t.CNT > 6"),
@@ -96,10 +102,26 @@ def test_the_operators_give_the_expected_mutants_of_a_small_program():
         ("drop", "line 17: OB1: network stop dropped"),
     ]
     assert [m.number for m in mutants] == list(range(1, len(mutants) + 1))
-    # Int reads (t.CNT) are never negated, and no mutant repeats the original or another mutant.
+    # Int reads (t.CNT) are never negated (their comparison is), and no mutant repeats the original or another.
     sources = [m.source for m in mutants]
     assert len(set(sources)) == len(sources)
-    assert not any("not t.CNT" in s for s in sources)
+    assert not any(re.search(r"not t\.CNT(?! >)", s) for s in sources)
+    assert sum("not t.CNT > 5" in s for s in sources) == 1
+
+
+def test_a_forgotten_interlock_is_a_mutant_of_the_reference():
+    """6.3.3's stroke started without the KS1 test (the shipped wrong-no-ks1-interlock) is one of the reference's
+    drop-operand mutants, and an operand of three left out keeps the other two in series."""
+    exercise = get("6.3.3")
+    wrong = exercise.solution("wrong-no-ks1-interlock").path.read_text(encoding="utf-8")
+    dropped = [m for m in python.reference_mutants(exercise) if m.operator == "drop-operand"]
+    assert [m.description.split(" → ")[1] for m in dropped] == [
+        "t.KS1 and (not t.OBJEKT_BOL_DOLE)",
+        "not t.OS2 and (not t.OBJEKT_BOL_DOLE)",
+        "not t.OS2 and t.KS1",
+    ]
+    assert "if not t.OS2 and (not t.OBJEKT_BOL_DOLE):" in dropped[1].source
+    assert "if not t.OS2 and not t.OBJEKT_BOL_DOLE:" in wrong
 
 
 def test_the_timer_and_edge_boxes_swapped_are_those_of_the_s7_instruction_descriptions():

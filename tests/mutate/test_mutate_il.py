@@ -134,13 +134,18 @@ def test_directives_comments_and_processes_are_left_alone():
 def test_the_t01_reference_has_the_stop_contact_negated_among_its_mutants():
     labels = [str(m) for m in exercise_mutants(get("t-01"))]
     assert "line 7: ANC STOP → AND STOP" in labels
-    assert len(labels) == 13
+    assert "line 5: LD START dropped: a forgotten contact, OR MOTOR → LD MOTOR" in labels
+    assert len(labels) == 14
 
 
 def test_t01_mutants_are_killed_by_the_check_that_explains_them():
     exercise = get("t-01")
-    chosen = [m for m in exercise_mutants(exercise) if m.number in (5, 6, 8)]
-    assert [m.description for m in chosen] == ["OR MOTOR → AND MOTOR", "OR MOTOR dropped", "ANC STOP → AND STOP"]
+    chosen = [m for m in exercise_mutants(exercise) if m.number in (6, 7, 9)]
+    assert [m.description for m in chosen] == [
+        "OR MOTOR → AND MOTOR",
+        "OR MOTOR dropped: a forgotten contact",
+        "ANC STOP → AND STOP",
+    ]
     report = mutate_exercise(exercise, seeds=1, mutants=chosen)
     assert report.reference_failures == []
     assert [o.status for o in report.outcomes] == [KILLED] * 3
@@ -186,5 +191,5 @@ def test_the_cli_mutates_a_tecomat_exercise(tmp_path, capsys):
     assert main(["mutate", "t-01", "--seeds", "1", "--json", str(out)]) == 0
     assert "mutation score: 100 %" in capsys.readouterr().out
     data = json.loads(out.read_text(encoding="utf-8"))
-    assert data["counts"] == {"killed": 13, "survived": 0, "explained": 0, "equivalent": 0, "stillborn": 0}
-    assert data["outcomes"][7]["mutant"]["label"] == "line 7: ANC STOP → AND STOP"
+    assert data["counts"] == {"killed": 14, "survived": 0, "explained": 0, "equivalent": 0, "stillborn": 0}
+    assert data["outcomes"][8]["mutant"]["label"] == "line 7: ANC STOP → AND STOP"

@@ -54,12 +54,14 @@ def compile_program(
     for task in program.tasks.values():
         for net in task.networks:
             root_params[net.name] = program.functions[net.name].args.args[0].arg
-    typing = Typing(table.schema(), aliased, program.filename, root_params)
-    analysis = analyse(program.tree, typing)
-    tree = runtime_module(program.tree)
+    typing = Typing(table.schema(), aliased, program.filename, root_params, table.aliases)
+    checked = with_declared_names(program.tree, table, root_params)
+    analysis = analyse(checked, typing)
+    tree = runtime_module(checked)
+    functions = {f.name: f for f in checked.body if isinstance(f, ast.FunctionDef)}
     merged: dict[str, str] = {}
     for task in program.tasks.values():
-        funcs = [program.functions[n.name] for n in task.networks]
+        funcs = [functions[n.name] for n in task.networks]
         if len(funcs) > 1 and sum(len(f.body) for f in funcs) <= MAX_MERGED_STATEMENTS:
             combined = merge_networks(funcs, task.name, root_params)
             if combined is not None:
@@ -99,6 +101,37 @@ def compile_program(
         if strict_timers:
             inert.add(path)
     return CompiledProgram(program, code, analysis, rewriter.coercers, inert, warnings, merged)
+
+
+def with_declared_names(tree: ast.Module, table: TagTable, root_params: Mapping[str, str]) -> ast.Module:
+    """The tree with every alias of the table (``t.Dopravník``, ``t["Dopravník"]``, ``t.DATA.POZ3_OBS_Farba_1``)
+    written as the name it stands for; the tree itself when the program uses none."""
+    if not table.aliases:
+        return tree
+    declared = table.entries
+    renamed = copy_tree(tree)
+    roots = set(root_params.values())
+    changed = False
+    for node in ast.walk(renamed):
+        if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in roots:
+            target = table.aliases.get(node.attr) if node.attr not in declared else None
+            if target is not None and "." not in target:
+                node.attr, changed = target, True
+        elif isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in roots:
+            key = getattr(node.slice, "value", None)
+            target = table.aliases.get(key) if isinstance(key, str) and key not in declared else None
+            if target is not None and "." not in target:
+                node.slice, changed = ast.copy_location(ast.Constant(target), node.slice), True
+        elif (
+            isinstance(node, ast.Attribute)
+            and isinstance(node.value, ast.Attribute)
+            and isinstance(node.value.value, ast.Name)
+            and node.value.value.id in roots
+        ):
+            target = table.aliases.get(f"{node.value.attr}.{node.attr}")
+            if target is not None and target.partition(".")[0] == node.value.attr:
+                node.attr, changed = target.partition(".")[2], True
+    return renamed if changed else tree
 
 
 def runtime_module(tree: ast.Module) -> ast.Module:

@@ -302,12 +302,13 @@ class Program:
         The result is kept for an equal table and options: a grade downloads the same program once per
         scenario, and compiling a large one costs a tenth of a second each time. Each call gets its
         own warnings list and timer set (the code and the analysis are never changed once built)."""
-        key = (table.entries, aliased, strict_timers, family, input_writes)
+        key = (table.entries, table.aliases, aliased, strict_timers, family, input_writes)
         for known, compiled in self._compiled:
             if known == key:
                 return replace(compiled, warnings=list(compiled.warnings), inert_timers=set(compiled.inert_timers))
         compiled = compile_program(self, table, aliased, strict_timers, family, input_writes)
-        self._compiled = [*self._compiled[-(COMPILED_KEPT - 1) :], ((dict(table.entries), *key[1:]), compiled)]
+        kept = (dict(table.entries), dict(table.aliases), *key[2:])
+        self._compiled = [*self._compiled[-(COMPILED_KEPT - 1) :], (kept, compiled)]
         return replace(compiled, warnings=list(compiled.warnings), inert_timers=set(compiled.inert_timers))
 
     def link(self, target: LinkTarget) -> LoadedProgram:

@@ -8,6 +8,7 @@ nearest names, before the program runs.
 from __future__ import annotations
 
 import ast
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -31,6 +32,8 @@ class Typing:
     aliased: frozenset[str] = frozenset()
     filename: str = "<program>"
     root_params: dict[str, str] = field(default_factory=dict)
+    aliases: Mapping[str, str] = field(default_factory=dict)
+    """Other names of the table's tags (:attr:`~plcsim.tags.table.TagTable.aliases`), searched by the hints."""
 
     def type_of(self, node: ast.expr, env: dict[str, Any]) -> Any:
         """The static type of an expression: a DataType, an FB instance type, or None when unknown."""
@@ -73,9 +76,7 @@ class Typing:
             member = base.members.get(attr)
             if member is None:
                 what = "no tag" if base is self.root else f"{base.name} has no member"
-                raise UnknownTagError(
-                    f"{place(self.filename, node)}: {what} {attr!r}{did_you_mean(attr, base.members)}"
-                )
+                raise UnknownTagError(f"{place(self.filename, node)}: {what} {attr!r}{self.hint(attr, base)}")
             return member.type
         if isinstance(base, FBType):
             block = block_named(base.name)
@@ -99,7 +100,23 @@ class Typing:
             return self.root.members[key].type
         if key.lstrip().startswith("%"):
             return parse_address(key).default_type()
-        raise UnknownTagError(f"{place(self.filename, node)}: no tag {key!r}{did_you_mean(key, self.root.members)}")
+        raise UnknownTagError(f"{place(self.filename, node)}: no tag {key!r}{self.hint(key, self.root)}")
+
+    def hint(self, name: str, base: StructType) -> str:
+        """The did-you-mean of an unknown tag or member: the names nearest to ``name``, the table's aliases among
+        them, an alias named with the tag it stands for."""
+        if base is self.root:
+            others = {a: t for a, t in self.aliases.items() if "." not in t}
+        else:
+            others = {
+                a.partition(".")[2]: t.partition(".")[2]
+                for a, t in self.aliases.items()
+                if a.partition(".")[0] == base.name and "." in t
+            }
+        hint = did_you_mean(name, [*base.members, *others])
+        for alias, target in others.items():
+            hint = hint.replace(repr(alias), f"{alias!r} (= {target})")
+        return hint
 
 
 def instance_boxes(fb: FBType) -> tuple[str, ...]:

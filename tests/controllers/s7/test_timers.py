@@ -407,3 +407,54 @@ def test_4_5_2_et_comparisons_set_at_2s_reset_at_5s_and_keep_on_release():
     drive(cpu, held("TLACIDLO", (1, 4), (10, 20)), 22)
     # released at 4 s (after the SET, before the RESET): the LED keeps TRUE; the second press resets it at 15 s
     assert probe.changes("LED") == [(0.0, False), (3.0, True), (15.0, False)]
+
+
+# --------------------------------------------------------------------------------------------
+# A negative preset: the S7-1200 System Manual (11/2011, A5E02486680-05, §7.2, note to Table 7-20)
+# --------------------------------------------------------------------------------------------
+
+
+def test_the_manuals_words_on_a_negative_preset_are_the_ones_the_timers_cite():
+    from plcsim.controllers.s7.instructions.timers import NEGATIVE_PRESET
+
+    assert "Negative PT (preset time) values are set to zero when the timer instruction is executed" in NEGATIVE_PRESET
+    assert NEGATIVE_PRESET.endswith("ET (elapsed time) is always a positive value.")
+
+
+@DIALECTS
+@pytest.mark.parametrize("box", ["TON", "TOF", "TP", "TONR"])
+def test_a_negative_preset_is_zero_when_the_box_runs_and_et_is_never_negative(dialect, box):
+    """PT = -500 ms times exactly as PT = T#0ms, scan by scan (TON is done in the scan IN rises, TOF's Q falls with
+    IN); the instance's PT reads 0 once the box has run, and ET is 0 throughout, never -500 ms."""
+    runs = {}
+    for pt in (-500, 0):
+        cpu = CPU(tags=BOX_TAGS, program=box_program(box, pt), cycle="100ms", timer_dialect=dialect)
+        probe = Probe(cpu, "Q", "T.ET", "T.PT")
+        drive(cpu, held("IN", (1, 2)), 3)
+        assert cpu.mode == "RUN"
+        runs[pt] = probe
+    assert runs[-500].changes("Q") == runs[0].changes("Q")
+    assert runs[-500].changes("T.ET") == runs[0].changes("T.ET") == [(0.0, 0)]
+    assert runs[-500].changes("T.PT") == [(0.0, 0)]
+    if box == "TON":
+        assert runs[-500].changes("Q") == [(0.0, False), (1.0, True), (2.0, False)]
+
+
+def test_a_negative_preset_written_meanwhile_never_makes_et_negative():
+    """A PT written while the timer runs (an HMI's, or the -(PT)- coil's) reaches ET through a read's refresh before
+    the box runs again: ET is 0 then, not the negative preset; the next execution of the box sets PT to zero."""
+    program = (
+        "T = IEC_TIMER()\n"
+        "def OB1(t):\n"
+        "    if t.R:\n"
+        "        PT(t.T, -500)\n"
+        "    t.Q = t.T.ET > T#0ms\n"
+        "    t.T.TON(IN=t.IN, PT=t.T.PT)\n"
+    ).replace("T#0ms", "TIME('0ms')")
+    cpu = CPU(tags=BOX_TAGS, program=program, cycle="100ms", textbook_strict_timers=False)
+    cpu.write("T.PT", 2000)
+    probe = Probe(cpu, "Q", "T.ET", "T.PT")
+    drive(cpu, [*held("IN", (1, 5)), *held("R", (1.5, 1.6))], 5)
+    assert probe.at("T.ET", 1.4) == 400
+    assert min(v for _t, v in probe.changes("T.ET")) == 0
+    assert probe.at("T.PT", 2.0) == 0

@@ -50,6 +50,14 @@ def preset_ms(value: Any, where: str) -> int:
 
 _NS_PER_MS = 1_000_000
 
+NEGATIVE_PRESET = (
+    "The negative range of the TIME data type shown above cannot be used with the timer instructions. Negative PT "
+    "(preset time) values are set to zero when the timer instruction is executed. ET (elapsed time) is always a "
+    "positive value."
+)
+"""The S7-1200 System Manual (11/2011, A5E02486680-05, §7.2 Timers, note to Table 7-20): what every box does with a
+negative preset; the textbook does not say."""
+
 
 class IecTimer:
     """An IEC_TIMER instance (instance DB members PT, ET, IN, Q; not retentive by default).
@@ -123,7 +131,7 @@ class IecTimer:
         if kind == "TONR":
             elapsed += self._acc
         if elapsed >= self.PT:
-            self._et = self.PT
+            self._et = self.PT if self.PT > 0 else 0  # ET is never negative, even with a negative PT written
             self._running = False
             self._q = kind == "TON" or kind == "TONR"
         else:
@@ -140,6 +148,8 @@ class IecTimer:
         self._kind = "TON"
         if PT.__class__ is not int:
             PT = preset_ms(PT, self._path or "TON")
+        if PT < 0:
+            PT = 0  # see NEGATIVE_PRESET
         self.PT = PT
         now = self._clock.now
         if IN:
@@ -161,6 +171,8 @@ class IecTimer:
         self._kind = "TOF"
         if PT.__class__ is not int:
             PT = preset_ms(PT, self._path or "TOF")
+        if PT < 0:
+            PT = 0  # see NEGATIVE_PRESET
         self.PT = PT
         now = self._clock.now
         if IN:
@@ -184,6 +196,8 @@ class IecTimer:
         self._kind = "TP"
         if PT.__class__ is not int:
             PT = preset_ms(PT, self._path or "TP")
+        if PT < 0:
+            PT = 0  # see NEGATIVE_PRESET
         self.PT = PT
         now = self._clock.now
         if self._running:
@@ -212,6 +226,8 @@ class IecTimer:
         self._kind = "TONR"
         if PT.__class__ is not int:
             PT = preset_ms(PT, self._path or "TONR")
+        if PT < 0:
+            PT = 0  # see NEGATIVE_PRESET
         self.PT = PT
         now = self._clock.now
         if R:
