@@ -26,6 +26,7 @@ OS2_Detekcia_Farba
 
 from __future__ import annotations
 
+import io
 from collections.abc import Sequence
 
 from rich.cells import cell_len
@@ -38,12 +39,13 @@ from rich.text import Text
 def print_records(console: Console, columns: Sequence[str], rows: Sequence[Sequence[str]], *, title: str = "") -> None:
     """Print ``rows`` (plain text, never markup) under ``columns`` as a table if every word fits whole in
     it at the console's width, else as a list headed by each row's first cell."""
+    widths = _longest_words(columns, rows)
     table = Table(title=Text(title) if title else None)
-    for name in columns:
-        table.add_column(Text(name), overflow="fold")
+    for name, width in zip(columns, widths, strict=True):
+        table.add_column(Text(name), overflow="fold", min_width=width)
     for row in rows:
         table.add_row(*(Text(str(cell)) for cell in row))
-    if _narrowest(columns, rows) <= console.width:
+    if sum(widths) + 3 * len(widths) + 1 <= console.width and _whole(table, console.width):
         console.print(table)
         return
     if title:
@@ -55,11 +57,18 @@ def print_records(console: Console, columns: Sequence[str], rows: Sequence[Seque
                 console.print(Padding(Text(f"{name}: {cell}"), (0, 0, 0, 2), expand=False))
 
 
-def _narrowest(columns: Sequence[str], rows: Sequence[Sequence[str]]) -> int:
-    """The width (in terminal cells) the table needs with every word whole: each column as wide as its
-    longest word, plus a space either side and the borders."""
-    widths = [
+def _longest_words(columns: Sequence[str], rows: Sequence[Sequence[str]]) -> list[int]:
+    """Each column's longest word (in terminal cells): the narrowest it can be with every word whole."""
+    return [
         max(cell_len(word) for text in (name, *(str(row[k]) for row in rows)) for word in [*text.split(), ""])
         for k, name in enumerate(columns)
     ]
-    return sum(widths) + 3 * len(columns) + 1
+
+
+def _whole(table: Table, width: int) -> bool:
+    """Whether rich draws ``table`` at ``width`` without cropping its right edge (its column layout can ask
+    for a cell or two more than the words need)."""
+    probe = Console(width=width, file=io.StringIO(), color_system=None, highlight=False)
+    probe.print(table)
+    rows = [line.rstrip() for line in probe.file.getvalue().splitlines()]
+    return all(line[-1] in "┓┃┫┩│┤┘" for line in rows if line and line[0] in "┏┃┣┡│├└")

@@ -132,27 +132,19 @@ def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool =
             expand=False,
         )
     )
-    table = Table(title="I/O table")
-    for col in ("tag", "gloss", "type", "address", "direction", "wiring", "comment"):
-        table.add_column(col)
-    for row in ex.describe_io():
-        table.add_row(*(row[c] for c in ("tag", "gloss", "type", "address", "direction", "wiring", "comment")))
-    console.print(table)
+    columns = ["tag", "gloss", "type", "address", "direction", "wiring", "comment"]
+    rows = [[row[c] for c in columns] for row in ex.describe_io()]
+    print_records(console, columns, rows, title="I/O table")
     for name, db in ex.dbs.items():
-        dbt = Table(title=f"data block {name}")
-        for col in ("member", "type", "start", "retain"):
-            dbt.add_column(col)
-        for key, member in db.members.items():
-            dbt.add_row(
-                key,
-                member.type.name,
-                "" if member.start is None else str(member.start),
-                "yes" if member.retain or db.retain else "",
-            )
-        console.print(dbt)
+        members = [
+            [key, member.type.name, "" if member.start is None else str(member.start), _retained(db, member)]
+            for key, member in db.members.items()
+        ]
+        print_records(console, ["member", "type", "start", "retain"], members, title=f"data block {name}")
     console.print("[bold]Scenarios[/]")
     for s in ex.scenarios:
-        console.print(Text(f"  • {s.name} ({format_ns(s.duration_ns)}): {s.description or ''}"))
+        said = f": {s.description}" if s.description else ""
+        console.print(Text(f"  • {s.name} ({format_ns(s.duration_ns)}){said}"))
     _print_requirements(ex, console)
     if solutions:
         from plcsim.exercise.catalog import command_name
@@ -164,6 +156,10 @@ def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool =
             console.print(Text(f"  • {s.name} [{s.kind}]: {s.explanation}"))
         if ex.notes:
             console.print(Panel(Text(ex.notes), title="notes for instructors", expand=False, border_style="dim"))
+
+
+def _retained(db: Any, member: Any) -> str:
+    return "yes" if member.retain or db.retain else ""
 
 
 def _print_requirements(ex: Any, console: Console) -> None:
