@@ -16,12 +16,26 @@ from plcsim.scenario import Scenario, jam_motor, press, stuck, write
 NUMBER = "P-01"
 SMP_OFF = "SMP is switched off within 2 scans after REV is pressed"
 NO_OVERLAP = "SMN is never on while KSMP is closed"
-PAUSE = "SMN is switched on 0.2 s after KSMP opens (to within 2 scans)"
+PAUSE = "SMN is switched on 0.2 s after KSMP opens (at most 2 scans later)"
 ERROR_4 = "a KSMP that stays closed: BZH11 = 4 1 s after REV (to within 3 scans)"
 ERROR_5 = "an SMN that never closes: BZH11 = 5 1 s after SMN is switched on (to within 3 scans)"
 SMN_OFF = "an SMN that never closes is switched off again 1 s after it was switched on (to within 3 scans)"
 SMN_STAYS = "after a reversal SMN stays on"
 NO_ERROR = "BZH11 stays 0 in a reversal that succeeds"
+
+# the words of the task each check grades (.grades)
+SMP_OFF_WORDS = "switch SMP off (within 2 scans of the press)"
+PAUSE_WORDS = "wait until KSMP opens; switch SMN on 0.2 s later (not sooner, and at most 2 scans later)"
+SMN_STAYS_WORDS = "wait until KSMN closes, and end, leaving SMN on"
+NO_OVERLAP_WORDS = "SMN is never on while KSMP is closed"
+ERROR_4_WORDS = (
+    "If KSMP does not open within 1 s, store 4 in BZH11 (error 4.04) 1 s after the press (to within 3 scans)"
+)
+ERROR_5_WORDS = (
+    "If KSMN does not close within 1 s of switching SMN on (the contactor does not pick up), switch SMN off "
+    "and store 5 in BZH11 (error 4.05), both 1 s after SMN was switched on (to within 3 scans)"
+)
+NO_ERROR_WORDS = "A reversal that succeeds leaves BZH11 at 0"
 
 
 def _reversal(name: str, *faults, description: str) -> Scenario:
@@ -45,11 +59,12 @@ EXERCISE = Exercise(
         "contact KSMN of the motor-negative contactor SMN are wired to inputs (closed = TRUE); they follow "
         "their coils after 30..40 ms. Write a mechanism CWCCW (a .mech file, or MECHANISM() in Python) that "
         "pressing REV starts and that reverses the spindle: switch SMP off (within 2 scans of the press); wait "
-        "until KSMP opens; 0.2 s later (to within 2 scans) switch SMN on, never while KSMP is closed; wait "
-        "until KSMN closes, and end, leaving SMN on. If KSMP does not open within 1 s, store 4 in BZH11 "
-        "(error 4.04) 1 s after the press (to within 3 scans). If KSMN does not close within 1 s of switching "
-        "SMN on, switch SMN off and store 5 in BZH11 (error 4.05), both 1 s after SMN was switched on (to "
-        "within 3 scans). A reversal that succeeds leaves BZH11 at 0. CWCCW ends after an error too."
+        "until KSMP opens; switch SMN on 0.2 s later (not sooner, and at most 2 scans later); wait until KSMN "
+        "closes, and end, leaving SMN on. SMN is never on while KSMP is closed. If KSMP does not open within "
+        "1 s, store 4 in BZH11 (error 4.04) 1 s after the press (to within 3 scans). If KSMN does not close "
+        "within 1 s of switching SMN on (the contactor does not pick up), switch SMN off and store 5 in BZH11 "
+        "(error 4.05), both 1 s after SMN was switched on (to within 3 scans). A reversal that succeeds leaves "
+        "BZH11 at 0. CWCCW ends after an error too."
     ),
     io=spindle_io("REV", "reverse push-button"),
     rig=spindle,
@@ -67,21 +82,37 @@ EXERCISE = Exercise(
         ),
     ],
     checks=[
-        falls("SMP").within("2 scans").after(rises("REV")).named(SMP_OFF),
-        never(all_of("SMN", "KSMP")).named(NO_OVERLAP),
-        only(rises("SMN").between("200ms", "200ms + 2 scans").after(falls("KSMP")).named(PAUSE), "reversal"),
-        only(never(value("BZH11") != 0).named(NO_ERROR), "reversal"),
-        only(holds("SMN").to_the_end().named(SMN_STAYS), "reversal"),
+        falls("SMP").within("2 scans").after(rises("REV")).named(SMP_OFF).grades(SMP_OFF_WORDS),
+        never(all_of("SMN", "KSMP")).named(NO_OVERLAP).grades(NO_OVERLAP_WORDS),
         only(
-            becomes(value("BZH11") == 4).between("1s - 3 scans", "1s + 3 scans").after(rises("REV")).named(ERROR_4),
+            rises("SMN").between("200ms", "200ms + 2 scans").after(falls("KSMP")).named(PAUSE).grades(PAUSE_WORDS),
+            "reversal",
+        ),
+        only(never(value("BZH11") != 0).named(NO_ERROR).grades(NO_ERROR_WORDS), "reversal"),
+        only(holds("SMN").to_the_end().named(SMN_STAYS).grades(SMN_STAYS_WORDS), "reversal"),
+        only(
+            becomes(value("BZH11") == 4)
+            .between("1s - 3 scans", "1s + 3 scans")
+            .after(rises("REV"))
+            .named(ERROR_4)
+            .grades(ERROR_4_WORDS),
             "KSMP stuck",
         ),
         only(
-            becomes(value("BZH11") == 5).between("1s - 3 scans", "1s + 3 scans").after(rises("SMN")).named(ERROR_5),
+            becomes(value("BZH11") == 5)
+            .between("1s - 3 scans", "1s + 3 scans")
+            .after(rises("SMN"))
+            .named(ERROR_5)
+            .grades(ERROR_5_WORDS),
             "SMN never closes",
         ),
         only(
-            falls("SMN").between("1s - 3 scans", "1s + 3 scans").after(rises("SMN")).named(SMN_OFF), "SMN never closes"
+            falls("SMN")
+            .between("1s - 3 scans", "1s + 3 scans")
+            .after(rises("SMN"))
+            .named(SMN_OFF)
+            .grades(ERROR_5_WORDS),
+            "SMN never closes",
         ),
     ],
     solutions=[

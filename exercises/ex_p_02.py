@@ -19,13 +19,33 @@ from plcsim.scenario import Scenario, jam_motor, press
 NUMBER = "P-02"
 SMP_ON = "SMP is switched on within 2 scans after START is pressed"
 READY = "READY lights within 2 scans after KSMP closes"
-ERROR_12 = "a spindle that never starts: BZH11 = 18 (12H) 10 s after START (to within 3 scans)"
+ERROR_12 = "a spindle that never starts: BZH11 = 18 (12H) 10 s after START (at most 3 scans later)"
 READY_LATE = "READY stays off until KSMP closes"
 NOT_READY = "a spindle that never starts: READY stays off"
 NO_ERROR = "BZH11 stays 0 when the spindle starts"
 NO_SHORT = "SMP and SMN are never on together"
 RETRY_OFF = "a contactor that does not pick up: SMP off 2 s after it was switched on (to within 3 scans)"
 RETRY_ON = "a contactor that does not pick up: SMP on again 0.5 s after it was switched off (to within 3 scans)"
+
+# the words of the task each check grades (.grades)
+SMP_ON_WORDS = "starts CW (SMP is on within 2 scans of the press)"
+NO_SHORT_WORDS = "SMP and SMN are never on together"
+READY_WORDS = "switches READY on (within 2 scans after KSMP closes)"
+READY_LATE_WORDS = "READY stays off until KSMP closes"
+NO_ERROR_WORDS = "A spindle that starts leaves BZH11 at 0"
+ERROR_12_WORDS = (
+    "If CW has not ended 10 s after the press, PREP stores 18 (12H, error 4.12) in BZH11 (10 s after the press "
+    "at the earliest, at most 3 scans later)"
+)
+NOT_READY_WORDS = "leaving CW as it is and READY off"
+RETRY_OFF_WORDS = (
+    "if it has not closed (the contactor does not pick up), switch SMP off (2 s after switching it on, to within "
+    "3 scans)"
+)
+RETRY_ON_WORDS = (
+    "wait 0.5 s, switch SMP on again (0.5 s after switching it off, to within 3 scans) and wait again, as often "
+    "as it takes"
+)
 
 EXERCISE = Exercise(
     number=NUMBER,
@@ -35,14 +55,14 @@ EXERCISE = Exercise(
     task=(
         "Write two mechanisms (a .mech file, or MECHANISM() in Python). CW switches the spindle on clockwise:"
         " switch SMN off, wait while its contact KSMN is closed, switch SMP on and wait until its contact "
-        "KSMP closes, at most 2 s; if it has not closed, switch SMP off (2 s after switching it on, to within"
-        " 3 scans), wait 0.5 s, switch SMP on again (0.5 s after switching it off, to within 3 scans) and "
-        "wait again, as often as it takes; then end. SMP and SMN are never on together. PREP, started by the "
-        "push-button START, switches the lamp READY off, starts CW (SMP is on within 2 scans of the press) "
-        "and waits until CW has ended, then switches READY on (within 2 scans after KSMP closes, not before) "
-        "and ends. If CW has not ended 10 s after the press, PREP stores 18 (12H, error 4.12) in BZH11 (10 s "
-        "after the press, to within 3 scans) and ends, leaving CW as it is and READY off. A spindle that "
-        "starts leaves BZH11 at 0."
+        "KSMP closes, at most 2 s; if it has not closed (the contactor does not pick up), switch SMP off (2 s "
+        "after switching it on, to within 3 scans), wait 0.5 s, switch SMP on again (0.5 s after switching it "
+        "off, to within 3 scans) and wait again, as often as it takes; then end. SMP and SMN are never on "
+        "together. PREP, started by the push-button START, switches the lamp READY off, starts CW (SMP is on "
+        "within 2 scans of the press) and waits until CW has ended, then switches READY on (within 2 scans "
+        "after KSMP closes) and ends; READY stays off until KSMP closes. If CW has not ended 10 s after the "
+        "press, PREP stores 18 (12H, error 4.12) in BZH11 (10 s after the press at the earliest, at most 3 "
+        "scans later) and ends, leaving CW as it is and READY off. A spindle that starts leaves BZH11 at 0."
     ),
     io=spindle_io("START", "start push-button", IO("READY", "lamp: the spindle has started", "Bool", "%Q0.2")),
     rig=spindle,
@@ -62,22 +82,30 @@ EXERCISE = Exercise(
         ),
     ],
     checks=[
-        rises("SMP").within("2 scans").after(rises("START")).named(SMP_ON),
-        never(all_of("SMP", "SMN")).named(NO_SHORT),
-        only(rises("READY").within("2 scans").after(rises("KSMP")).named(READY), "start"),
-        only(holds(off("READY")).until(rises("KSMP")).named(READY_LATE), "start"),
-        only(never(value("BZH11") != 0).named(NO_ERROR), "start"),
+        rises("SMP").within("2 scans").after(rises("START")).named(SMP_ON).grades(SMP_ON_WORDS),
+        never(all_of("SMP", "SMN")).named(NO_SHORT).grades(NO_SHORT_WORDS),
+        only(rises("READY").within("2 scans").after(rises("KSMP")).named(READY).grades(READY_WORDS), "start"),
+        only(holds(off("READY")).until(rises("KSMP")).named(READY_LATE).grades(READY_LATE_WORDS), "start"),
+        only(never(value("BZH11") != 0).named(NO_ERROR).grades(NO_ERROR_WORDS), "start"),
         only(
-            becomes(value("BZH11") == 18).between("10s", "10s + 3 scans").after(rises("START")).named(ERROR_12),
+            becomes(value("BZH11") == 18)
+            .between("10s", "10s + 3 scans")
+            .after(rises("START"))
+            .named(ERROR_12)
+            .grades(ERROR_12_WORDS),
             "SMP never closes",
         ),
-        only(never("READY").named(NOT_READY), "SMP never closes"),
+        only(never("READY").named(NOT_READY).grades(NOT_READY_WORDS), "SMP never closes"),
         only(
-            durations("SMP").between("2s - 3 scans", "2s + 3 scans").named(RETRY_OFF),
+            durations("SMP").between("2s - 3 scans", "2s + 3 scans").named(RETRY_OFF).grades(RETRY_OFF_WORDS),
             "SMP never closes",
         ),
         only(
-            rises("SMP").between("0.5s - 3 scans", "0.5s + 3 scans").after(falls("SMP")).named(RETRY_ON),
+            rises("SMP")
+            .between("0.5s - 3 scans", "0.5s + 3 scans")
+            .after(falls("SMP"))
+            .named(RETRY_ON)
+            .grades(RETRY_ON_WORDS),
             "SMP never closes",
         ),
     ],
