@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
+from rich.cells import cell_len
 from rich.console import Console
 from rich.markup import escape
 from rich.panel import Panel
@@ -125,13 +126,12 @@ def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool =
     the task each check grades, and the checks; with ``solutions`` (for instructors) also the programs shipped
     with it, what each shows, and the exercise's notes (they give the reference's logic away)."""
     console = console or Console()
-    console.print(
-        Panel(
-            Text(ex.task),
-            title=f"[bold]{ex.number} {ex.title}[/]" + (f" ({ex.title_sk})" if ex.title_sk else ""),
-            expand=False,
-        )
-    )
+    heading = f"{ex.number} {ex.title}" + (f" ({ex.title_sk})" if ex.title_sk else "")
+    if cell_len(heading) + 6 <= console.width:  # in the panel's border, where it fits whole
+        console.print(Panel(Text(ex.task), title=Text(heading, style="bold"), expand=False))
+    else:  # above the panel: a border would cut it
+        console.print(Text(heading, style="bold"), soft_wrap=True)
+        console.print(Panel(Text(ex.task), expand=False))
     columns = ["tag", "gloss", "type", "address", "direction", "wiring", "comment"]
     rows = [[row[c] for c in columns] for row in ex.describe_io()]
     print_records(console, columns, rows, title="I/O table")

@@ -286,11 +286,14 @@ def test_the_installed_entry_point(tmp_path):
 
 
 @pytest.mark.parametrize("width", [60, 80, 120])
-@pytest.mark.parametrize("number", ["4.3.17", "6.3.3", "4.3.16"])
+@pytest.mark.parametrize("number", ["4.3.17", "6.3.3", "4.3.16", "P-02"])
 def test_show_never_cuts_a_tag_name_at_any_width(number, width, capsys, monkeypatch):
-    """At 80 columns the I/O table cut tag names (``OS2_Detekc…``, ``Piest1_Far…``); every name is whole now."""
+    """At 80 columns the I/O table cut tag names (``OS2_Detekc…``, ``Piest1_Far…``) and the panel's border a
+    long title; every name and the whole title are there now."""
     monkeypatch.setenv("COLUMNS", str(width))
     assert main(["show", number]) == 0
-    words = set(capsys.readouterr().out.replace("│", " ").split())
+    out = capsys.readouterr().out
+    words = set(out.replace("│", " ").split())
     missing = [row["tag"] for row in get(number).describe_io() if row["tag"] not in words]
     assert not missing, f"cut or broken at {width} columns: {missing}"
+    assert get(number).title in " ".join(out.replace("─", " ").split())
