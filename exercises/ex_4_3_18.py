@@ -148,6 +148,9 @@ EXERCISE = Exercise(
         ),
     },
     rig=HBW,
+    # the operator's two request switches on the live page (the program clears them); DATA.x and DATA.y, the
+    # place, are written from the watch table before the request
+    hmi={"DATA.Poziadavka_naloz": "switch", "DATA.Poziadavka_vyloz": "switch"},
     scenarios=[
         Scenario(
             NINE,
