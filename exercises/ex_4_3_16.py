@@ -72,12 +72,14 @@ TASK = (
     "never TRUE together; the skip is never driven up while SNIMAC_HORNY or down while SNIMAC_DOLNY is actuated, "
     "and never reaches an end buffer when nothing is wrong;\n"
     "2. travel up in AUTO when the skip is at the bottom (SNIMAC_DOLNY), full (PLNY) and the mixer allows aggregate "
-    "(KAMENIVO_POVOL): START_HORE with RYCHLOST_RYCHLO within 2 scans; stop within 1 scan at SNIMAC_HORNY;\n"
+    "(KAMENIVO_POVOL): START_HORE with RYCHLOST_RYCHLO within 2 scans; no automatic cycle starts unless "
+    "SNIMAC_DOLNY reports the skip at the bottom; stop within 1 scan at SNIMAC_HORNY;\n"
     "3. at the top in AUTO, dump for 6 s: then reset PLNY, set DB_MIESACKA.KAMENIVO_DODANE (aggregate delivered) "
     "and travel down; stop at SNIMAC_DOLNY. At least 95 % of the batch must reach the mixer;\n"
     "4. speeds: fast from the bottom to SNIMAC_SPOMAL, slow from SNIMAC_SPOMAL on (switched within 1 scan), so "
     "that the skip reaches SNIMAC_HORNY at the slow speed; slow downward; manual travel is always slow; a "
-    "direction output always comes with exactly one speed output (within 1 scan);\n"
+    "direction output always comes with exactly one speed output (within 1 scan); RYCHLOST_RYCHLO and "
+    "RYCHLOST_POMALY are never TRUE together;\n"
     "5. alarms, latched with SET (acknowledging them is not part of this task): ALARM_NEDOSIEL_HORE when an "
     "automatic ascent has not reached SNIMAC_HORNY 32 s after START_HORE rose, ALARM_NEDOSIEL_DOLE when an "
     "automatic descent has not reached SNIMAC_DOLNY 45 s after START_DOLE rose (the textbook leaves this time "
@@ -88,6 +90,44 @@ TASK = (
     "SNIMAC_SPOMAL after leaving one of them towards the other, DB_SKIP.POZ2 likewise between SNIMAC_SPOMAL and "
     "SNIMAC_HORNY; both FALSE while any sensor is actuated, and after a restart of the PLC until the skip leaves "
     "a sensor again. Put the edge memory bits in %M."
+)
+
+# The words of the task each check grades (``plcsim show 4.3.16`` prints every requirement with its checks).
+INTERLOCK = "START_HORE and START_DOLE are never TRUE together"
+AT_AN_END = "the skip is never driven up while SNIMAC_HORNY or down while SNIMAC_DOLNY is actuated"
+NO_BUFFER = "never reaches an end buffer when nothing is wrong"
+MODES = (
+    "in AUTO the commands DB_SKIP.AUTO_HORE/AUTO_DOLE drive the skip, in manual mode MAN_HORE/MAN_DOLE (within 1 "
+    "scan); the other mode's commands are ignored"
+)
+ASCENT = (
+    "travel up in AUTO when the skip is at the bottom (SNIMAC_DOLNY), full (PLNY) and the mixer allows aggregate "
+    "(KAMENIVO_POVOL): START_HORE with RYCHLOST_RYCHLO within 2 scans"
+)
+FROM_THE_BOTTOM = "no automatic cycle starts unless SNIMAC_DOLNY reports the skip at the bottom"
+DUMP = (
+    "at the top in AUTO, dump for 6 s: then reset PLNY, set DB_MIESACKA.KAMENIVO_DODANE (aggregate delivered) and "
+    "travel down"
+)
+POURED = "At least 95 % of the batch must reach the mixer"
+FAST_FIRST = "fast from the bottom to SNIMAC_SPOMAL"
+SLOW_AT_SPOMAL = "slow from SNIMAC_SPOMAL on (switched within 1 scan)"
+SLOW_ARRIVAL = "so that the skip reaches SNIMAC_HORNY at the slow speed"
+SLOW_DOWN = "slow downward"
+SLOW_MANUAL = "manual travel is always slow"
+ONE_SPEED = "a direction output always comes with exactly one speed output (within 1 scan)"
+NOT_BOTH_SPEEDS = "RYCHLOST_RYCHLO and RYCHLOST_POMALY are never TRUE together"
+LATCHED = "alarms, latched with SET"
+UP_ALARM = "ALARM_NEDOSIEL_HORE when an automatic ascent has not reached SNIMAC_HORNY 32 s after START_HORE rose"
+DOWN_ALARM = "ALARM_NEDOSIEL_DOLE when an automatic descent has not reached SNIMAC_DOLNY 45 s after START_DOLE rose"
+SLOW_ALARM = (
+    "ALARM_CHYBA_SPOMAL_SN within 1 scan of reaching SNIMAC_HORNY moving up without having passed SNIMAC_SPOMAL"
+)
+NO_ALARM = "no alarm when nothing is wrong"
+POSITIONS = (
+    "DB_SKIP.POZ1 TRUE while the skip is between SNIMAC_DOLNY and SNIMAC_SPOMAL after leaving one of them towards "
+    "the other, DB_SKIP.POZ2 likewise between SNIMAC_SPOMAL and SNIMAC_HORNY; both FALSE while any sensor is "
+    "actuated, and after a restart of the PLC until the skip leaves a sensor again"
 )
 
 EXERCISE = Exercise(
@@ -230,39 +270,50 @@ EXERCISE = Exercise(
     ],
     checks=[
         # criterion 1: interlocks
-        never(all_of(UP, DOWN)).named("START_HORE and START_DOLE are never TRUE together"),
-        never(all_of(FAST, SLOW)).named("RYCHLOST_RYCHLO and RYCHLOST_POMALY are never TRUE together"),
-        never(all_of(HORNY, UP)).named("never driven up while SNIMAC_HORNY is actuated"),
-        never(all_of(DOLNY, DOWN)).named("never driven down while SNIMAC_DOLNY is actuated"),
-        only(never(event("converter fault")).named("the converter never trips"), *NORMAL),
+        never(all_of(UP, DOWN)).named("START_HORE and START_DOLE are never TRUE together").grades(INTERLOCK),
+        never(all_of(FAST, SLOW))
+        .named("RYCHLOST_RYCHLO and RYCHLOST_POMALY are never TRUE together")
+        .grades(NOT_BOTH_SPEEDS),
+        never(all_of(HORNY, UP)).named("never driven up while SNIMAC_HORNY is actuated").grades(AT_AN_END),
+        never(all_of(DOLNY, DOWN)).named("never driven down while SNIMAC_DOLNY is actuated").grades(AT_AN_END),
+        only(never(event("converter fault")).named("the converter never trips").grades(INTERLOCK), *NORMAL),
         only(
             never(all_of(any_of(UP, DOWN), off(FAST), off(SLOW)))
             .for_more_than("1 scan")
-            .named("a direction output always comes with a speed output"),
+            .named("a direction output always comes with a speed output")
+            .grades(ONE_SPEED),
             *NORMAL,
         ),
-        only(never(event("end stop hit")).named("the skip never runs into an end buffer"), *NORMAL),
+        only(never(event("end stop hit")).named("the skip never runs into an end buffer").grades(NO_BUFFER), *NORMAL),
         # criterion 2: the automatic ascent
         only(
             rises(UP)
             .within("2 scans")
             .after(becomes(all_of(AUTO, DOLNY, PLNY, POVOL)))
-            .named("AUTO: START_HORE within 2 scans of a full skip at the bottom and the mixer ready"),
+            .named("AUTO: START_HORE within 2 scans of a full skip at the bottom and the mixer ready")
+            .grades(ASCENT),
             *CYCLES,
         ),
         only(
-            never(all_of(UP, DOLNY, off(FAST))).for_more_than("1 scan").named("the automatic ascent starts fast"),
+            never(all_of(UP, DOLNY, off(FAST)))
+            .for_more_than("1 scan")
+            .named("the automatic ascent starts fast")
+            .grades(FAST_FIRST),
             *CYCLES,
         ),
         only(
-            never(all_of(UP, SPOMAL, FAST)).for_more_than("1 scan").named("slow within 1 scan of SNIMAC_SPOMAL"),
+            never(all_of(UP, SPOMAL, FAST))
+            .for_more_than("1 scan")
+            .named("slow within 1 scan of SNIMAC_SPOMAL")
+            .grades(SLOW_AT_SPOMAL),
             *CYCLES,
             MODE,
         ),
         only(
             event_data("speed measured", "speed_mm_s", HORNY)
             .at_most(SLOW_SPEED * 1.05)
-            .named("the skip reaches SNIMAC_HORNY at the slow speed (at most 5 % above it)"),
+            .named("the skip reaches SNIMAC_HORNY at the slow speed (at most 5 % above it)")
+            .grades(SLOW_ARRIVAL),
             *ARRIVALS[:3],
             MANUAL,
         ),
@@ -271,29 +322,34 @@ EXERCISE = Exercise(
             rises(DOWN)
             .between("6s", "6s + 2 scans")
             .after(rises(HORNY), provided=AUTO)
-            .named("AUTO: the skip dumps for 6 s at the top, then goes down"),
+            .named("AUTO: the skip dumps for 6 s at the top, then goes down")
+            .grades(DUMP),
             *CYCLES,
         ),
         only(
             rises("DB_MIESACKA.KAMENIVO_DODANE")
             .between("6s", "6s + 2 scans")
             .after(rises(HORNY), provided=AUTO)
-            .named("KAMENIVO_DODANE is set when the 6 s dump ends"),
+            .named("KAMENIVO_DODANE is set when the 6 s dump ends")
+            .grades(DUMP),
             *CYCLES,
         ),
         only(
-            event_data("pour ended", "fraction").at_least(0.95).named("at least 95 % of each batch reaches the mixer"),
+            event_data("pour ended", "fraction")
+            .at_least(0.95)
+            .named("at least 95 % of each batch reaches the mixer")
+            .grades(POURED),
             *CYCLES,
             MODE,
         ),
         only(
-            never(all_of(DOWN, FAST)).named("the skip always goes down slowly"),
+            never(all_of(DOWN, FAST)).named("the skip always goes down slowly").grades(SLOW_DOWN),
             *NORMAL,
             JAM_DOWN,
         ),
         # criterion 5: manual mode
         only(
-            never(all_of(off(AUTO), FAST)).named("manual travel is always slow"),
+            never(all_of(off(AUTO), FAST)).named("manual travel is always slow").grades(SLOW_MANUAL),
             MANUAL,
             BETWEEN,
             MODE,
@@ -302,46 +358,50 @@ EXERCISE = Exercise(
         only(
             never(all_of(off(AUTO), "DB_SKIP.MAN_HORE", off("DB_SKIP.MAN_DOLE"), off(HORNY), off(UP)))
             .for_more_than("1 scan")
-            .named("manual mode: MAN_HORE drives the skip up"),
+            .named("manual mode: MAN_HORE drives the skip up")
+            .grades(MODES),
             MANUAL,
             BETWEEN,
         ),
         only(
             never(all_of(off(AUTO), "DB_SKIP.MAN_DOLE", off("DB_SKIP.MAN_HORE"), off(DOLNY), off(DOWN)))
             .for_more_than("1 scan")
-            .named("manual mode: MAN_DOLE drives the skip down"),
+            .named("manual mode: MAN_DOLE drives the skip down")
+            .grades(MODES),
             MANUAL,
             BETWEEN,
         ),
         only(
             never(all_of(off(AUTO), any_of(UP, DOWN), off("DB_SKIP.MAN_HORE"), off("DB_SKIP.MAN_DOLE")))
             .for_more_than("1 scan")
-            .named("manual mode: no travel without a manual command (AUTO commands are ignored)"),
+            .named("manual mode: no travel without a manual command (AUTO commands are ignored)")
+            .grades(MODES),
             MODE,
             MANUAL,
             BETWEEN,
         ),
         # criterion 6: the position states
-        never(WrongPosition("DB_SKIP.POZ1", 1)).named(
-            "POZ1 is TRUE exactly while the skip is between SNIMAC_DOLNY and SNIMAC_SPOMAL after moving there"
-        ),
-        never(WrongPosition("DB_SKIP.POZ2", 2)).named(
-            "POZ2 is TRUE exactly while the skip is between SNIMAC_SPOMAL and SNIMAC_HORNY after moving there"
-        ),
+        never(WrongPosition("DB_SKIP.POZ1", 1))
+        .named("POZ1 is TRUE exactly while the skip is between SNIMAC_DOLNY and SNIMAC_SPOMAL after moving there")
+        .grades(POSITIONS),
+        never(WrongPosition("DB_SKIP.POZ2", 2))
+        .named("POZ2 is TRUE exactly while the skip is between SNIMAC_SPOMAL and SNIMAC_HORNY after moving there")
+        .grades(POSITIONS),
         # criteria 4, 7, 8: the alarms
-        only(never(on(ALARM_UP)).named("no up-travel alarm when nothing is wrong"), *NORMAL),
-        only(never(on(ALARM_DOWN)).named("no down-travel alarm when nothing is wrong"), *NORMAL),
-        only(never(on(ALARM_SLOW)).named("no slow-down sensor alarm when nothing is wrong"), *NORMAL),
+        only(never(on(ALARM_UP)).named("no up-travel alarm when nothing is wrong").grades(NO_ALARM), *NORMAL),
+        only(never(on(ALARM_DOWN)).named("no down-travel alarm when nothing is wrong").grades(NO_ALARM), *NORMAL),
+        only(never(on(ALARM_SLOW)).named("no slow-down sensor alarm when nothing is wrong").grades(NO_ALARM), *NORMAL),
         only(
             rises(ALARM_UP)
             .between("32s - 1 scan", "32s + 2 scans")
             .after(rises(UP))
-            .named("ALARM_NEDOSIEL_HORE 32 s after START_HORE rose, if the top is not reached"),
+            .named("ALARM_NEDOSIEL_HORE 32 s after START_HORE rose, if the top is not reached")
+            .grades(UP_ALARM),
             JAM_UP,
             DEAD_TOP,
         ),
         only(
-            holds(ALARM_UP).to_the_end().named("ALARM_NEDOSIEL_HORE stays latched"),
+            holds(ALARM_UP).to_the_end().named("ALARM_NEDOSIEL_HORE stays latched").grades(LATCHED),
             JAM_UP,
             DEAD_TOP,
         ),
@@ -349,22 +409,26 @@ EXERCISE = Exercise(
             rises(ALARM_DOWN)
             .between("45s - 1 scan", "45s + 2 scans")
             .after(rises(DOWN))
-            .named("ALARM_NEDOSIEL_DOLE 45 s after START_DOLE rose, if the bottom is not reached"),
+            .named("ALARM_NEDOSIEL_DOLE 45 s after START_DOLE rose, if the bottom is not reached")
+            .grades(DOWN_ALARM),
             JAM_DOWN,
         ),
         only(
-            holds(ALARM_DOWN).to_the_end().named("ALARM_NEDOSIEL_DOLE stays latched"),
+            holds(ALARM_DOWN).to_the_end().named("ALARM_NEDOSIEL_DOLE stays latched").grades(LATCHED),
             JAM_DOWN,
         ),
         only(
             rises(ALARM_SLOW)
             .within("1 scan")
             .after(rises(HORNY))
-            .named("ALARM_CHYBA_SPOMAL_SN within 1 scan of reaching the top without passing SNIMAC_SPOMAL"),
+            .named("ALARM_CHYBA_SPOMAL_SN within 1 scan of reaching the top without passing SNIMAC_SPOMAL")
+            .grades(SLOW_ALARM),
             DEAD_SLOW,
         ),
         only(
-            never(rises(UP)).named("no automatic ascent unless SNIMAC_DOLNY reports the skip at the bottom"),
+            never(rises(UP))
+            .named("no automatic ascent unless SNIMAC_DOLNY reports the skip at the bottom")
+            .grades(FROM_THE_BOTTOM),
             DEAD_BOTTOM,
         ),
     ],

@@ -125,6 +125,25 @@ TASK = (
     "few millimetres off its place, or fail: the crane must then stay safe, even if a request cannot be served."
 )
 
+# The words of the task each check grades (``plcsim show 4.3.18`` prints every requirement with its checks).
+ESTIMATE = (
+    "OS_X/OS_Y/OS_Z.aktualna must always hold (within one scan) the axis's actual position once it has seen its "
+    "first sensor: the sensor's number while on it, half-way values between two sensors (1.5 between x1 and x2), "
+    "0.5 before the first and 3.5 (6.5 for Y) past the last"
+)
+STEP_6 = "step control (DATA.KROK, steps 1 … 6 as in the textbook, 6 = done)"
+REQUEST = (
+    "A put-in request (DATA.Poziadavka_naloz) or a take-out request (DATA.Poziadavka_vyloz) for place [DATA.x, "
+    "DATA.y] must end with the part on that place (put-in) or on the fork (take-out) and the fork back at z2; the "
+    "program then clears the request, and not before the fork is back at z2"
+)
+ONE_WAY = "never drive an axis both ways"
+END_STOPS = "never drive an axis against an end stop"
+X_BEHIND = "move X only while the fork is at z2 or behind it"
+Y_IN_RACK = "move Y inside the rack only with the fork fully in (z3) and only between the two sensors of one row"
+FORK_FORWARD = "move the fork forward past z2 only while X and Y stand still on a sensor"
+NO_DAMAGE = "Nothing may hit the rack, no part may fall and no place may get a second part"
+
 EXERCISE = Exercise(
     number=NUMBER,
     slug="stacker-crane",
@@ -199,29 +218,36 @@ EXERCISE = Exercise(
     ],
     checks=[
         # criterion 1
-        never(all_of("x_vpravo", "x_vlavo")).named("X is never driven both ways at once"),
-        never(all_of("y_hore", "y_dole")).named("Y is never driven both ways at once"),
-        never(all_of("z_vpred", "z_vzad")).named("Z is never driven both ways at once"),
+        never(all_of("x_vpravo", "x_vlavo")).named("X is never driven both ways at once").grades(ONE_WAY),
+        never(all_of("y_hore", "y_dole")).named("Y is never driven both ways at once").grades(ONE_WAY),
+        never(all_of("z_vpred", "z_vzad")).named("Z is never driven both ways at once").grades(ONE_WAY),
         # criterion 2
-        never(all_of(X_DRIVEN, PAST_Z2)).named("X moves only while the fork is at z2 or behind it"),
-        never(all_of(Y_DRIVEN, PAST_Z2, not_("z3"))).named("Y moves inside the rack only with the fork fully in"),
-        OneRowInRack().named("in the rack Y moves only between the two sensors of one row"),
-        never(all_of("z_vpred", PAST_Z2, any_of(not_(X_CAM), not_(Y_CAM), X_DRIVEN, Y_DRIVEN))).named(
-            "the fork goes forward past z2 only while X and Y stand still on a sensor"
-        ),
+        never(all_of(X_DRIVEN, PAST_Z2)).named("X moves only while the fork is at z2 or behind it").grades(X_BEHIND),
+        never(all_of(Y_DRIVEN, PAST_Z2, not_("z3")))
+        .named("Y moves inside the rack only with the fork fully in")
+        .grades(Y_IN_RACK),
+        OneRowInRack().named("in the rack Y moves only between the two sensors of one row").grades(Y_IN_RACK),
+        never(all_of("z_vpred", PAST_Z2, any_of(not_(X_CAM), not_(Y_CAM), X_DRIVEN, Y_DRIVEN)))
+        .named("the fork goes forward past z2 only while X and Y stand still on a sensor")
+        .grades(FORK_FORWARD),
         # criteria 3 and 4
-        only(Served().named("every request ends at the requested place, then is cleared with the fork at z2"), *SERVED),
-        only(FinalStep().named("DATA.KROK is 6 when a request is cleared"), *SERVED),
-        only(count(event("part put down")).equals(9).named("all nine places are served"), NINE),
+        only(
+            Served()
+            .named("every request ends at the requested place, then is cleared with the fork at z2")
+            .grades(REQUEST),
+            *SERVED,
+        ),
+        only(FinalStep().named("DATA.KROK is 6 when a request is cleared").grades(STEP_6), *SERVED),
+        only(count(event("part put down")).equals(9).named("all nine places are served").grades(REQUEST), NINE),
         # criterion 5
-        never(event("axis stalled")).named("no axis is driven against an end stop"),
-        never(event("collision")).named("nothing hits the rack, and no place gets a second part"),
-        never(event("part fell off")).named("no part falls"),
-        never(event("interlock violated")).named("the crane reports no interlock violation"),
+        never(event("axis stalled")).named("no axis is driven against an end stop").grades(END_STOPS),
+        never(event("collision")).named("nothing hits the rack, and no place gets a second part").grades(NO_DAMAGE),
+        never(event("part fell off")).named("no part falls").grades(NO_DAMAGE),
+        never(event("interlock violated")).named("the crane reports no interlock violation").grades(ONE_WAY),
         # criterion 6
-        only(Estimate(axis="X").named("OS_X.aktualna holds the true position of X"), *SERVED),
-        only(Estimate(axis="Y").named("OS_Y.aktualna holds the true position of Y"), *SERVED),
-        only(Estimate(axis="Z").named("OS_Z.aktualna holds the true position of Z"), *SERVED),
+        only(Estimate(axis="X").named("OS_X.aktualna holds the true position of X").grades(ESTIMATE), *SERVED),
+        only(Estimate(axis="Y").named("OS_Y.aktualna holds the true position of Y").grades(ESTIMATE), *SERVED),
+        only(Estimate(axis="Z").named("OS_Z.aktualna holds the true position of Z").grades(ESTIMATE), *SERVED),
     ],
     solutions=[
         solution(
