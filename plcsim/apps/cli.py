@@ -180,7 +180,9 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("--cpu-seconds", type=int, default=60, help="CPU-time limit per submission, > 0 (default 60)")
     grade.add_argument("--memory-mb", type=int, default=2048, help="memory limit per submission, >= 64 (default 2048)")
     grade.add_argument("--no-sandbox", action="store_true", help="grade in this process (trusted code only)")
-    grade.add_argument("-v", "--verbose", action="store_true", help="also show why passed checks passed")
+    told = grade.add_mutually_exclusive_group()
+    told.add_argument("-v", "--verbose", action="store_true", help="every check of every scenario, and why it passed")
+    told.add_argument("-q", "--quiet", action="store_true", help="the verdict and the failed checks' names alone")
     _add_mutate_parser(sub)
     _add_live_parser(sub)
     _add_instructor_parsers(sub)
@@ -631,7 +633,7 @@ def _grade(args: argparse.Namespace) -> int:
         report = grade(exercise, target, seed=args.seed, **options)
     else:
         report = grade_sandboxed(exercise, target, seed=args.seed, limits=limits, **options)
-    print_report(report, console, verbose=args.verbose)
+    print_report(report, console, verbose=args.verbose, quiet=args.quiet)
     if args.json:
         Path(args.json).parent.mkdir(parents=True, exist_ok=True)
         report.to_json(args.json)

@@ -17,8 +17,11 @@ from plcsim.core.literals import format_ns
 from plcsim.core.untrusted_text import for_terminal
 
 
-def print_report(report: Any, console: Console | None = None, *, verbose: bool = False) -> None:
-    """A grade report: one line per scenario and check, the reasons of the failures, the score.
+def print_report(report: Any, console: Console | None = None, *, verbose: bool = False, quiet: bool = False) -> None:
+    """A grade report, shortest first: the verdict and the score; the failed checks in the order their first
+    violation happened (the earliest is usually the cause), each with its reason; then one line per scenario
+    (``verbose``: every check and why each passed one passed), the CPU's stops, the traces, the warnings,
+    and the verdict again. ``quiet``: the verdict and the failed checks' names alone.
 
     Every text that may come from a submission (its file name, error messages, check messages,
     CPU diagnostics, warnings) is printed as plain text, never read as Rich markup, with its control and
@@ -33,28 +36,25 @@ def print_report(report: Any, console: Console | None = None, *, verbose: bool =
         if report.grader_failed:
             console.print(Text("this is a fault of the grader or the exercise, not of the submission", "yellow"))
         return
-    table = Table(title=Text(title), show_lines=False, expand=False)
-    table.add_column("scenario")
-    table.add_column("check")
-    table.add_column("", justify="center")
-    table.add_column("points", justify="right")
-    for c in report.checks:
-        table.add_row(
-            Text(_one_line(c.scenario)), Text(_one_line(c.check)), _mark(c.status), f"{c.points:g}/{c.max_points:g}"
-        )
-    console.print(table)
-    for c in report.failed():
+    console.print(Text(title, "bold"))
+    console.print(_verdict(report))
+    failed = sorted(report.failed(), key=_first_violation)
+    for c in failed:
         name = _one_line(f"{c.scenario}: {c.check}")
+        if quiet:
+            console.print(Text.assemble(_mark(c.status), " ", name))
+            continue
         console.print(Text.assemble(_mark(c.status), " ", (name, "bold"), f"\n    {_indented(c.message)}"))
         if c.diagram:
             console.print(Text(f"    timing diagram: {_one_line(c.diagram)}"))
         if c.ladder:
             console.print(Text(f"    ladder at that scan: {_one_line(c.ladder)}"))
+    if quiet:
+        return
     if verbose:
-        for c in report.checks:
-            if c.passed:
-                said = _one_line(f"{c.scenario}: {c.check}: {c.message}")
-                console.print(Text.assemble(("✓", "green"), f" {said}", style="dim"))
+        _print_check_table(report, console)
+    else:
+        _print_scenario_lines(report, console)
     for run in report.runs:
         if run.cpu_error:
             said = _one_line(f"{run.scenario}: the CPU stopped: {run.cpu_error}")
@@ -64,18 +64,55 @@ def print_report(report: Any, console: Console | None = None, *, verbose: bool =
             console.print(Text(f"  trace of {_one_line(run.scenario)}: {rrd} (open with: rerun {rrd})", "dim"))
     for w in report.warnings:
         console.print(Text.assemble(("warning:", "yellow"), f" {_one_line(w)}"))
+    console.print(_verdict(report))
+
+
+def _verdict(report: Any) -> Text:
     verdict = Text("PASSED", "bold green") if report.passed else Text("FAILED", "bold red")
     idle = len(report.not_exercised())
-    console.print(
-        Text.assemble(
-            verdict,
-            "  score ",
-            (f"{report.score:g}", "bold"),
-            f" / {report.max_score:g}",
-            (f"  ({idle} not exercised)", "yellow") if idle else "",
-            f"  ({report.elapsed_s:.2f} s)",
-        )
+    return Text.assemble(
+        verdict,
+        "  score ",
+        (f"{report.score:g}", "bold"),
+        f" / {report.max_score:g}",
+        (f"  ({idle} not exercised)", "yellow") if idle else "",
+        f"  ({report.elapsed_s:.2f} s)",
     )
+
+
+def _first_violation(check: Any) -> tuple[float, str, str]:
+    """When a failed check was first violated (a check without a window: after every one that has one)."""
+    start = check.window[0] if check.window is not None else float("inf")
+    return (start, check.scenario, check.check)
+
+
+def _print_scenario_lines(report: Any, console: Console) -> None:
+    """One line per scenario: how many of its checks passed (``-v`` lists them)."""
+    for scenario in dict.fromkeys(c.scenario for c in report.checks):
+        checks = [c for c in report.checks if c.scenario == scenario]
+        passed = sum(c.passed for c in checks)
+        statuses = {c.status for c in checks}
+        status = "failed" if "failed" in statuses else "not exercised" if "not exercised" in statuses else "passed"
+        said = _one_line(f"{scenario}: {passed}/{len(checks)} checks passed")
+        console.print(Text.assemble(_mark(status), f" {said}"))
+
+
+def _print_check_table(report: Any, console: Console) -> None:
+    """Every check of every scenario with its points, and why each passed check passed."""
+    table = Table(show_lines=False, expand=False)
+    table.add_column("scenario")
+    table.add_column("check")
+    table.add_column("", justify="center")
+    table.add_column("points", justify="right")
+    for c in report.checks:
+        table.add_row(
+            Text(_one_line(c.scenario)), Text(_one_line(c.check)), _mark(c.status), f"{c.points:g}/{c.max_points:g}"
+        )
+    console.print(table)
+    for c in report.checks:
+        if c.passed:
+            said = _one_line(f"{c.scenario}: {c.check}: {c.message}")
+            console.print(Text.assemble(("✓", "green"), f" {said}", style="dim"))
 
 
 def _one_line(text: str) -> str:

@@ -297,3 +297,21 @@ def test_show_never_cuts_a_tag_name_at_any_width(number, width, capsys, monkeypa
     missing = [row["tag"] for row in get(number).describe_io() if row["tag"] not in words]
     assert not missing, f"cut or broken at {width} columns: {missing}"
     assert get(number).title in " ".join(out.replace("─", " ").split())
+
+
+def test_a_grade_report_leads_with_the_verdict_and_the_earliest_failure(capsys, monkeypatch):
+    """A passing 4.3.17 printed 347 lines; now the verdict comes first, then the failed checks in the order
+    of their first violation, one line per scenario; -q leaves the verdict and the failed names, -v all."""
+    monkeypatch.setenv("COLUMNS", "120")
+    assert main(["grade", "4.3.5", "--solution", "wrong-coil", "--no-sandbox"]) == EXIT_FAILED
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[1].startswith("FAILED  score 8 / 11") and lines[-1].startswith("FAILED  score 8 / 11")
+    failed = [line for line in lines if line.startswith("✗ three objects: ") and "/" not in line.split(":")[1]]
+    assert failed[0] == "✗ three objects: transport S1 -> S2 takes 4.8 s +-10 %"  # violated first, at 374 ms
+    assert len(lines) < 25
+    assert main(["grade", "4.3.5", "--solution", "wrong-coil", "--no-sandbox", "-q"]) == EXIT_FAILED
+    quiet = capsys.readouterr().out.splitlines()
+    assert quiet[1].startswith("FAILED") and len(quiet) == 2 + 3 and all(q.startswith("✗ ") for q in quiet[2:])
+    assert main(["grade", "4.3.5", "--solution", "wrong-coil", "--no-sandbox", "-v"]) == EXIT_FAILED
+    verbose = capsys.readouterr().out
+    assert "points" in verbose and verbose.count("✓ ") >= 8  # the table of every check, and why each passed

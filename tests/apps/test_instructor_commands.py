@@ -70,7 +70,7 @@ def test_draw_writes_the_picture_of_a_rig_or_an_exercise_s_rig(tmp_path, capsys)
 
 
 def test_the_hints_of_show_and_run_name_an_exercise_by_the_path_that_found_it_hints(course, capsys):
-    assert main(["show", "reject_course/reject_hints.py"]) == 0
+    assert main(["show", "reject_course/reject_hints.py", "--solutions"]) == 0  # the shipped programs: instructors
     assert "(grade one with: plcsim grade reject_course/reject_hints.py --solution NAME)" in capsys.readouterr().out
     program = str(course / "solutions" / "reference.py")
     assert main(["run", "reject_course/reject_hints.py", "--program", program]) == 0
