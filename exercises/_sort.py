@@ -66,6 +66,12 @@ def at_position(trace: Trace, k: int) -> np.ndarray:
     return out
 
 
+def _position_words(k: int) -> str:
+    """Position ``k`` in the sensors' physical terms: the barriers are NC, FALSE while an object is in the beam."""
+    until = f"{BARRIERS[k + 1]}'s" if k + 1 < len(BARRIERS) else "its bin"
+    return f"from {BARRIERS[k]}'s beam to {until}; a barrier reads FALSE while an object is in its beam: NC"
+
+
 @dataclass(frozen=True)
 class Unmarked(Condition):
     """An object is at position ``k`` and the position is not marked occupied."""
@@ -78,7 +84,7 @@ class Unmarked(Condition):
         )
 
     def describe(self) -> str:
-        return f"an object at position {self.k + 1} ({BARRIERS[self.k]} on) with DATA.{OCCUPIED[self.k]} FALSE"
+        return f"an object at position {self.k + 1} ({_position_words(self.k)}) with DATA.{OCCUPIED[self.k]} FALSE"
 
     def signals(self) -> list[str]:
         return [f"DATA.{OCCUPIED[self.k]}", BARRIERS[self.k]]
@@ -101,7 +107,7 @@ class Phantom(Condition):
 
     def describe(self) -> str:
         out = " with its piston back" if PISTON_AT[self.k] else ""
-        return f"DATA.{OCCUPIED[self.k]} TRUE with no object at position {self.k + 1}{out}"
+        return f"DATA.{OCCUPIED[self.k]} TRUE with no object at position {self.k + 1} ({_position_words(self.k)}){out}"
 
     def signals(self) -> list[str]:
         return [f"DATA.{OCCUPIED[self.k]}", *([PISTON_AT[self.k]] if PISTON_AT[self.k] else [])]
