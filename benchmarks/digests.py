@@ -5,6 +5,8 @@ seeds 0 and 7 (or those of ``--seeds``: ``--seeds 1 2 3`` are the ones the test 
 line ``exercise solution seed scenario trace-digest scans mode error plant-error``;
 the value is the sha256 of all the lines. A refactoring that must not change behaviour (a move, a split)
 prints the same value before and after, bit for bit; ``--quick`` runs the first two exercises on seed 0.
+``broken_exercises`` names the exercise modules that did not load (their solutions are not in the digest): a
+run from a git worktree whose ``plants`` resolves to another checkout's shows it there, not as a new digest.
 """
 
 from __future__ import annotations
@@ -41,9 +43,17 @@ def lines(quick: bool, seeds: tuple[int, ...] = SEEDS) -> Iterator[str]:
 
 def run(settings: Settings) -> Iterator[Figure]:
     progress("digests: every shipped solution in every scenario")
+    import exercises
+
     seeds = settings.seeds or SEEDS
     every = list(lines(settings.quick, seeds))
     digest = hashlib.sha256("\n".join(every).encode()).hexdigest()
+    broken = [f"{b.file}:{b.line}: {b.error}" for b in exercises.broken_exercises()]
     yield figure(
-        "solutions_trace_digest", digest, "sha256", runs=len(every), seeds=list(seeds[:1] if settings.quick else seeds)
+        "solutions_trace_digest",
+        digest,
+        "sha256",
+        runs=len(every),
+        seeds=list(seeds[:1] if settings.quick else seeds),
+        broken_exercises=broken[:3] + ([f"... {len(broken) - 3} more"] if len(broken) > 3 else []),
     )
