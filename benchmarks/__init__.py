@@ -7,6 +7,7 @@ Groups (one module each, registered in :mod:`benchmarks.__main__`):
 
 * ``plc`` (:mod:`benchmarks.plc`): plcsim alone on the 25-network workload, and the compile time.
 * ``pyrung`` (:mod:`benchmarks.pyrung_peer`): the same ladder logic on pyrung, in the same process.
+* ``inlined`` (:mod:`benchmarks.inlined`): the same 25 networks hand-inlined into one Python function, the ceiling.
 * ``equivalence`` (:mod:`benchmarks.equivalence`): plcsim against a hand-written reference, scan by scan.
 
 The workload (25 networks, input schedule) is in :mod:`benchmarks.workload`; timing and output helpers

@@ -22,7 +22,12 @@ it at the same dt: the difference between the two is what the PLC, the wiring, t
 trace cost. Budgets: ≥ 100× real time for the co-simulation; co-simulation ≤ 2× physics alone.
 ``cosim_overhead_us_per_step_*`` is that difference per step (the PLC, wiring, trace and drawing), so a ratio above
 budget can be told apart from a slow plant: it is ``(ratio - 1) × physics``, and the ratio grows when the physics
-gets faster. ``load_1min`` (the machine's load average as the workload ends) says how shared the cores were.
+gets faster. For the shuttle and the sorter a third run, the hand-written baseline
+(:mod:`benchmarks.handwritten`: the same program inlined by hand, reading the sensors and commanding the
+actuators itself, its trace rows in a preallocated numpy array, checked equal to plcsim's trace: ``same_rows``), gives
+``handwritten_overhead_us_per_step_*`` (baseline minus physics alone, per step) and
+``cosim_overhead_vs_handwritten_ratio_*``, plcsim's overhead per step over the baseline's (budget <= 2).
+``load_1min`` (the machine's load average as the workload ends) says how shared the cores were.
 Both runs are timed in process time (``time.process_time``), not wall time: on a loaded machine the wall clock
 counts the other processes' turns too, process time only this run's (the real-time factor is simulated s per
 CPU s).
@@ -35,6 +40,7 @@ import time
 from collections.abc import Iterator
 from typing import Any
 
+from benchmarks import handwritten
 from benchmarks.harness import Settings, figure, progress
 
 SIM_S = 60
@@ -153,14 +159,21 @@ def run(settings: Settings) -> Iterator[dict[str, Any]]:
 
 
 def _workload(settings: Settings, workload: str, program: str, rig: str) -> Iterator[dict[str, Any]]:
-    best_co, best_ph, scans, rows, seconds = float("inf"), float("inf"), 0, 0, 0
+    best_co, best_ph, best_hw, scans, rows, seconds = float("inf"), float("inf"), float("inf"), 0, 0, 0
+    same: bool | None = None
     for _ in range(settings.repeats):
         wall, sim, log = _cosim(workload, settings.size(SIM_S, 5))
         seconds = sim.now // 1_000_000_000
         phys = _physics_alone(rig, seconds, log, sim.dt_ns, type(sim.plant))
         best_co, best_ph = min(best_co, wall), min(best_ph, phys)
         scans, rows = sim.cpu.scan_count, len(sim.trace)
-        progress(f"{workload}: cosim {wall:.2f} s, physics alone {phys:.2f} s")
+        note = ""
+        if workload in handwritten.BASELINES:
+            hw_rows, hw = handwritten.run_baseline(workload, rig, seconds, log, sim.dt_ns)
+            best_hw = min(best_hw, hw)
+            same = handwritten.same_rows(hw_rows, sim.trace) and (same is not False)
+            note = f", hand-written {hw:.2f} s"
+        progress(f"{workload}: cosim {wall:.2f} s, physics alone {phys:.2f} s{note}")
     steps = seconds * 1000
     context = {
         "workload": workload,
@@ -181,6 +194,21 @@ def _workload(settings: Settings, workload: str, program: str, rig: str) -> Iter
     yield figure(f"cosim_vs_physics_ratio_{workload}", round(best_co / best_ph, 2), "x", budget="<= 2", **context)
     overhead = (best_co - best_ph) / steps * 1e6
     yield figure(f"cosim_overhead_us_per_step_{workload}", round(overhead, 2), "us/step", **context)
+    if same is not None:
+        baseline = (best_hw - best_ph) / steps * 1e6
+        yield figure(
+            f"handwritten_overhead_us_per_step_{workload}", round(baseline, 2), "us/step", same_rows=same, **context
+        )
+        yield figure(
+            f"cosim_overhead_vs_handwritten_ratio_{workload}",
+            round(overhead / baseline, 2) if baseline > 0 else None,
+            "x",
+            budget="<= 2",
+            same_rows=same,
+            cosim_overhead_us_per_step=round(overhead, 2),
+            handwritten_overhead_us_per_step=round(baseline, 2),
+            **context,
+        )
     if workload == "hoist":
         pouring = min(_pouring_alone() for _ in range(settings.repeats))
         yield figure("physics_alone_us_per_step_pouring", round(pouring, 2), "us/step", **context)

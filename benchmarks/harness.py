@@ -26,6 +26,8 @@ class Settings:
 
     quick: bool = False
     repeats: int = 3
+    seeds: tuple[int, ...] | None = None
+    """Seeds for the groups that run every shipped solution (``--seeds``; None: the group's own)."""
     cache: dict[str, Any] = field(default_factory=dict)
 
     def size(self, full: int, quick: int) -> int:

@@ -12,8 +12,13 @@ Figures (scans/s, best of ``--repeats`` runs, median as context):
   representative.
 * ``pyrung_compiled_scans_per_s`` -- ``pyrung.core.CompiledPLC(logic, dt=0.001)``, the code-generated
   kernel without history or debugger; 20 k scans or 4 s per run.
-* ``plcsim_vs_pyrung_ratio``, ``plcsim_vs_pyrung_compiled_ratio`` -- plcsim's best scans/s (group ``plc``,
-  measured in this same process) divided by pyrung's best: how many times faster plcsim is.
+* ``pyrung_kernel_scans_per_s`` -- pyrung's generated kernel alone,
+  ``pyrung.circuitpy.codegen.render_kernel.compile_kernel(logic).step_fn``, driven as the anchors'
+  ``run_raw_kernel`` drives it (tags, blocks, memory and edge memory as plain dicts; the edge tags copied
+  after each step): the fastest pyrung can run this logic; 200 k scans or 20 s per run.
+* ``plcsim_vs_pyrung_ratio``, ``plcsim_vs_pyrung_compiled_ratio``, ``plcsim_vs_pyrung_kernel_ratio`` --
+  plcsim's best scans/s (group ``plc``, measured in this same process) divided by pyrung's best: how many
+  times faster plcsim is. Budget (issue 29) for the kernel ratio: >= 3.
 
 Same logic, not same outputs: pyrung's timers count the enabling scan, so its timer-driven outputs run
 one scan ahead of plcsim's (see :mod:`benchmarks.equivalence`). pyrung is optional (``plcsim[bench]``);
@@ -35,7 +40,10 @@ FIGURES = [
     ("pyrung_compiled_scans_per_s", "scans/s"),
     ("plcsim_vs_pyrung_ratio", "x"),
     ("plcsim_vs_pyrung_compiled_ratio", "x"),
+    ("pyrung_kernel_scans_per_s", "scans/s"),
+    ("plcsim_vs_pyrung_kernel_ratio", "x"),
 ]
+BUDGETS = {"pyrung_kernel": ">= 3"}
 
 
 def build_logic() -> Any:
@@ -138,11 +146,37 @@ def _runners(logic: Any, version: str | None) -> list[tuple[str, Any, int, int, 
         runners.append(("pyrung_compiled", None, 0, 0, 0, reason))
     else:
         runners.append(("pyrung_compiled", lambda: CompiledPLC(logic, dt=DT), 20_000, 300, 500, None))
+    try:
+        from pyrung.circuitpy.codegen.render_kernel import compile_kernel
+    except ImportError as exc:
+        reason = f"pyrung.circuitpy.codegen.render_kernel unavailable in pyrung {version}: {exc}"
+        runners.append(("pyrung_kernel", None, 0, 0, 0, reason))
+    else:
+        compiled = compile_kernel(logic)
+        runners.append(("pyrung_kernel", lambda: KernelRunner(compiled), 200_000, 2_000, 500, None))
     return runners
 
 
+class KernelRunner:
+    """pyrung's generated step function on plain dicts, with ``patch`` and ``step`` as the anchors'
+    ``run_raw_kernel`` drives it: the edge tags are copied into ``prev`` after each step (the kernel leaves
+    that to its caller)."""
+
+    def __init__(self, compiled: Any):
+        kernel = compiled.create_kernel()
+        self.tags, self.blocks, self.memory, self.prev = kernel.tags, kernel.blocks, kernel.memory, kernel.prev
+        self.step_fn, self.edge = compiled.step_fn, tuple(compiled.edge_tags)
+        self.patch = self.tags.update
+
+    def step(self) -> None:
+        tags, prev = self.tags, self.prev
+        self.step_fn(tags, self.blocks, self.memory, prev, DT)
+        for name in self.edge:
+            prev[name] = tags[name]
+
+
 def _rates(settings: Settings, factory: Any, n: int, chunk: int) -> tuple[Rates, float]:
-    max_s = settings.size(4.0, 1.0)
+    max_s = settings.size(plc.MAX_S if n >= 100_000 else 4.0, 1.0)
     sched = workload.build_schedule(n)
 
     def run_once(k: int, s: float) -> tuple[int, float]:
@@ -189,6 +223,7 @@ def run(settings: Settings) -> Iterator[Figure]:
             round(mine.best / rates.best, 2),
             "x",
             stat="best",
+            **({"budget": BUDGETS[name]} if name in BUDGETS else {}),
             plcsim_scans_per_s=round(mine.best),
             pyrung_scans_per_s=round(rates.best),
             pyrung_version=version,

@@ -3,9 +3,10 @@
 A :class:`~plcsim.frontends.python.program.Program` holds the checked syntax tree; :func:`compile_program`
 types it against the CPU's tag table (:mod:`~plcsim.frontends.python.typecheck`), analyses it
 (:mod:`~plcsim.frontends.python.analysis`), merges each task's networks
-(:mod:`~plcsim.frontends.python.merge`), rewrites the stores (:mod:`~plcsim.frontends.python.rewrite`) and
-compiles the result, then refuses or warns about what only the table shows: stores into inputs, jumps
-to missing labels, SCALE and UNSCALE on an S7-1200, timers whose Q and ET go unread.
+(:mod:`~plcsim.frontends.python.merge`), rewrites the stores (:mod:`~plcsim.frontends.python.rewrite`), writes
+out the boxes of each merged task (:mod:`~plcsim.frontends.python.inline`) and compiles the result, then
+refuses or warns about what only the table shows: stores into inputs, jumps to missing labels, SCALE and
+UNSCALE on an S7-1200, timers whose Q and ET go unread.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 
 from plcsim.core.errors import ProgramError
 from plcsim.frontends.python.analysis import Analysis, analyse
+from plcsim.frontends.python.inline import inline_boxes
 from plcsim.frontends.python.merge import MERGED_ROOT, merge_networks, read_root_directly
 from plcsim.frontends.python.rewrite import StoreRewriter
 from plcsim.frontends.python.typecheck import Typing
@@ -29,6 +31,9 @@ if TYPE_CHECKING:
 MAX_MERGED_STATEMENTS = 5000
 """Above this many statements an OB's networks are not merged into one function (see merge_networks):
 the merge speeds up scans of ordinary programs and would only slow down loading a huge one."""
+INLINE_BOXES = True
+"""Whether a merged function has its timers, counters and edge contacts written out
+(:func:`~plcsim.frontends.python.inline.inline_boxes`); off only to compare the two in tests."""
 
 
 @dataclass
@@ -70,9 +75,12 @@ def compile_program(
                 merged[task.name] = combined.name
     rewriter = StoreRewriter(typing)
     tree = ast.fix_missing_locations(rewriter.visit(tree))
+    shadowed = set(program.functions) | set(program.constants)
     for stmt in tree.body:
         if isinstance(stmt, ast.FunctionDef) and stmt.name in merged.values():
             read_root_directly(stmt, typing.root.members)
+            if INLINE_BOXES:
+                inline_boxes(stmt, typing.root, typing.aliased, shadowed)
     code = compile(tree, program.filename, "exec")
     warnings = list(analysis.warnings)
     for line, name in _input_stores(program, table, root_params):

@@ -140,3 +140,31 @@ class IecCounter:
 
     def __repr__(self) -> str:
         return f"<{self._kind or 'IEC_COUNTER'} {self._path}: CV={self.CV} PV={self.PV} QU={self.QU} QD={self.QD}>"
+
+
+# The body of CTU written out, for the generated code of a whole task (plcsim.frontends.python.inline): the
+# same stores in the same order as the method above, on the instance ``INSTANCE`` (evaluated once, first),
+# the call's CU and R (``ARGUMENTS`` sets ``_cu`` and ``_rs`` in the call's order) and the constant
+# ``PRESET``; the result is left in ``_r``. A change to CTU changes its copy here;
+# tests/frontends/test_inline_differential.py runs random programs both ways.
+CTU_WRITTEN_OUT = """
+_i = INSTANCE
+ARGUMENTS
+_i._kind = "CTU"
+if (_cu is not True and _cu is not False) or (_rs is not True and _rs is not False):
+    _cu, _rs = _i._bools(("CU", _cu), ("R", _rs))
+_pv = PRESET
+if not _i._lo <= _pv <= _i._hi:
+    _pv = _i._preset(_pv)
+if _rs:
+    _cv = 0
+elif _cu and not _i.CU:
+    _cv = _i.CV + 1
+    if _cv > _i._hi:
+        _cv = _i._step(_i.CV, 1)
+else:
+    _cv = _i.CV
+_i.CV, _i.PV, _i.CU, _i.R = _cv, _pv, _cu, _rs
+_i.QU = _r = _cv >= _pv
+_i.QD = _cv <= 0
+"""

@@ -97,7 +97,8 @@ def bit_resolver(t: Any, resolve_path: Callable[[str], tuple[Any, str]]) -> Call
     return lookup
 
 
-def _check_bool(value: Any, what: str) -> bool:
+def check_bool(value: Any, what: str) -> bool:
+    """``value`` if it is a Bool, else the error an edge instruction ``what`` reports (also for generated code)."""
     if value is True or value is False:
         return value
     raise PlcTypeError(f"{what} needs a Bool operand, not {value!r}")
@@ -118,7 +119,7 @@ def make_edge_instructions(lookup: Callable[[str], BitRef]) -> dict[str, Callabl
     def P(operand: bool, memory: str) -> bool:
         """-|P|-: TRUE for one execution when ``operand`` went FALSE -> TRUE; updates ``memory`` at once."""
         if operand is not True and operand is not False:
-            operand = _check_bool(operand, "P")
+            operand = check_bool(operand, "P")
         d, key, cell = cache.get(memory) or lookup(memory)
         old = d[key]
         if old is not operand:
@@ -131,7 +132,7 @@ def make_edge_instructions(lookup: Callable[[str], BitRef]) -> dict[str, Callabl
     def N(operand: bool, memory: str) -> bool:
         """-|N|-: TRUE for one execution when ``operand`` went TRUE -> FALSE; updates ``memory`` at once."""
         if operand is not True and operand is not False:
-            operand = _check_bool(operand, "N")
+            operand = check_bool(operand, "N")
         d, key, cell = cache.get(memory) or lookup(memory)
         old = d[key]
         if old is not operand:
@@ -143,7 +144,7 @@ def make_edge_instructions(lookup: Callable[[str], BitRef]) -> dict[str, Callabl
 
     def P_COIL(rlo: bool, operand: str, memory: str) -> bool:
         """-(P)-: write TRUE to ``operand`` for the scan in which ``rlo`` rose, else FALSE; passes rlo on."""
-        rlo = _check_bool(rlo, "P_COIL")
+        rlo = check_bool(rlo, "P_COIL")
         mem = lookup(memory)
         write(lookup(operand), rlo and not mem[0][mem[1]])
         write(mem, rlo)
@@ -151,7 +152,7 @@ def make_edge_instructions(lookup: Callable[[str], BitRef]) -> dict[str, Callabl
 
     def N_COIL(rlo: bool, operand: str, memory: str) -> bool:
         """-(N)-: write TRUE to ``operand`` for the scan in which ``rlo`` fell, else FALSE; passes rlo on."""
-        rlo = _check_bool(rlo, "N_COIL")
+        rlo = check_bool(rlo, "N_COIL")
         mem = lookup(memory)
         write(lookup(operand), (not rlo) and mem[0][mem[1]])
         write(mem, rlo)
@@ -173,3 +174,19 @@ def bind_edge(name: str) -> Callable[[Any], Callable[..., bool]]:
         return make_edge_instructions(bit_resolver(host.t, host.resolve_path))[name]
 
     return bind
+
+
+# The bodies of P and N written out, for the generated code of a whole task (plcsim.frontends.python.inline):
+# the same stores in the same order, on the operand ``OPERAND``, the instruction's ``NAME`` and the memory
+# bit ``BIT`` (a plain BOOL of the root dict ``_t_dict``); the result is left in ``_r``. A change to P or N
+# changes its copy here; tests/frontends/test_inline_differential.py runs random programs both ways.
+EDGE_WRITTEN_OUT = """
+_x = OPERAND
+if _x is not True and _x is not False:
+    _x = _edge_bool(_x, NAME)
+_old = _t_dict[BIT]
+if _old is not _x:
+    _t_dict[BIT] = _x
+_r = RESULT
+"""
+EDGE_RESULTS = {"P": "_x and not _old", "N": "_old and not _x"}

@@ -271,3 +271,62 @@ def PT(instance: IecTimer, value: Any) -> None:
     if not isinstance(instance, IecTimer):
         raise PlcTypeError(f"PT needs a timer instance such as t.TON_1, not {instance!r}")
     instance.load_preset(value)
+
+
+# The bodies of TON and TOF written out, for the generated code of a whole task
+# (plcsim.frontends.python.inline): the same stores in the same order as the methods above, on the instance
+# ``INSTANCE`` (evaluated once, first), ``IN`` and the constant ``PRESET``; the result is left in ``_r``. A
+# change to a method changes its copy here; tests/frontends/test_inline_differential.py runs random
+# programs both ways.
+TON_WRITTEN_OUT = """
+_i = INSTANCE
+_x = IN
+if _i._inert:
+    _r = _i._q
+else:
+    if _x is not True and _x is not False:
+        _x = _box_bool(_x, _i._path + ".IN")
+    _i._kind = "TON"
+    _i.PT = PRESET
+    _now = _i._clock.now
+    if _x:
+        if not _i.IN:
+            _i._start, _i._running, _i._et, _i._q = _now, True, 0, False
+    else:
+        _i._running, _i._et, _i._q = False, 0, False
+    if _i._running:
+        _el = (_now - _i._start) // 1_000_000
+        if _el >= PRESET:
+            _i._et, _i._running, _i._q = PRESET, False, True
+        else:
+            _i._et = _el if _el > 0 else 0
+    _i.IN = _x
+    _r = _i._q
+"""
+TOF_WRITTEN_OUT = """
+_i = INSTANCE
+_x = IN
+if _i._inert:
+    _r = _i._q
+else:
+    if _x is not True and _x is not False:
+        _x = _box_bool(_x, _i._path + ".IN")
+    _i._kind = "TOF"
+    _i.PT = PRESET
+    _now = _i._clock.now
+    if _x:
+        _i._running, _i._et, _i._q = False, 0, True
+    elif _i.IN:
+        _i._start, _i._running = _now, True
+    if _i._running:
+        _el = (_now - _i._start) // 1_000_000
+        if _el >= PRESET:
+            _i._et, _i._running, _i._q = PRESET, False, False
+        else:
+            _i._et = _el if _el > 0 else 0
+    _i.IN = _x
+    _r = _i._q
+"""
+TIMER_READ = "(_i._q if not ((_i := INSTANCE)._live and _i._running) else _i.Q)"
+"""A timer's Q read: the stored value unless it is running (then the property, which refreshes)."""
+TIMER_READS = {"Q": "_q", "ET": "_et"}

@@ -1,0 +1,243 @@
+"""Whole-task code generation: the boxes of a task's merged function written out where they are called.
+
+In the merged function of a task (:mod:`~plcsim.frontends.python.merge`) a box call such as
+``_t_dict["T1"].TON(IN=..., PT=40)`` costs a method call with keywords, an ``-|P|-`` contact a call that
+looks its memory bit up by name, and every read of a timer's ``Q`` a property. They are most of a scan's
+time. :func:`inline_boxes` replaces each of them, where the call is a whole statement, the test of an
+``if`` or the value of an assignment, by the statements of the instruction's own body (the methods of
+:class:`~plcsim.controllers.s7.instructions.timers.IecTimer`, :class:`~.counters.IecCounter` and ``P``/``N``
+of :mod:`~.edges`, written out on the instance's attributes): the same stores in the same order, the same
+conversions and messages (the rare paths, a value to convert, a counter leaving its range, call the
+instance's own helpers), the S7 refresh of a timer's Q and ET when they are read kept. Every generated
+statement carries the line of the call it replaces, so an error still names its network and line.
+
+What is not written out is left as the call it was: a box with a PT or PV that is not a constant, an edge
+memory bit that is not a plain BOOL tag of the root (a DB member, an aliased bit), a call inside a larger
+expression (where Python's short-circuit decides whether it runs at all).
+"""
+
+from __future__ import annotations
+
+import ast
+from typing import Any
+
+from plcsim.controllers.s7.instructions.counters import CTU_WRITTEN_OUT
+from plcsim.controllers.s7.instructions.edges import EDGE_RESULTS, EDGE_WRITTEN_OUT, check_bool
+from plcsim.controllers.s7.instructions.timers import TIMER_READ, TIMER_READS, TOF_WRITTEN_OUT, TON_WRITTEN_OUT
+from plcsim.frontends.python.rewrite import ROOT_DICT
+from plcsim.tags.table import FBType
+from plcsim.tags.types import Bool, StructType
+
+COERCE_BOOL = "_box_bool"
+CHECK_EDGE = "_edge_bool"
+HELPERS: dict[str, Any] = {COERCE_BOOL: Bool.coerce, CHECK_EDGE: check_bool}
+"""The names generated code calls on its rare paths, for the namespace."""
+
+
+def inline_boxes(func: ast.FunctionDef, root: StructType, aliased: frozenset[str], shadowed: set[str]) -> bool:
+    """Write out the boxes of ``func`` (a merged function after :func:`read_root_directly`) in place.
+
+    ``root`` is the tag schema (an instance's type says which box it is), ``aliased`` the tags that alias
+    memory, ``shadowed`` the names the program defines itself (its own ``P`` is not the contact).
+    Returns whether anything was written out."""
+    if not func.body or not _binds_root_dict(func.body[0]):
+        return False  # the code reaches its tags through ``_t_dict``, bound by the first statement
+    writer = _Writer(root, aliased, shadowed)
+    func.body = writer.statements(func.body)
+    if writer.count:
+        ast.fix_missing_locations(func)
+    return writer.count > 0
+
+
+def _binds_root_dict(stmt: ast.stmt) -> bool:
+    return (
+        isinstance(stmt, ast.Assign)
+        and len(stmt.targets) == 1
+        and isinstance(stmt.targets[0], ast.Name)
+        and stmt.targets[0].id == ROOT_DICT
+    )
+
+
+class _Writer:
+    def __init__(self, root: StructType, aliased: frozenset[str], shadowed: set[str]):
+        self.root, self.aliased, self.shadowed = root, aliased, shadowed
+        self.count = 0
+
+    # -- statements -------------------------------------------------------------------------------
+
+    def statements(self, body: list[ast.stmt]) -> list[ast.stmt]:
+        out: list[ast.stmt] = []
+        for stmt in body:
+            out.extend(self.statement(stmt))
+        return out
+
+    def statement(self, stmt: ast.stmt) -> list[ast.stmt]:
+        for name in ("body", "orelse", "finalbody"):
+            if isinstance(getattr(stmt, name, None), list):
+                setattr(stmt, name, self.statements(getattr(stmt, name)))
+        for handler in getattr(stmt, "handlers", []):
+            handler.body = self.statements(handler.body)
+        if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Call):
+            written = self.call(stmt.value, stmt)
+            if written is not None:
+                return written[0]
+        elif isinstance(stmt, ast.If) and isinstance(stmt.test, ast.Call):
+            written = self.call(stmt.test, stmt)
+            if written is not None:
+                stmt.test = written[1]
+                return [*written[0], stmt]
+        elif isinstance(stmt, ast.Assign) and len(stmt.targets) == 1 and isinstance(stmt.value, ast.Call):
+            written = self.call(stmt.value, stmt)
+            if written is not None:
+                stmt.value = written[1]
+                return [*written[0], stmt]
+        self._reads(stmt)
+        return [stmt]
+
+    def _reads(self, stmt: ast.stmt) -> None:
+        """Timer Q reads in the statement's expressions (not in its nested statements, already done)."""
+        reads = _TimerReads(self)
+        for name, value in ast.iter_fields(stmt):
+            if name in ("body", "orelse", "finalbody", "handlers"):
+                continue
+            if isinstance(value, ast.AST):
+                setattr(stmt, name, reads.visit(value))
+            elif isinstance(value, list):
+                setattr(stmt, name, [reads.visit(v) if isinstance(v, ast.AST) else v for v in value])
+
+    # -- calls ------------------------------------------------------------------------------------
+
+    def call(self, call: ast.Call, where: ast.stmt) -> tuple[list[ast.stmt], ast.expr] | None:
+        """The statements of a box call and the name holding its result, or None to leave it a call."""
+        func = call.func
+        if isinstance(func, ast.Attribute) and func.attr in ("TON", "TOF", "CTU") and not call.args:
+            instance = self.instance(func.value)
+            words = {kw.arg: kw.value for kw in call.keywords}
+            if instance is None or len(words) != len(call.keywords):
+                return None
+            preset = words.get("PV" if func.attr == "CTU" else "PT")
+            if not (isinstance(preset, ast.Constant) and preset.value.__class__ is int):
+                return None
+            if func.attr == "CTU":
+                if instance != "IEC_COUNTER" or set(words) - {"CU", "R", "PV"} or "CU" not in words:
+                    return None
+                temps = {"CU": "_cu", "R": "_rs"}
+                arguments = [(temps[kw.arg], kw.value) for kw in call.keywords if kw.arg in temps]  # in call order
+                if "R" not in words:
+                    arguments.append(("_rs", ast.Constant(False)))
+                return self.expand(CTU_WRITTEN_OUT, where, INSTANCE=func.value, PRESET=preset, ARGUMENTS=arguments)
+            if instance != "IEC_TIMER" or set(words) != {"IN", "PT"}:
+                return None
+            template = TON_WRITTEN_OUT if func.attr == "TON" else TOF_WRITTEN_OUT
+            return self.expand(template, where, INSTANCE=func.value, IN=words["IN"], PRESET=preset)
+        if isinstance(func, ast.Name) and func.id in EDGE_RESULTS and func.id not in self.shadowed:
+            if call.keywords or len(call.args) != 2:
+                return None
+            bit = call.args[1]
+            if not (isinstance(bit, ast.Constant) and isinstance(bit.value, str) and self.plain_bit(bit.value)):
+                return None
+            return self.expand(
+                EDGE_WRITTEN_OUT.replace("RESULT", EDGE_RESULTS[func.id]),
+                where,
+                OPERAND=call.args[0],
+                NAME=ast.Constant(func.id),
+                BIT=ast.Constant(bit.value),
+            )
+        return None
+
+    def instance(self, node: ast.expr) -> str | None:
+        """The box type of ``_t_dict["NAME"]`` when NAME is a timer or counter instance of the root."""
+        if not (
+            isinstance(node, ast.Subscript)
+            and isinstance(node.value, ast.Name)
+            and node.value.id == ROOT_DICT
+            and isinstance(node.slice, ast.Constant)
+        ):
+            return None
+        member = self.root.members.get(node.slice.value)
+        mtype = getattr(member, "type", None)
+        return mtype.name if isinstance(mtype, FBType) else None
+
+    def plain_bit(self, name: str) -> bool:
+        member = self.root.members.get(name)
+        return member is not None and member.type is Bool and name not in self.aliased
+
+    def expand(self, template: str, where: ast.stmt, **parts: Any) -> tuple[list[ast.stmt], ast.expr]:
+        """The template's statements with its parts put in and its temporaries made unique."""
+        self.count += 1
+        suffix = f"_{self.count}"
+        body = ast.parse(template.strip()).body
+        body = _Fill(parts, suffix).statements(body)
+        for stmt in body:
+            for node in ast.walk(stmt):
+                if hasattr(node, "lineno"):
+                    ast.copy_location(node, where)
+        return body, ast.copy_location(ast.Name("_r" + suffix, ast.Load()), where)
+
+
+class _Fill(ast.NodeTransformer):
+    """Put the parts into a template: ``INSTANCE``, ``IN`` ... by their nodes, ``ARGUMENTS`` by statements;
+    the template's own names (``_i``, ``_x`` ...) get the call's suffix."""
+
+    def __init__(self, parts: dict[str, Any], suffix: str):
+        self.parts, self.suffix = parts, suffix
+
+    def statements(self, body: list[ast.stmt]) -> list[ast.stmt]:
+        out: list[ast.stmt] = []
+        for stmt in body:
+            if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Name) and stmt.value.id == "ARGUMENTS":
+                out.extend(
+                    ast.Assign([ast.Name(name + self.suffix, ast.Store())], value)
+                    for name, value in self.parts["ARGUMENTS"]
+                )  # the call's own expressions, not the template's: nothing in them is renamed
+            else:
+                out.append(self.visit(stmt))
+        return out
+
+    def visit_Name(self, node: ast.Name) -> ast.AST:
+        part = self.parts.get(node.id)
+        if part is not None and node.id != "ARGUMENTS":
+            return part
+        if node.id.startswith("_") and node.id not in (ROOT_DICT, COERCE_BOOL, CHECK_EDGE):
+            return ast.Name(node.id + self.suffix, node.ctx)
+        return node
+
+    def generic_visit(self, node: ast.AST) -> ast.AST:
+        for field, value in ast.iter_fields(node):
+            if isinstance(value, list):
+                if field in ("body", "orelse"):
+                    setattr(node, field, self.statements(value))
+                else:
+                    setattr(node, field, [self.visit(v) if isinstance(v, ast.AST) else v for v in value])
+            elif isinstance(value, ast.AST):
+                setattr(node, field, self.visit(value))
+        return node
+
+
+class _TimerReads(ast.NodeTransformer):
+    """``_t_dict["T1"].Q`` (a load) -> the stored Q unless the timer runs (then the refreshing property)."""
+
+    def __init__(self, writer: _Writer):
+        self.writer = writer
+
+    def visit_Attribute(self, node: ast.Attribute) -> ast.AST:
+        self.generic_visit(node)
+        if (
+            isinstance(node.ctx, ast.Load)
+            and node.attr in TIMER_READS
+            and self.writer.instance(node.value) == "IEC_TIMER"
+        ):
+            self.writer.count += 1
+            text = TIMER_READ.replace("_q", TIMER_READS[node.attr]).replace(".Q)", f".{node.attr})")
+            read = ast.parse(text, mode="eval").body
+            read = _Fill({"INSTANCE": node.value}, f"_{self.writer.count}").visit(read)
+            for sub in ast.walk(read):
+                if hasattr(sub, "lineno"):
+                    ast.copy_location(sub, node)
+            return read
+        return node
+
+    def _leave(self, node: ast.AST) -> ast.AST:
+        return node  # a walrus binds differently (or not at all) in a lambda's or a comprehension's scope
+
+    visit_Lambda = visit_ListComp = visit_SetComp = visit_DictComp = visit_GeneratorExp = _leave
