@@ -17,6 +17,7 @@ from __future__ import annotations
 import random
 from bisect import insort
 from collections.abc import Callable
+from pathlib import PureWindowsPath
 from typing import Any
 
 from plcsim.core.clock import NEVER
@@ -142,7 +143,7 @@ class ActionRunner:
             raise
         except (PlcError, KeyError, ValueError) as exc:
             reason = exc.args[0] if isinstance(exc, KeyError) and exc.args else str(exc)
-            where = f"{action.describe()} ({action.defined_at})"
+            where = f"{action.describe()} ({_file_name(action.defined_at)})"  # the trace names no folder
             if verb not in STATE_VERBS and not (action.rig is not None and action.rig.state):
                 raise ExerciseError(f"{action.defined_at}: {action.describe()}: {reason}") from exc
             if _on_part(action) and action.target in self.parts:
@@ -250,3 +251,14 @@ def _plant_method(plant: Any, method: str, capability: str) -> Callable[..., Any
 def _on_part(action: Action) -> bool:
     """Whether the action's target is a part of the scenario."""
     return action.verb in PART_VERBS or (action.rig is not None and action.rig.on_parts)
+
+
+def _file_name(defined_at: str) -> str:
+    """The place an action was written, without its folders (either separator), so that a trace is the same
+    bit for bit wherever the exercise file sits (another checkout, another machine).
+
+    >>> _file_name("/any/folder/ex_6_3_01.py:42"), _file_name("C:\\course\\ex_9.py:7")
+    ('ex_6_3_01.py:42', 'ex_9.py:7')
+    """
+    file, colon, line = defined_at.rpartition(":")
+    return f"{PureWindowsPath(file).name}:{line}" if colon and line.isdigit() else PureWindowsPath(defined_at).name
