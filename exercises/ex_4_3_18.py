@@ -291,7 +291,9 @@ EXERCISE = Exercise(
             "(not from the textbook) Ax sets the direction bit of the motion but never resets the other one: after "
             "the first moves both are TRUE and leaving a sensor adds +0.5 and -0.5, so the estimate between two "
             "sensors stays the number of the last one",
-            fails=("OS_X.aktualna holds the true position of X",),
+            # Z: the fork goes in and back out on every request, so Z reverses whatever pose the seed draws (X
+            # need not: on seeds 3 and 11 it does not, and OS_X.aktualna stays right)
+            fails=("OS_Z.aktualna holds the true position of Z",),
             scenarios=(POSE,),
         ),
     ],

@@ -283,7 +283,8 @@ def main(argv: list[str] | None = None) -> int:
         from plcsim.core.untrusted_text import for_terminal
 
         shown = for_terminal(str(exc), newlines=True)  # it may quote a program's text
-        Console(stderr=True).print(Text.assemble(("error:", "bold red"), f" {shown}"), highlight=False)
+        error = Text.assemble(("error:", "bold red"), f" {shown}")  # never folded: it names files and lines
+        Console(stderr=True).print(error, highlight=False, soft_wrap=True)
         return EXIT_USAGE
 
 

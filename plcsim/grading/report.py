@@ -333,6 +333,21 @@ def _count(element: ET.Element, children: Sequence[ET.Element], seconds: float) 
 _CELL = {PASSED: "pass", FAILED: "FAIL", NOT_EXERCISED: "not exercised"}
 
 
+def one_line(text: str, limit: int = 200) -> str:
+    """The first line of a message, cut to ``limit`` characters, control characters shown as escapes.
+
+    Kept for plcsim 0.1's callers (``plcsim.grade_report.one_line``; the reports themselves use
+    :mod:`plcsim.core.untrusted_text`); it goes with :mod:`plcsim.core.moved` in the next release.
+
+    >>> one_line("alice.py, line 2: syntax error\\n    t.LED = (\\n          ^")
+    'alice.py, line 2: syntax error …'
+    """
+    lines = text.strip().splitlines() or [""]
+    first = lines[0].strip()
+    cut = len(first) > limit or len(lines) > 1
+    return visible(first[:limit], newlines=False) + (" …" if cut else "")
+
+
 def cpu_state(report: Report) -> str:
     """The CPU's state over the scenarios: ``RUN``, ``STOP in <scenario>: <why>``, or ``-`` (it did not run)."""
     if not report.runs:

@@ -321,6 +321,8 @@ class _NetworkReader:
             args = dict(zip(params, call.args, strict=False)) | {k.arg: k.value for k in call.keywords if k.arg}
             if len(call.args) > len(params) or any(k.arg is None for k in call.keywords):
                 raise NotLadder("the box's arguments are not all named")
+            if not params:  # a mechanism's begin()/end(): no input the rung could drive
+                raise NotLadder(f"the box {ast.unparse(func)} has no input for the rung")
             rung_pin = params[0]
             if rung_pin not in args:
                 raise NotLadder(f"the box gets no {rung_pin}: nothing for the rung to feed")

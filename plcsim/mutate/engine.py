@@ -32,7 +32,7 @@ import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass, field
-from pathlib import Path
+from pathlib import Path, PurePath
 from typing import Any
 
 import numpy as np
@@ -295,8 +295,8 @@ def behaviour(
     heads = {row.tag for row in exercise.io} | set(exercise.dbs)
     skip = _CPU_BITS | set(ignore)
     events = json.dumps([asdict(e) for e in trace.events])
-    if filename:
-        events, error = (text.replace(json.dumps(filename)[1:-1], "<program>") for text in (events, error))
+    for name in dict.fromkeys((filename, PurePath(filename).name) if filename else ()):  # the trace names the file
+        events, error = (text.replace(json.dumps(name)[1:-1], "<program>") for text in (events, error))
     out = {"events": _hash(events.encode()), "CPU error": error}
     for name in trace.names:
         if name.split(".")[0] in heads and name not in skip:

@@ -30,7 +30,7 @@ STOPS_AT_ONCE = "def spin(t):\n    while True:\n        pass\n\n\nOB1 = [spin]\n
 NO_OB1 = "X = Int(0)\n\n\ndef network(t):\n    t.X = 1\n"
 
 # exercise -> (maximum, checks that held only because nothing moved: earned before, not exercised now)
-IDLE_PASSES = {"4.3.6": (12.0, 6), "4.3.7": (21.0, 7), "4.3.9": (25.0, 15)}
+IDLE_PASSES = {"4.3.6": (12.0, 6), "4.3.7": (21.0, 7), "4.3.9": (33.0, 23)}  # 4.3.9: with "a hand at D3_OS"
 
 
 def program(tmp_path: Path, name: str, source: str) -> Path:

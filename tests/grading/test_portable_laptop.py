@@ -81,8 +81,8 @@ def test_on_an_interpreter_without_the_unix_only_parts_every_module_imports_and_
 @pytest.mark.parametrize(
     ("args", "code", "marks"),
     [
-        (["grade", "4.3.1", "--reference"], 0, ["| + |", "PASSED  score 3 / 3"]),
-        (["grade", "4.3.1", "--solution", "wrong-latch"], 1, ["| x |", "FAILED  score"]),
+        (["grade", "4.3.1", "--reference"], 0, ["+ presses: 3/3 checks passed", "PASSED  score 3 / 3"]),
+        (["grade", "4.3.1", "--solution", "wrong-latch"], 1, ["x presses: 0/3 checks passed", "FAILED  score"]),
         (["run", "4.3.1", "--reference"], 0, ["  + LED equals the button in every scan"]),
     ],
     ids=["grade-passed", "grade-failed", "run"],
