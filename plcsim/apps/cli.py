@@ -576,7 +576,7 @@ def _grade(args: argparse.Namespace) -> int:
     from plcsim.exercise.catalog import get
     from plcsim.grading.batch import grade_batch
     from plcsim.grading.grader import grade, grade_sandboxed
-    from plcsim.grading.report import write_gradebook, write_gradescope, write_junit
+    from plcsim.grading.report import file_stems, write_gradebook, write_gradescope, write_junit
     from plcsim.grading.sandbox.limits import Limits
     from plcsim.grading.terminal import print_batch_line, print_report
 
@@ -613,21 +613,22 @@ def _grade(args: argparse.Namespace) -> int:
             )
         for r in reports:
             print_batch_line(r, console)
+        stems = file_stems([r.submission for r in reports])  # alice.py and alice.il: alice.py.json, alice.il.json
         if args.gradebook:
             Path(args.gradebook).parent.mkdir(parents=True, exist_ok=True)
             console.print(f"gradebook: {write_gradebook(reports, args.gradebook)}", markup=False)
         if args.json:
             out = Path(args.json)
             out.mkdir(parents=True, exist_ok=True)
-            for r in reports:
-                r.to_json(out / f"{r.file_stem}.json")
+            for r, stem in zip(reports, stems, strict=True):
+                r.to_json(out / f"{stem}.json")
         if args.junit:
             Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
             write_junit(reports, args.junit, name=f"plcsim {exercise.number}")
             console.print(f"JUnit report: {args.junit}", markup=False)
         if args.gradescope:
-            for r in reports:
-                write_gradescope(r, Path(args.gradescope) / r.file_stem / "results.json", visibility=visibility)
+            for r, stem in zip(reports, stems, strict=True):
+                write_gradescope(r, Path(args.gradescope) / stem / "results.json", visibility=visibility)
             console.print(f"Gradescope results: {args.gradescope}/<student>/results.json", markup=False)
         return _exit_code(reports)
     if args.no_sandbox:

@@ -24,7 +24,7 @@ from plcsim.core.errors import ConfigurationError
 from plcsim.exercise.model import Exercise
 from plcsim.grading.budget import fitted_limits
 from plcsim.grading.grader import grade_sandboxed
-from plcsim.grading.report import Report, file_stem
+from plcsim.grading.report import Report, file_stems
 from plcsim.grading.run import chosen_scenarios
 from plcsim.grading.sandbox.limits import Limits
 from plcsim.grading.scoring import failure_report
@@ -33,10 +33,10 @@ EXPORT_DIRS = ("rrd_dir", "plots_dir", "traces_dir")
 """The options of :func:`grade` naming folders the grader writes files into."""
 
 
-def per_student(folder: str | Path | None, submission: Path) -> Path | None:
-    """A student's own folder below ``folder`` (named like the submission's file, without ``.py``; never
-    outside ``folder``: see :func:`~plcsim.grading.report.file_stem`)."""
-    return None if folder is None else Path(folder) / file_stem(submission)
+def per_student(folder: str | Path | None, stem: str) -> Path | None:
+    """A student's own folder below ``folder``, named by the submission's distinct stem in the batch (its
+    file name without ``.py``; never outside ``folder``: see :func:`~plcsim.grading.report.file_stems`)."""
+    return None if folder is None else Path(folder) / stem
 
 
 @dataclass(frozen=True)
@@ -124,6 +124,7 @@ def grade_batch(
     from plcsim.grading.sandbox.probes import Probes
 
     paths = [Path(p) for p in paths]
+    stems = file_stems(paths)
     reports: list[Report | None] = [None] * len(paths)
     try:
         probes = Probes.of(exercise, chosen_scenarios(exercise, options.get("scenarios")), seed)
@@ -136,8 +137,8 @@ def grade_batch(
     with opened as pool:
         target = exercise if isinstance(pool, ThreadPoolExecutor) else ExerciseRef.of(exercise)
         futures: dict[Future[Report], int] = {}
-        for k, path in enumerate(paths):
-            mine = {key: per_student(value, path) if key in EXPORT_DIRS else value for key, value in options.items()}
+        for k, (path, stem) in enumerate(zip(paths, stems, strict=True)):
+            mine = {key: per_student(value, stem) if key in EXPORT_DIRS else value for key, value in options.items()}
             task = GradingTask(target, str(path), seed, limits, probes, mine, version.__version__)
             futures[pool.submit(grade_task, task)] = k
         for done, future in enumerate(as_completed(futures), start=1):

@@ -101,7 +101,8 @@ class Report:
 
     @property
     def file_stem(self) -> str:
-        """:attr:`student` as the name of a file or folder the grader writes (see :func:`file_stem`)."""
+        """:attr:`student` as the name of a file or folder the grader writes (see :func:`file_stem`; a
+        batch's writers use :func:`file_stems`, distinct within the batch)."""
         return file_stem(self.submission)
 
     def to_dict(self) -> dict[str, Any]:
@@ -160,8 +161,42 @@ def file_stem(submission: str | Path) -> str:
     >>> file_stem("subs/alice.py"), file_stem("...py"), file_stem("a\x1b[2J.py")
     ('alice', '_..', 'a\\x1b[2J')
     """
-    stem = visible(Path(submission).stem or "submission", newlines=False)
-    return "_" + stem if stem.startswith(".") else stem
+    return _file_name(Path(submission).stem or "submission")
+
+
+def _file_name(text: str) -> str:
+    name = visible(text, newlines=False)
+    return "_" + name if name.startswith(".") else name
+
+
+def file_stems(submissions: Sequence[str | Path]) -> list[str]:
+    """One distinct :func:`file_stem` per submission of a batch, so that no student's files overwrite
+    another's: the stem alone where it is unique, the whole file name where two share a stem (``alice.py``
+    and ``alice.il`` write ``alice.py.json`` and ``alice.il.json``), compared without case as Windows and
+    macOS compare file names; a name still shared gets ``-2``, ``-3`` ... in the batch's order.
+
+    >>> file_stems(["a/alice.py", "b/alice.il", "bob.py", "x/Bob.py", "y/bob.py"])
+    ['alice.py', 'alice.il', 'bob.py', 'Bob.py-2', 'bob.py-3']
+    """
+    stems = [file_stem(s) for s in submissions]
+    shared = _shared(stems)
+    names = [
+        _file_name(Path(s).name) if stem.casefold() in shared else stem
+        for s, stem in zip(submissions, stems, strict=True)
+    ]
+    seen: dict[str, int] = {}
+    distinct = []
+    for name in names:
+        count = seen[name.casefold()] = seen.get(name.casefold(), 0) + 1
+        distinct.append(name if count == 1 else f"{name}-{count}")
+    return distinct
+
+
+def _shared(stems: Sequence[str]) -> set[str]:
+    counts: dict[str, int] = {}
+    for stem in stems:
+        counts[stem.casefold()] = counts.get(stem.casefold(), 0) + 1
+    return {stem for stem, count in counts.items() if count > 1}
 
 
 def _json_texts(data: Any) -> Any:

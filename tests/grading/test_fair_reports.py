@@ -141,6 +141,25 @@ def test_the_command_writes_gradescope_results(ex1, tmp_path, capsys):
     capsys.readouterr()
 
 
+def test_two_submissions_sharing_a_stem_never_overwrite_each_others_files(ex1, tmp_path, capsys):
+    """alice.py and alice.il (or Alice.py beside alice.py on a case-blind disk) each keep their own report."""
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    shutil.copy(ex1.reference.path, subs / "alice.py")
+    program(subs, "alice.il", "this is not instruction list\n")
+    folder, json_dir, plots = tmp_path / "gs", tmp_path / "json", tmp_path / "plots"
+    args = ["grade", "4.3.1", str(subs), "--gradescope", str(folder), "--json", str(json_dir), "--plots", str(plots)]
+    assert main(args) == EXIT_FAILED
+    capsys.readouterr()
+    scores = {d.name: json.loads((d / "results.json").read_text(encoding="utf-8"))["score"] for d in folder.iterdir()}
+    assert scores == {"alice.py": 3.0, "alice.il": 0.0}
+    reports = {p.name: json.loads(p.read_text(encoding="utf-8"))["submission"] for p in json_dir.iterdir()}
+    assert {name: Path(sub).name for name, sub in reports.items()} == {
+        "alice.py.json": "alice.py",
+        "alice.il.json": "alice.il",
+    }
+
+
 def test_version_and_python_m(capsys):
     with pytest.raises(SystemExit) as stop:
         main(["--version"])
