@@ -179,6 +179,12 @@ def _parser() -> argparse.ArgumentParser:
     grade.add_argument("--gradebook", metavar="OUT.csv", help="write one CSV row per submission (batch)")
     grade.add_argument("--cpu-seconds", type=int, default=60, help="CPU-time limit per submission, > 0 (default 60)")
     grade.add_argument("--memory-mb", type=int, default=2048, help="memory limit per submission, >= 64 (default 2048)")
+    grade.add_argument(
+        "--no-budget",
+        action="store_true",
+        help="a batch: no CPU budget fitted to the reference (10x its CPU time, 'too slow' over it), "
+        "only --cpu-seconds (a single file has only --cpu-seconds)",
+    )
     grade.add_argument("--no-sandbox", action="store_true", help="grade in this process (trusted code only)")
     told = grade.add_mutually_exclusive_group()
     told.add_argument("-v", "--verbose", action="store_true", help="every check of every scenario, and why it passed")
@@ -609,6 +615,7 @@ def _grade(args: argparse.Namespace) -> int:
                 seed=args.seed,
                 limits=limits,
                 progress=lambda done, total, r: progress.update(task, completed=done),
+                budget=not args.no_budget,
                 **options,
             )
         for r in reports:

@@ -137,6 +137,23 @@ def test_a_submission_over_the_exercises_budget_is_too_slow_in_every_report_form
     assert [t["name"] for t in gradescope_results(slow)["tests"]] == ["too slow"]
 
 
+def test_an_instructor_can_grade_a_batch_without_the_budget(ex1, tmp_path, monkeypatch, capsys):
+    """``--no-budget``: the same slow file is bounded by ``--cpu-seconds`` alone and gets its grade."""
+    import json
+
+    from plcsim.apps.cli import main
+    from plcsim.grading.sandbox import limits
+
+    monkeypatch.setattr(limits, "FLOOR_S", 3)
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (subs / "slow.py").write_text(TOGGLES_EVERY_SCAN, encoding="utf-8")
+    main(["grade", "4.3.1", str(subs), "--no-budget", "--json", str(tmp_path / "json")])
+    capsys.readouterr()
+    slow = json.loads((tmp_path / "json" / "slow.json").read_text(encoding="utf-8"))
+    assert slow["error_kind"] != "too slow" and slow["max_score"] == 3.0, slow["error"]
+
+
 def test_an_exercise_sets_its_own_budget(ex1, tmp_path):
     from dataclasses import replace
 
