@@ -183,7 +183,7 @@ def _parser() -> argparse.ArgumentParser:
         "--no-budget",
         action="store_true",
         help="a batch: no CPU budget fitted to the reference (10x its CPU time, 'too slow' over it), "
-        "only --cpu-seconds (a single file has only --cpu-seconds)",
+        "only --cpu-seconds (a single file is never given a fitted budget)",
     )
     grade.add_argument("--no-sandbox", action="store_true", help="grade in this process (trusted code only)")
     told = grade.add_mutually_exclusive_group()
