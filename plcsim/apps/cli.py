@@ -403,7 +403,9 @@ def _run(args: argparse.Namespace) -> int:
             raise ConfigurationError(
                 f"{exc}; the rigs are {', '.join(rigs)}{did_you_mean(args.target.upper(), rigs)}"
             ) from None
-        if args.program:
+        if first := _first_program(args):
+            program = first
+        elif args.program:
             program = read_program(args.program)
         elif args.reference or args.solution:
             program = _shipped(exercise, args.solution).program()
@@ -513,7 +515,9 @@ def _rig_simulation(args: argparse.Namespace, scenario: Any = None) -> Any:
     from plcsim.frontends import read_program
     from plcsim.frontends.python.program import Program
 
-    program = read_program(args.program) if args.program else Program(NO_PROGRAM, "(no program)")
+    program = _first_program(args) or (
+        read_program(args.program) if args.program else Program(NO_PROGRAM, "(no program)")
+    )
     return rig_simulation(rig(args.target)(), program, scenario, seed=args.seed, cycle=args.cycle, pacing=_pacing(args))
 
 
@@ -528,7 +532,7 @@ def _saved_scenario(args: argparse.Namespace) -> Any:
 
     base = None if is_rig(args.target) else _exercise_scenario(args.target)
     target = Target.find(args.target)
-    scenario, seed = load_scenario_file(args.scenario, base=base, rig_verbs=target.verbs())
+    scenario, seed, args.first_program = load_scenario_file(args.scenario, base=base, rig_verbs=target.verbs())
     limit = target.replay_limit_ns()
     if args.seconds is None and scenario.duration_ns > limit:  # a file must not make the run go on without bound
         raise PlcError(
@@ -538,6 +542,23 @@ def _saved_scenario(args: argparse.Namespace) -> Any:
         )
     args.seed = args.seed if args.seed is not None else (seed if seed is not None else 1)
     return scenario
+
+
+def _first_program(args: argparse.Namespace) -> Any:
+    """The program a saved live session started with, where it downloaded another (the file may have been
+    edited since; the replay starts from the text as it was, and says so if the file now differs)."""
+    text = getattr(args, "first_program", None)
+    if text is None:
+        return None
+    from plcsim.frontends.python.program import Program
+
+    name = args.program or "<the session's first program>"
+    if args.program and Path(args.program).is_file() and Path(args.program).read_text(encoding="utf-8") != text:
+        print(
+            f"note: {args.scenario} holds the program the session started with; {args.program} has changed "
+            "since, so the replay starts from the text as it was (the downloads follow, as recorded)"
+        )
+    return Program(text, name)
 
 
 def _exercise_scenario(target: str) -> Any:

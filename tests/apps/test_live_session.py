@@ -29,7 +29,7 @@ def replayed_digest(session: LiveSession, path) -> str:
     """Save the session to ``path``, read the file back as the CLI does, run it afresh: the trace digest."""
     session.save(path)
     target = Target.find(session.target.name)
-    scenario, seed = load_scenario_file(path, base=target.base, rig_verbs=target.verbs())
+    scenario, seed, _ = load_scenario_file(path, base=target.base, rig_verbs=target.verbs())
     sim = target.simulation(session.program, scenario, seed=seed)
     sim.run()
     assert sim.now == session.now

@@ -102,7 +102,7 @@ def test_odd_part_names_and_texts_replay_exactly(tmp_path, suffix):
     path = tmp_path / f"odd{suffix}"
     session.save(path)
     target = Target.find("CONV1")
-    scenario, seed = load_scenario_file(path, base=target.base, rig_verbs=target.verbs())
+    scenario, seed, _ = load_scenario_file(path, base=target.base, rig_verbs=target.verbs())
     assert [a.target for a in scenario.actions if a.verb != "shift"] == [odd, odd]
     sim = target.simulation(session.program, scenario, seed=seed)
     sim.run()
@@ -117,7 +117,7 @@ def test_a_toml_scenario_cannot_name_an_undeclared_property_either(tmp_path):
         encoding="utf-8",
     )
     target = Target.find("4.3.17")
-    scenario, seed = load_scenario_file(path, base=target.base, rig_verbs=target.verbs())
+    scenario, seed, _ = load_scenario_file(path, base=target.base, rig_verbs=target.verbs())
     with pytest.raises(ScenarioError, match=r"no part property 'size'; valid: color, colour, colour_raw"):
         target.simulation(SORT_REFERENCE, scenario, seed=seed)
 

@@ -54,3 +54,32 @@ def test_a_program_that_does_not_compile_is_refused_with_its_line_and_the_cpu_ru
         session.download()
     session.advance(10_000_000)
     assert session.sim.cpu.mode == "RUN" and session.recorded == []
+
+
+@pytest.mark.parametrize("suffix", [".toml", ".py"])
+def test_a_saved_session_replays_from_its_first_program_after_the_file_was_edited(tmp_path, capsys, suffix):
+    """The student edits, downloads, saves the session, then edits the file again: the replay starts from the
+    program as it was when the session began (kept in the scenario file) and says that the file changed."""
+    from plcsim.apps.cli import main
+
+    program = tmp_path / "lamp.py"
+    program.write_text(LAMP, encoding="utf-8")
+    session = LiveSession("PANEL", program, seed=1)
+    session.advance(20_000_000)
+    session.download(INVERTED)
+    session.do("press", "TL")
+    session.advance(30_000_000)
+    saved = session.save(tmp_path / f"session{suffix}")
+    program.write_text("def OB1(t):\n    t.LED = True\n", encoding="utf-8")  # the student goes on editing
+    assert main(["run", "PANEL", "--program", str(program), "--scenario", str(saved)]) == 0
+    out = capsys.readouterr().out
+    assert f"trace digest {session.sim.trace.digest()[:16]}" in out
+    assert "has changed since, so the replay starts from the text as it was" in " ".join(out.split())
+
+
+def test_a_session_without_a_download_keeps_no_copy_of_the_program(tmp_path):
+    program = tmp_path / "lamp.py"
+    program.write_text(LAMP, encoding="utf-8")
+    session = LiveSession("PANEL", program, seed=1)
+    session.advance(20_000_000)
+    assert session.recording().first_program is None and "first_program" not in session.recording().to_toml()

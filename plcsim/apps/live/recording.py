@@ -35,7 +35,7 @@ import tomllib
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import tomli_w
 
@@ -148,6 +148,8 @@ class Recording:
         name: the scenario's name (the base scenario's, so its checks and CPU options apply).
         base: the exercise scenario whose actions come first (None: none).
         program: the program's file, for the reader.
+        first_program: the text of the program the session started with, kept when the session downloaded
+            another: the replay starts from it, whatever the file holds by then (None: the file as it is).
     """
 
     target: str
@@ -157,6 +159,7 @@ class Recording:
     name: str = "live"
     base: str | None = None
     program: str | None = None
+    first_program: str | None = None
 
     def scenario(self, base: Scenario | None = None) -> Scenario:
         """The scenario to replay: ``base``'s actions, then the recorded ones; it lasts :attr:`ended_ns`.
@@ -190,6 +193,8 @@ class Recording:
             session["base"] = self.base
         if self.program is not None:
             session["program"] = self.program
+        if self.first_program is not None:
+            session["first_program"] = self.first_program
         tables = []
         for a in self.actions:
             table: dict[str, Any] = {"t": time_literal(a.t.lo_ns), "verb": a.verb}  # type: ignore[union-attr]
@@ -226,6 +231,7 @@ class Recording:
                 name=session.get("scenario", "live"),
                 base=session.get("base"),
                 program=session.get("program"),
+                first_program=_text_or_none(session.get("first_program"), "first_program"),
             )
         except (tomllib.TOMLDecodeError, KeyError, TypeError, ValueError, PlcError) as exc:
             what = f"missing key {exc}" if isinstance(exc, KeyError) else str(exc)
@@ -244,6 +250,8 @@ class Recording:
             f"from plcsim.scenario import {', '.join(['Scenario', *used])}",
         ]
         body = ["", f"SEED = {self.seed}"]
+        if self.first_program is not None:
+            body.append(f"FIRST_PROGRAM = {_py(self.first_program)}  # the program the session started with")
         if any(a.rig is not None for a in self.actions):  # the rig's and the controller's own verbs, by name
             head.append("from plcsim.apps.live.build import Target")
             body.append(f"VERBS = Target.find({_py(self.target)}).verbs()")
@@ -273,12 +281,22 @@ class Recording:
         return path
 
 
+class SavedScenario(NamedTuple):
+    """A scenario file read back: the scenario, its seed, and the program text a live session started with."""
+
+    scenario: Scenario
+    seed: int | None
+    first_program: str | None = None
+    """Kept when the session downloaded another program: a replay starts from this text (None: the file)."""
+
+
 def load_scenario_file(
     path: str | Path,
     base: Callable[[str], Scenario] | None = None,
     rig_verbs: Mapping[str, RigVerb] | None = None,
-) -> tuple[Scenario, int | None]:
-    """A scenario from a file, and the seed it was recorded with (None if it names none).
+) -> SavedScenario:
+    """A scenario from a file, the seed it was recorded with (None if it names none), and the program text the
+    session started with where it downloaded another (None otherwise).
 
     ``.toml``: a live recording (:meth:`Recording.to_toml`); ``base(name)`` gives its base scenario, ``rig_verbs``
     the verbs its rig and controllers bring.
@@ -292,15 +310,22 @@ def load_scenario_file(
         rec = Recording.from_toml(path.read_text(encoding="utf-8"), str(path), rig_verbs)
         if rec.base is not None and base is None:
             raise PlcError(f"{path}: the recording builds on scenario {rec.base!r} of {rec.target}; replay it there")
-        return rec.scenario(base(rec.base) if rec.base is not None and base is not None else None), rec.seed
+        scenario = rec.scenario(base(rec.base) if rec.base is not None and base is not None else None)
+        return SavedScenario(scenario, rec.seed, rec.first_program)
     if path.suffix == ".py":
         names = runpy.run_path(str(path))
         made = names.get("SCENARIO")
         if not isinstance(made, Scenario):
             raise PlcError(f"{path}: defines no SCENARIO = Scenario(...)")
-        seed = names.get("SEED")
-        return made, seed if isinstance(seed, int) else None
+        seed, first = names.get("SEED"), names.get("FIRST_PROGRAM")
+        return SavedScenario(made, seed if isinstance(seed, int) else None, first if isinstance(first, str) else None)
     raise PlcError(f"{path}: a scenario file is .toml (a live recording) or .py (SCENARIO = Scenario(...))")
+
+
+def _text_or_none(value: Any, key: str) -> str | None:
+    if value is not None and not isinstance(value, str):
+        raise ValueError(f"{key} must be a text (the program as it was), not {type(value).__name__}")
+    return value
 
 
 def _call(action: Action) -> str:

@@ -209,6 +209,9 @@ class LiveSession:
             name=self.name,
             base=self.base.name if self.base is not None else None,
             program=self.program_file,
+            first_program=self.first_program.source
+            if any(a.verb == "download" for a in done) and isinstance(self.first_program, Program)
+            else None,
         )
 
     def save(self, path: str | Path) -> Path:
