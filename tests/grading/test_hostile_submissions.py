@@ -95,6 +95,10 @@ def test_a_grading_child_never_imports_from_the_submissions_folder(ex1, tmp_path
 
 
 TOGGLES_EVERY_SCAN = "def OB1(t):\n    n = 0\n    while n < 10000:\n        n += 1\n        t.LED = not t.LED\n"
+"""About 1 ms a scan: the whole of 4.3.1 costs a few seconds of CPU, within the default limit."""
+TOGGLES_FAR_TOO_OFTEN = TOGGLES_EVERY_SCAN.replace("10000", "300000")
+"""30 times the work a scan (under the cycle watchdog's million iterations): over a 3 s budget on any
+machine, however fast (10 000 toggles ran the whole exercise under 3 s on one CI machine)."""
 
 
 def test_a_submission_over_the_exercises_budget_is_too_slow_in_every_report_format(ex1, tmp_path, monkeypatch):
@@ -118,7 +122,7 @@ def test_a_submission_over_the_exercises_budget_is_too_slow_in_every_report_form
     subs = tmp_path / "subs"
     subs.mkdir()
     (subs / "ok.py").write_bytes(ex1.reference.path.read_bytes())
-    (subs / "slow.py").write_text(TOGGLES_EVERY_SCAN, encoding="utf-8")
+    (subs / "slow.py").write_text(TOGGLES_FAR_TOO_OFTEN, encoding="utf-8")
     ok, slow = grade_batch(ex1, [subs / "ok.py", subs / "slow.py"])
     assert (ok.error_kind, ok.score) == (None, 3.0)
     assert slow.error_kind == "too slow"
@@ -188,7 +192,7 @@ def test_too_slow_is_told_on_both_sandbox_paths(ex1, tmp_path, monkeypatch, mode
 
     monkeypatch.setenv("PLCSIM_SANDBOX", mode)
     path = tmp_path / "slow.py"
-    path.write_text(TOGGLES_EVERY_SCAN, encoding="utf-8")
+    path.write_text(TOGGLES_FAR_TOO_OFTEN, encoding="utf-8")
     slow = grade_sandboxed(ex1, path, limits=Limits(budget=Budget(1, 0.05)))
     assert (slow.error_kind, slow.error) == ("too slow", Budget(1, 0.05).too_slow())
     capped = grade_sandboxed(ex1, path, limits=Limits(cpu_seconds=1, budget=Budget(10, 0.05)))
