@@ -254,7 +254,7 @@ def _on_part(action: Action) -> bool:
 
 
 def _file_name(defined_at: str) -> str:
-    """The place an action was written, without its folders (either separator), so that a trace is the same
+    r"""The place an action was written, without its folders (either separator), so that a trace is the same
     bit for bit wherever the exercise file sits (another checkout, another machine).
 
     >>> _file_name("/any/folder/ex_6_3_01.py:42"), _file_name("C:\\course\\ex_9.py:7")
