@@ -468,7 +468,7 @@ def _make_cgroup() -> str | None:
         except OSError:
             continue
         try:
-            with open(os.path.join(path, "pids.max"), "w") as f:
+            with open(os.path.join(path, "pids.max"), "w", encoding="ascii") as f:
                 f.write("1")
             return path
         except OSError:
