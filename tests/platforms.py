@@ -56,3 +56,7 @@ def utf8_env(**extra: str) -> dict[str, str]:
 UTF8 = {"encoding": "utf-8", "errors": "strict"}
 """``subprocess.run(..., **UTF8)``: a child's output decoded as UTF-8 (``text=True`` alone decodes it in the
 locale's code page, cp1252 on Windows)."""
+
+WINDOWS_ROOT = {"SYSTEMROOT": os.environ["SYSTEMROOT"]} if "SYSTEMROOT" in os.environ else {}
+"""What a child's minimal environment (``env={...}`` with nothing else) must keep on Windows: without
+``SYSTEMROOT`` a child Python there cannot reach the system's random numbers or sockets."""

@@ -7,6 +7,7 @@ from __future__ import annotations
 import re
 
 import pytest
+from platforms import UTF8, utf8_env
 
 from exercises import get
 from plcsim.grading.grader import grade, grade_sandboxed
@@ -54,7 +55,6 @@ def shadowing_numpy(folder, marker) -> str:
 def test_python_m_plcsim_in_the_submissions_folder_imports_no_submission(ex1, tmp_path):
     """``cd submissions && python -m plcsim grade ...``: ``-m`` puts the current folder first on sys.path; the
     grader and its children import nothing from it (the submission saved as numpy.py is graded, not run)."""
-    import os
     import subprocess
     import sys
     from pathlib import Path
@@ -64,13 +64,13 @@ def test_python_m_plcsim_in_the_submissions_folder_imports_no_submission(ex1, tm
     (subs / "numpy.py").write_text(shadowing_numpy(subs, marker), encoding="utf-8")
     (subs / "ok.py").write_bytes(ex1.reference.path.read_bytes())
     root = Path(__file__).resolve().parents[2]  # this checkout's plcsim, exercises and plants
-    env = {**os.environ, "PYTHONPATH": str(root)}
+    env = utf8_env(PYTHONPATH=str(root))  # the marks ✓ and ✗, also where the console's code page lacks them
     done = subprocess.run(
         [sys.executable, "-m", "plcsim", "grade", "4.3.1", ".", "--jobs", "2"],
         cwd=subs,
         env=env,
         capture_output=True,
-        text=True,
+        **UTF8,
         timeout=300,
     )
     assert not marker.exists(), done.stderr[-2000:]
