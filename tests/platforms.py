@@ -34,10 +34,7 @@ def posix_only(reason: str) -> pytest.MarkDecorator:
 
 NAMESPACES = linux_only("the grading child's PID and network namespaces and Landlock")
 PROC = linux_only("reads /proc")
-CGROUPS = linux_only("the pids cgroup of a root grader")
-FORK = posix_only("os.fork")
-SIGNALS = posix_only("kills with a POSIX signal (SIGKILL, SIGXCPU)")
-RLIMITS = posix_only("the child's resource limits (RLIMIT_CPU, RLIMIT_AS)")
+SIGNALS = posix_only("kills with a POSIX signal (SIGKILL)")
 
 
 def console_script(name: str) -> Path:
