@@ -186,7 +186,7 @@ def _workload(settings: Settings, workload: str, program: str, rig: str) -> Iter
         "scans": scans,
         "repeats": settings.repeats,
         "stat": "best",
-        "load_1min": round(os.getloadavg()[0], 2),
+        "load_1min": round(os.getloadavg()[0], 2) if hasattr(os, "getloadavg") else None,  # not on Windows
     }
     yield figure(f"cosim_realtime_factor_{workload}", round(seconds / best_co, 1), "x", budget=">= 100", **context)
     yield figure(f"cosim_us_per_step_{workload}", round(best_co / steps * 1e6, 2), "us/step", **context)

@@ -22,7 +22,7 @@ from plcsim.grading.sandbox.child import main
 
 
 def work(request: dict[str, Any]) -> bytes:
-    order = json.loads(Path(request["path"]).read_text())
+    order = json.loads(Path(request["path"]).read_text(encoding="utf-8"))
     do = order["do"]
     if do == "huge-result":  # the result file grows without end
         with open(request["result_file"], "wb") as f:
@@ -34,15 +34,15 @@ def work(request: dict[str, Any]) -> bytes:
         return encode_runs(_runs(request))
     if do == "spawn-then-hog":  # starts a process of its own, then loops
         sleeper = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(120)"])
-        Path(order["pid_file"]).write_text(str(sleeper.pid))
+        Path(order["pid_file"]).write_text(str(sleeper.pid), encoding="utf-8")
         while True:
             pass
     if do == "spawn-a-hog-then-sleep":  # the CPU time is spent by the process it starts, not by itself
         hog = subprocess.Popen([sys.executable, "-c", "while True: pass"])
-        Path(order["pid_file"]).write_text(str(hog.pid))
+        Path(order["pid_file"]).write_text(str(hog.pid), encoding="utf-8")
         time.sleep(120)
     if do == "tell-pid-then-hog":
-        Path(order["pid_file"]).write_text(str(os.getpid()))
+        Path(order["pid_file"]).write_text(str(os.getpid()), encoding="utf-8")
         while True:
             pass
     return hostile_work(request)

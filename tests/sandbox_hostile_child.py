@@ -45,7 +45,7 @@ def _retitle(message: bytes, change: Any) -> bytes:
 
 
 def work(request: dict[str, Any]) -> bytes:
-    order = json.loads(Path(request["path"]).read_text())
+    order = json.loads(Path(request["path"]).read_text(encoding="utf-8"))
     do = order["do"]
     if do == "reference":  # an honest trace of a correct program: the control case
         return encode_runs(_runs(request))
@@ -70,7 +70,8 @@ def work(request: dict[str, Any]) -> bytes:
             time.sleep(60)
             os._exit(0)
         os.close(ready_w)
-        Path(order["pid_file"]).write_text(os.read(ready_r, 64).decode())  # as the grader's machine numbers it
+        host_pid = os.read(ready_r, 64).decode()  # as the grader's machine numbers it
+        Path(order["pid_file"]).write_text(host_pid, encoding="utf-8")
         os._exit(3)
     if do == "escape":  # after the lock-down: read secrets, write outside scratch, fork, connect
         runs = _runs(request)
@@ -84,11 +85,11 @@ def work(request: dict[str, Any]) -> bytes:
                 tried.append(f"read {target}: {type(exc).__name__}")
         for target in order["write"]:
             try:
-                Path(target).write_text("escaped")
+                Path(target).write_text("escaped", encoding="utf-8")
                 tried.append(f"wrote {target}")
             except OSError as exc:
                 tried.append(f"write {target}: {type(exc).__name__}")
-        Path("inside-scratch.txt").write_text("fine")
+        Path("inside-scratch.txt").write_text("fine", encoding="utf-8")
         try:
             pid = os.fork()
             if pid == 0:
@@ -132,7 +133,7 @@ def work(request: dict[str, Any]) -> bytes:
 
 def _host_pid() -> int:
     """This process's pid outside every PID namespace it is in (the first of ``NSpid``)."""
-    for line in Path("/proc/self/status").read_text().splitlines():
+    for line in Path("/proc/self/status").read_text(encoding="utf-8").splitlines():
         if line.startswith("NSpid:"):
             return int(line.split()[1])
     return os.getpid()

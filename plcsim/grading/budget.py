@@ -28,14 +28,14 @@ def fitted_limits(exercise: Exercise, limits: Limits, *, seed: int, scenarios: S
     measured CPU time; ``limits`` unchanged if the reference does not run cleanly here."""
     if exercise.cpu_budget_s is not None:
         return replace(limits, budget=Budget.of_exercise(exercise.cpu_budget_s))
-    return (
-        replace(limits, budget=Budget.fitted(cost)) if (cost := reference_cpu_s(exercise, seed, scenarios)) else limits
-    )
+    cost = reference_cpu_s(exercise, seed, scenarios)
+    return limits if cost is None else replace(limits, budget=Budget.fitted(cost))
 
 
 def reference_cpu_s(exercise: Exercise, seed: int, scenarios: Sequence[str] | None = None) -> float | None:
     """The CPU seconds this thread spends running the exercise's reference (None if it has none or it
-    does not run to the end of its scenarios)."""
+    does not run to the end of its scenarios). 0.0 is a measurement: Windows counts thread time in ticks of
+    about 16 ms, and a reference shorter than one measures 0.0 s there."""
     try:
         program = read_program(exercise.reference.path)
         started = time.thread_time()

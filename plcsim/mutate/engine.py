@@ -28,6 +28,7 @@ import ast
 import hashlib
 import json
 import multiprocessing
+import sys
 import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor
@@ -322,8 +323,10 @@ def _grade_in_worker(mutant: Mutant) -> Outcome:
 
 
 def _map(job: _Job, mutants: list[Mutant], jobs: int) -> Iterator[Outcome]:
+    """The mutants' outcomes, in order: ``jobs`` forked workers on Linux, one after another elsewhere (Windows
+    cannot fork; macOS can, but a fork of a process with threads may crash there, so Python spawns by default)."""
     global _CURRENT
-    if jobs <= 1 or len(mutants) < 2 or "fork" not in multiprocessing.get_all_start_methods():
+    if jobs <= 1 or len(mutants) < 2 or not sys.platform.startswith("linux"):
         yield from map(job.outcome, mutants)
         return
     _CURRENT = job

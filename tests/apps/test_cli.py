@@ -7,16 +7,14 @@ from __future__ import annotations
 
 import csv
 import json
-import os
 import shutil
 import subprocess
-import sys
 import time
-from pathlib import Path
 from xml.etree import ElementTree as ET
 
 import numpy as np
 import pytest
+from platforms import UTF8, console_script, utf8_env
 
 from exercises import get
 from plcsim.apps.cli import EXIT_FAILED, EXIT_USAGE, main
@@ -265,14 +263,14 @@ def test_grade_an_empty_folder(tmp_path, capsys):
 
 
 def test_the_installed_entry_point(tmp_path):
-    exe = Path(sys.executable).parent / "plcsim"
+    exe = console_script("plcsim")
     assert exe.is_file(), "plcsim is not installed in this environment (pip install -e .)"
     js = tmp_path / "report.json"
-    env = {**os.environ, "COLUMNS": "200"}
+    env = utf8_env(COLUMNS="200")
     done = subprocess.run(
         [str(exe), "grade", "4.3.1", "--reference", "--json", str(js)],
         capture_output=True,
-        text=True,
+        **UTF8,
         env=env,
         timeout=120,
         cwd=tmp_path,  # not the project folder: the installed package must find its exercises
@@ -280,7 +278,7 @@ def test_the_installed_entry_point(tmp_path):
     assert done.returncode == 0, done.stderr
     assert "PASSED  score 3 / 3" in done.stdout
     assert json.loads(js.read_text(encoding="utf-8"))["passed"] is True
-    bad = subprocess.run([str(exe), "show", "4.3.99"], capture_output=True, text=True, env=env, timeout=60)
+    bad = subprocess.run([str(exe), "show", "4.3.99"], capture_output=True, **UTF8, env=env, timeout=60)
     assert bad.returncode == EXIT_USAGE
     assert "error: no exercise '4.3.99'" in bad.stderr
 

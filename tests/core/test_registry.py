@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import ast
 import importlib.metadata
-import os
 import re
 import subprocess
 import sys
@@ -18,6 +17,7 @@ import tomllib
 from pathlib import Path
 
 import pytest
+from platforms import UTF8, console_script, utf8_env
 
 import plants
 import plcsim.exercise.catalog
@@ -54,8 +54,8 @@ def _dist(tmp_path: Path, name: str, entry_points: str) -> Path:
     site = tmp_path / "site"
     info = site / f"{name}-1.0.dist-info"
     info.mkdir(parents=True)
-    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {name}\nVersion: 1.0\n")
-    (info / "entry_points.txt").write_text(textwrap.dedent(entry_points))
+    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {name}\nVersion: 1.0\n", encoding="utf-8")
+    (info / "entry_points.txt").write_text(textwrap.dedent(entry_points), encoding="utf-8")
     return site
 
 
@@ -65,9 +65,9 @@ def instructor_package(tmp_path, monkeypatch):
     site = _dist(tmp_path, "my_course", "[plcsim.exercises]\nmy_course = my_course\n")
     package = site / "my_course"
     package.mkdir()
-    (package / "__init__.py").write_text("")
-    (package / "led.py").write_text(EXERCISE)
-    (package / "_helpers.py").write_text("raise RuntimeError('a helper module is not an exercise')\n")
+    (package / "__init__.py").write_text("", encoding="utf-8")
+    (package / "led.py").write_text(EXERCISE, encoding="utf-8")
+    (package / "_helpers.py").write_text("raise RuntimeError('a helper module is not an exercise')\n", encoding="utf-8")
     monkeypatch.syspath_prepend(str(site))
     plcsim.exercise.catalog._catalog.cache_clear()
     yield package
@@ -140,9 +140,9 @@ def test_an_instructors_package_is_listed_and_graded(instructor_package, capsys,
     exercise = plcsim.exercise.catalog.get("my-led")
     assert exercise.number == "9.1.1" and exercise.defined_at.startswith(str(instructor_package / "led.py"))
     right = tmp_path / "right.py"
-    right.write_text("def OB1(t):\n    t.LED1 = t.TL1\n")
+    right.write_text("def OB1(t):\n    t.LED1 = t.TL1\n", encoding="utf-8")
     wrong = tmp_path / "wrong.py"
-    wrong.write_text("def OB1(t):\n    t.LED1 = not t.TL1\n")
+    wrong.write_text("def OB1(t):\n    t.LED1 = not t.TL1\n", encoding="utf-8")
     assert main(["grade", "9.1.1", str(right), "--no-sandbox"]) == 0
     assert main(["grade", "9.1.1", str(wrong), "--no-sandbox"]) == 1
     assert "LED1 follows TL1" in capsys.readouterr().out
@@ -165,11 +165,12 @@ def test_another_packages_front_end_reads_its_suffix(tmp_path, monkeypatch):
         "from plcsim.frontends.python.program import Program\n\n"
         "def read_lad(path):\n"
         "    a, b = path.read_text().split('->')\n"
-        "    return Program.from_source(f'def OB1(t):\\n    t.{b.strip()} = t.{a.strip()}\\n', filename=str(path))\n"
+        "    return Program.from_source(f'def OB1(t):\\n    t.{b.strip()} = t.{a.strip()}\\n', filename=str(path))\n",
+        encoding="utf-8",
     )
     monkeypatch.syspath_prepend(str(site))
     program = tmp_path / "rung.lad"
-    program.write_text("TL1 -> LED1")
+    program.write_text("TL1 -> LED1", encoding="utf-8")
     assert ".lad" in suffixes() and ".py" in suffixes()
     assert [n.name for n in read_program(program).tasks["OB1"].networks] == ["OB1"]
     with pytest.raises(ProgramError, match=r"no front end reads \.xyz; use .*\.lad, .*\.py"):
@@ -185,20 +186,19 @@ SHADOWS = {
 @pytest.mark.parametrize("how", ["script", "module"])
 def test_a_students_files_in_the_working_folder_do_not_replace_the_course(tmp_path, how):
     for name, text in SHADOWS.items():
-        (tmp_path / name).write_text(text)
+        (tmp_path / name).write_text(text, encoding="utf-8")
     program = tmp_path / "led.py"
-    program.write_text("def OB1(t):\n    t.LED = t.TLACIDLO\n")
-    script = Path(sys.executable).with_name("plcsim")
-    command = [str(script)] if how == "script" else [sys.executable, "-m", "plcsim"]
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
-    listed = subprocess.run([*command, "list"], cwd=tmp_path, capture_output=True, text=True, env=env, timeout=300)
+    program.write_text("def OB1(t):\n    t.LED = t.TLACIDLO\n", encoding="utf-8")
+    command = [str(console_script("plcsim"))] if how == "script" else [sys.executable, "-m", "plcsim"]
+    env = {k: v for k, v in utf8_env().items() if k != "PYTHONPATH"}
+    listed = subprocess.run([*command, "list"], cwd=tmp_path, capture_output=True, **UTF8, env=env, timeout=300)
     assert listed.returncode == 0, listed.stderr
     assert "4.3.1" in listed.stdout and "student" not in listed.stdout + listed.stderr
     graded = subprocess.run(
         [*command, "grade", "4.3.1", "led.py", "--no-sandbox"],
         cwd=tmp_path,
         capture_output=True,
-        text=True,
+        **UTF8,
         env=env,
         timeout=300,
     )
@@ -208,7 +208,7 @@ def test_a_students_files_in_the_working_folder_do_not_replace_the_course(tmp_pa
 
 def test_in_a_session_whose_working_folder_is_on_the_path_the_installed_course_is_loaded(tmp_path):
     for name, text in SHADOWS.items():
-        (tmp_path / name).write_text(text)
+        (tmp_path / name).write_text(text, encoding="utf-8")
     code = (
         "import sys; sys.path.insert(0, '')\n"
         "from plcsim.core import registry\nfrom plcsim.exercise import catalog\n"
@@ -223,7 +223,7 @@ def test_in_a_session_whose_working_folder_is_on_the_path_the_installed_course_i
 
 
 def test_a_shadowing_module_the_session_imported_itself_is_named_by_its_file(tmp_path):
-    (tmp_path / "exercises.py").write_text("EXERCISE = None\n")
+    (tmp_path / "exercises.py").write_text("EXERCISE = None\n", encoding="utf-8")
     code = (
         "import sys; sys.path.insert(0, ''); import exercises\nfrom plcsim.exercise import catalog\n"
         "catalog.get('4.3.1')\n"
@@ -237,7 +237,7 @@ def test_a_shadowing_module_the_session_imported_itself_is_named_by_its_file(tmp
 
 def test_run_of_neither_an_exercise_nor_a_rig_names_the_rigs(tmp_path, capsys):
     program = tmp_path / "p.py"
-    program.write_text("def OB1(t):\n    pass\n")
+    program.write_text("def OB1(t):\n    pass\n", encoding="utf-8")
     assert main(["run", "PANELX", "--program", str(program)]) == 2
     err = " ".join(capsys.readouterr().err.split())
     assert "no exercise 'PANELX'" in err

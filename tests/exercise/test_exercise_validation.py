@@ -390,7 +390,9 @@ def test_every_mistake_is_listed_once():
 
 def test_a_check_written_in_a_helper_module_names_both_files(tmp_path, monkeypatch):
     helper = tmp_path / "validation_helper_checks.py"
-    helper.write_text("from plcsim.check import never\n\n\ndef belt_checks():\n    return [never('D9')]\n")
+    helper.write_text(
+        "from plcsim.check import never\n\n\ndef belt_checks():\n    return [never('D9')]\n", encoding="utf-8"
+    )
     monkeypatch.syspath_prepend(str(tmp_path))
     from validation_helper_checks import belt_checks
 
@@ -487,12 +489,13 @@ def package(tmp_path, monkeypatch):
     name = f"validation_pkg_{tmp_path.name.replace('-', '_')}"
     root = tmp_path / name
     root.mkdir()
-    (root / "__init__.py").write_text("")
+    (root / "__init__.py").write_text("", encoding="utf-8")
     for n in (1, 2):
-        (root / f"ex_9_9_0{n}.py").write_text(GOOD.replace("{n}", str(n)).replace("{actions}", ""))
+        (root / f"ex_9_9_0{n}.py").write_text(GOOD.replace("{n}", str(n)).replace("{actions}", ""), encoding="utf-8")
     for module, (text, _line) in BROKEN.items():
-        (root / f"{module}.py").write_text(text)
-    (root / "ex_9_9_07.py").write_text(GOOD.replace("{n}", "1").replace("{actions}", ""))  # 9.9.1 again
+        (root / f"{module}.py").write_text(text, encoding="utf-8")
+    again = GOOD.replace("{n}", "1").replace("{actions}", "")  # 9.9.1 again
+    (root / "ex_9_9_07.py").write_text(again, encoding="utf-8")
     monkeypatch.syspath_prepend(str(tmp_path))
     return name, root
 
@@ -504,13 +507,14 @@ def test_a_broken_module_beside_good_ones(package):
     by_module = {b.module.rpartition(".")[2]: b for b in broken}
     assert sorted(by_module) == ["ex_9_9_03", "ex_9_9_04", "ex_9_9_05", "ex_9_9_06", "ex_9_9_07"]
     assert str(by_module["ex_9_9_03"]) == (
-        f"{root}/ex_9_9_03.py:13: exercise 9.9.3: scenario 'idle': place 'p1' at S3 at 500 ms: no station 'S3'; "
+        f"{root / 'ex_9_9_03.py'}:13: exercise 9.9.3: scenario 'idle': place 'p1' at S3 at 500 ms: no station 'S3'; "
         "valid: S1, S2, belt"
     )
-    assert str(by_module["ex_9_9_04"]) == f"{root}/ex_9_9_04.py:3: SyntaxError: '(' was never closed"
-    assert str(by_module["ex_9_9_05"]) == f"{root}/ex_9_9_05.py:4: NameError: name 'Exercize' is not defined"
-    assert str(by_module["ex_9_9_06"]) == f"{root}/ex_9_9_06.py:1: the module defines no EXERCISE = Exercise(...)"
-    assert str(by_module["ex_9_9_07"]) == f"{root}/ex_9_9_07.py:6: '9.9.1' is already taken by {root}/ex_9_9_01.py"
+    assert str(by_module["ex_9_9_04"]) == f"{root / 'ex_9_9_04.py'}:3: SyntaxError: '(' was never closed"
+    assert str(by_module["ex_9_9_05"]) == f"{root / 'ex_9_9_05.py'}:4: NameError: name 'Exercize' is not defined"
+    assert str(by_module["ex_9_9_06"]) == f"{root / 'ex_9_9_06.py'}:1: the module defines no EXERCISE = Exercise(...)"
+    taken = f"'9.9.1' is already taken by {root / 'ex_9_9_01.py'}"
+    assert str(by_module["ex_9_9_07"]) == f"{root / 'ex_9_9_07.py'}:6: {taken}"
     assert by_module["ex_9_9_04"].number == "9.9.4"
 
 
@@ -522,8 +526,9 @@ def test_the_cli_lists_the_good_and_names_the_broken_without_a_traceback(package
     out, err = capsys.readouterr()
     assert "9.9.1" in out and "9.9.2" in out and "good-2" in out
     assert "Traceback" not in out + err
-    assert f"{root}/ex_9_9_05.py:4: NameError: name 'Exercize' is not defined" in err.replace("\n", "")
-    with pytest.raises(ExerciseError, match=rf"^exercise 9\.9\.4 cannot be loaded: {re.escape(str(root))}/ex_9_9_04"):
+    assert f"{root / 'ex_9_9_05.py'}:4: NameError: name 'Exercize' is not defined" in err.replace("\n", "")
+    where = re.escape(str(root / "ex_9_9_04"))
+    with pytest.raises(ExerciseError, match=rf"^exercise 9\.9\.4 cannot be loaded: {where}"):
         exercises.get("9.9.4")
     assert exercises.get("good-2").number == "9.9.2"
     assert main(["show", "9.9.5"]) == 2

@@ -61,9 +61,9 @@ def test_a_name_or_label_that_does_not_fit_is_named_when_the_program_is_loaded(t
 
 
 def test_a_mech_file_is_read_by_its_suffix_and_its_errors_name_the_file(tmp_path: Path):
-    (tmp_path / "lamp.mech").write_text("LDR A\nWR LED\n")
+    (tmp_path / "lamp.mech").write_text("LDR A\nWR LED\n", encoding="utf-8")
     assert isinstance(read_program(tmp_path / "lamp.mech"), MechProgram)
-    (tmp_path / "bad.mech").write_text("; a lamp\nLDR A\nWRR LED\n")
+    (tmp_path / "bad.mech").write_text("; a lamp\nLDR A\nWRR LED\n", encoding="utf-8")
     with pytest.raises(ProgramError, match=r"bad\.mech, line 3: WRR is not an instruction"):
         read_program(tmp_path / "bad.mech")
 

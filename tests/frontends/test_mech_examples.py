@@ -120,7 +120,11 @@ def test_m04_without_the_ex_the_wait_never_ends_and_cw_restarts_every_scan(tmp_p
     from plcsim import CPU
     from plcsim.frontends.mech import MechProgram
 
-    text = path("m04_prep_cw", ".mech").read_text().replace("FL 1,CW ;Nastaveni aktivacni promenne.\nEX\n", "FL 1,CW\n")
+    text = (
+        path("m04_prep_cw", ".mech")
+        .read_text(encoding="utf-8")
+        .replace("FL 1,CW ;Nastaveni aktivacni promenne.\nEX\n", "FL 1,CW\n")
+    )
     c = CPU(tags=TAGS["m04_prep_cw"], program=MechProgram(text, "no_ex.mech"))
     recorder = Recorder(c)
     recorder.attach()

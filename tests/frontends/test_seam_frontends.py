@@ -121,7 +121,7 @@ def _network(ops: list[tuple[int, str, str]], store) -> object:
 @pytest.fixture
 def il_suffix():
     before = frontends.frontend_for(".il")  # the Tecomat front end, put back afterwards
-    register(".il", lambda path: TinyIL(path.read_text(), str(path)))
+    register(".il", lambda path: TinyIL(path.read_text(encoding="utf-8"), str(path)))
     yield ".il"
     if before is None:
         unregister(".il")
@@ -130,8 +130,8 @@ def il_suffix():
 
 
 def test_the_front_end_is_chosen_by_the_file_suffix(tmp_path: Path, il_suffix):
-    (tmp_path / "led.il").write_text("LD TLACIDLO\nST LED\n")
-    (tmp_path / "led.py").write_text("def OB1(t):\n    t.LED = t.TLACIDLO\n")
+    (tmp_path / "led.il").write_text("LD TLACIDLO\nST LED\n", encoding="utf-8")
+    (tmp_path / "led.py").write_text("def OB1(t):\n    t.LED = t.TLACIDLO\n", encoding="utf-8")
     assert isinstance(read_program(tmp_path / "led.il"), TinyIL)
     assert isinstance(read_program(tmp_path / "led.py"), Program)
     with pytest.raises(ProgramError, match=r"led\.st: no front end reads \.st; use \.il, \.mech, \.py"):

@@ -51,7 +51,7 @@ def test_the_python_front_end_links_into_tasks_networks_spans_and_neutral_facts(
 
 
 def test_a_program_file_is_read_by_the_front_end_its_suffix_names(tmp_path: Path):
-    (tmp_path / "led.py").write_text("def OB1(t):\n    t.LED = t.TL\n")
+    (tmp_path / "led.py").write_text("def OB1(t):\n    t.LED = t.TL\n", encoding="utf-8")
     program = read_program(tmp_path / "led.py")
     assert isinstance(program, Program) and program.filename == str(tmp_path / "led.py")
     with pytest.raises(ProgramError, match=r"led\.txt: no front end reads \.txt; use \.il, \.mech, \.py"):

@@ -59,7 +59,7 @@ def test_an_unreadable_file_is_a_program_error(tmp_path):
 )
 def test_a_file_without_code_says_no_ob1_and_how_to_write_it(tmp_path, text):
     path = tmp_path / "lab.py"
-    path.write_text(text)
+    path.write_text(text, encoding="utf-8")
     with pytest.raises(NoOB1Error) as info:
         Program.from_file(path)
     message = str(info.value)

@@ -133,7 +133,7 @@ def test_a_forked_child_gives_the_same_trace_as_a_fresh_one_bit_for_bit(tmp_path
 
 def _alive(pid: int) -> bool:
     try:
-        return Path(f"/proc/{pid}/stat").read_text().split(") ")[1][0] != "Z"
+        return Path(f"/proc/{pid}/stat").read_text(encoding="utf-8").split(") ")[1][0] != "Z"
     except (FileNotFoundError, IndexError):
         return False
 

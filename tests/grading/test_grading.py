@@ -16,6 +16,7 @@ from xml.etree import ElementTree as ET
 
 import numpy as np
 import pytest
+from platforms import PROC
 
 from exercises import get
 from plcsim.grading.batch import grade_batch
@@ -293,7 +294,7 @@ def test_an_exception_in_a_network_stops_the_cpu_and_is_graded(ex1, tmp_path):
 
 
 def vm_size_mb(pid: int | str = "self") -> int:
-    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+    for line in Path(f"/proc/{pid}/status").read_text(encoding="utf-8").splitlines():
         if line.startswith("VmSize:"):
             return int(line.split()[1]) // 1024
     return 2048
@@ -310,6 +311,7 @@ def child_start_mb(ex1) -> int:
     return max(vm_size_mb(s.process.pid) for s in servers) if servers else vm_size_mb()
 
 
+@PROC  # the limit is set above the child's starting address space, read in /proc
 def test_a_memory_bomb_hits_the_memory_limit(ex1, tmp_path):
     source = "def OB1(t):\n    x = [0]\n    for i in range(40):\n        x = x + x\n    t.LED = t.TLACIDLO\n"
     limits = Limits(memory_mb=child_start_mb(ex1) + 300, cpu_seconds=20, wall_seconds=60)

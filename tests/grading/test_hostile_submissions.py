@@ -7,6 +7,7 @@ from __future__ import annotations
 import re
 
 import pytest
+from platforms import UTF8, utf8_env
 
 from exercises import get
 from plcsim.grading.grader import grade, grade_sandboxed
@@ -54,7 +55,6 @@ def shadowing_numpy(folder, marker) -> str:
 def test_python_m_plcsim_in_the_submissions_folder_imports_no_submission(ex1, tmp_path):
     """``cd submissions && python -m plcsim grade ...``: ``-m`` puts the current folder first on sys.path; the
     grader and its children import nothing from it (the submission saved as numpy.py is graded, not run)."""
-    import os
     import subprocess
     import sys
     from pathlib import Path
@@ -64,13 +64,13 @@ def test_python_m_plcsim_in_the_submissions_folder_imports_no_submission(ex1, tm
     (subs / "numpy.py").write_text(shadowing_numpy(subs, marker), encoding="utf-8")
     (subs / "ok.py").write_bytes(ex1.reference.path.read_bytes())
     root = Path(__file__).resolve().parents[2]  # this checkout's plcsim, exercises and plants
-    env = {**os.environ, "PYTHONPATH": str(root)}
+    env = utf8_env(PYTHONPATH=str(root))  # the marks ✓ and ✗, also where the console's code page lacks them
     done = subprocess.run(
         [sys.executable, "-m", "plcsim", "grade", "4.3.1", ".", "--jobs", "2"],
         cwd=subs,
         env=env,
         capture_output=True,
-        text=True,
+        **UTF8,
         timeout=300,
     )
     assert not marker.exists(), done.stderr[-2000:]
@@ -127,7 +127,8 @@ def test_a_submission_over_the_exercises_budget_is_too_slow_in_every_report_form
     assert (ok.error_kind, ok.score) == (None, 3.0)
     assert slow.error_kind == "too slow"
     assert slow.error.startswith("too slow for this exercise: it used more than ")
-    assert re.search(r"× the reference's CPU time \(the reference \d+\.\d\d s, the budget \d+ s\)$", slow.error)
+    fitted = r"(× the reference's CPU time|the budget fitted to the reference)"  # the latter: it measured 0.00 s
+    assert re.search(fitted + r" \(the reference \d+\.\d\d s, the budget \d+ s\)$", slow.error)
     buffer = io.StringIO()
     print_report(slow, Console(file=buffer, width=200, color_system=None))
     assert "too slow: 4.3.1" in buffer.getvalue()
@@ -166,8 +167,23 @@ def test_an_exercise_sets_its_own_budget(ex1, tmp_path):
 
     assert fitted_limits(replace(ex1, cpu_budget_s=2.5), Limits(), seed=1).budget == Budget(3)
     fitted = fitted_limits(ex1, Limits(), seed=1)
-    assert fitted.budget.cpu_seconds == 10 and 0 < fitted.budget.reference_cpu_s < 1  # the floor binds
+    assert fitted.budget.cpu_seconds == 10 and 0 <= fitted.budget.reference_cpu_s < 1  # the floor binds
     assert (fitted.cpu_limit, Limits().cpu_limit) == (10, 60)
+
+
+def test_a_reference_measured_at_0_s_is_measured_not_missing(ex1, monkeypatch):
+    """Windows counts a thread's CPU time in ticks of about 16 ms: a quick reference reads 0.0 s there, and
+    still gets the budget's floor (no budget at all would let a slow file run to the 60 s limit)."""
+    from plcsim.grading import budget
+    from plcsim.grading.sandbox.limits import Budget, Limits
+
+    monkeypatch.setattr(budget.time, "thread_time", lambda: 12.5)  # a clock that has not ticked
+    assert budget.reference_cpu_s(ex1, seed=1) == 0.0
+    assert budget.fitted_limits(ex1, Limits(), seed=1).budget == Budget(10, 0.0)
+    assert Budget(10, 0.0).too_slow() == (
+        "too slow for this exercise: it used more than the budget fitted to the reference "
+        "(the reference 0.00 s, the budget 10 s)"
+    )
 
 
 def test_a_two_million_line_il_file_is_too_slow_not_a_stalled_batch(tmp_path, monkeypatch):

@@ -104,7 +104,7 @@ def test_a_process_the_child_starts_is_killed_with_it(ex1, tmp_path):
     order = {"do": "spawn-then-hog", "pid_file": str(pid_file)}
     r = hostile(ex1, tmp_path, order, Limits(cpu_seconds=1, wall_seconds=30))
     assert (r.error_kind, r.error) == ("time limit", "the submission used more than 1 s of CPU time")
-    assert _dies(int(pid_file.read_text()))
+    assert _dies(int(pid_file.read_text(encoding="utf-8")))
 
 
 def test_the_cpu_time_of_what_the_child_starts_counts_too(ex1, tmp_path):
@@ -113,7 +113,7 @@ def test_the_cpu_time_of_what_the_child_starts_counts_too(ex1, tmp_path):
     r = hostile(ex1, tmp_path, order, Limits(cpu_seconds=2, wall_seconds=30))
     assert (r.error_kind, r.error) == ("time limit", "the submission used more than 2 s of CPU time")
     assert r.elapsed_s < 25  # the CPU-time limit, not the wall-time limit
-    assert _dies(int(pid_file.read_text()))
+    assert _dies(int(pid_file.read_text(encoding="utf-8")))
 
 
 def test_a_memory_bomb_in_a_program_is_stopped_at_the_memory_limit(ex1, tmp_path):
@@ -140,10 +140,10 @@ def test_a_child_whose_grader_is_killed_ends_itself(tmp_path):
     )
     try:
         deadline = time.monotonic() + 30
-        while not pid_file.exists() or not pid_file.read_text():
+        while not pid_file.exists() or not pid_file.read_text(encoding="utf-8"):
             assert time.monotonic() < deadline, "the child never started"
             time.sleep(0.05)
-        child = int(pid_file.read_text())
+        child = int(pid_file.read_text(encoding="utf-8"))
         assert _alive(child)
         grader.kill()  # no clean-up runs in the grader: only the closed stdin tells the child
         grader.wait()

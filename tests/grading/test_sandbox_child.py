@@ -17,6 +17,7 @@ import time
 from pathlib import Path
 
 import pytest
+from platforms import NAMESPACES
 
 from exercises import get
 from plcsim.core.errors import ConfigurationError
@@ -29,7 +30,6 @@ from plcsim.grading.sandbox.limits import Limits
 pytestmark = pytest.mark.xdist_group("sandbox")
 
 HOSTILE = "sandbox_hostile_child"
-linux_only = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="namespaces and Landlock are Linux's")
 
 
 @pytest.fixture(scope="module")
@@ -92,13 +92,13 @@ def test_forged_passed_lines_on_stdout_and_stderr_count_for_nothing(ex1, tmp_pat
 
 def process_alive(pid: int) -> bool:
     try:
-        state = Path(f"/proc/{pid}/stat").read_text().split(") ")[1][0]
+        state = Path(f"/proc/{pid}/stat").read_text(encoding="utf-8").split(") ")[1][0]
     except (FileNotFoundError, IndexError):
         return False
     return state != "Z"
 
 
-@linux_only
+@NAMESPACES
 def test_a_grandchild_that_leaves_the_group_and_holds_the_pipe_neither_delays_the_grade_nor_survives(
     ex1, tmp_path, start
 ):
@@ -107,14 +107,14 @@ def test_a_grandchild_that_leaves_the_group_and_holds_the_pipe_neither_delays_th
     r = hostile(ex1, tmp_path, {"do": "grandchild", "pid_file": str(pid_file)})
     assert time.perf_counter() - started < 4  # the grandchild sleeps 60 s holding the pipe
     assert (r.error_kind, r.error) == ("crash", "the grading process exited with code 3 without sending a result")
-    sleeper = int(pid_file.read_text())  # it was started (its pid outside the child's PID namespace)
+    sleeper = int(pid_file.read_text(encoding="utf-8"))  # it was started (its pid outside the child's PID namespace)
     deadline = time.monotonic() + 10  # (it dies at once; a loaded machine may take a while to say so)
     while process_alive(sleeper) and time.monotonic() < deadline:
         time.sleep(0.05)
     assert not process_alive(sleeper)
 
 
-@linux_only
+@NAMESPACES
 def test_after_the_lock_down_nothing_secret_is_read_nothing_written_outside_scratch_nothing_forks_or_connects(
     ex1, tmp_path, private_tmp, start
 ):
@@ -215,7 +215,7 @@ def test_a_project_inside_the_temporary_folder_is_readable_the_scratch_beside_it
     assert not any(g == str(temp) or g.startswith(str(scratch)) for g in granted)
 
 
-@linux_only
+@NAMESPACES
 def test_a_project_installed_under_the_temporary_folder_grades_an_il_program_in_the_sandbox(tmp_path):
     """End to end, as on a fresh clone in /tmp: a copy of the project imported from inside the temporary
     folder grades a Tecomat program (whose front end is imported only after the lock-down)."""

@@ -55,9 +55,10 @@ def test_plcsim_ladder_and_show_ladder_write_the_picture(tmp_path, capsys):
     out = tmp_path / "r.svg"
     path = get("4.3.12").reference.path
     assert main(["ladder", str(path), "--exercise", "4.3.12", "-o", str(out)]) == 0
-    assert "TON" in _texts(out.read_text())
+    assert "TON" in _texts(out.read_text(encoding="utf-8"))
     shown = tmp_path / "s.svg"
     assert main(["show", "4.3.7", "--ladder", "wrong-scan-order", "-o", str(shown)]) == 0
-    assert _texts(shown.read_text())[0].startswith("4.3.7") and "wrong-scan-order" in _texts(shown.read_text())[0]
+    title = _texts(shown.read_text(encoding="utf-8"))[0]
+    assert title.startswith("4.3.7") and "wrong-scan-order" in title
     assert main(["ladder", str(tmp_path / "x.il")]) != 0
     assert ".il program" in capsys.readouterr().err

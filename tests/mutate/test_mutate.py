@@ -276,7 +276,7 @@ def test_the_cli_prints_the_score_and_writes_json(tmp_path, capsys):
     assert main(["mutate", "4.3.1", "--seeds", "1", "--json", str(out)]) == 0
     text = capsys.readouterr().out
     assert "mutation score: 100 %" in text and "1 killed, 0 survived" in text
-    data = json.loads(out.read_text())
+    data = json.loads(out.read_text(encoding="utf-8"))
     assert data["score"] == 1.0 and data["counts"]["killed"] == 1
     assert data["outcomes"][0]["mutant"]["label"] == "line 5: t.TLACIDLO → not t.TLACIDLO"
 

@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from platforms import WINDOWS_ROOT
 
 from plants import Conv1, Conv2x2, Conv3, StationOccupiedError
 
@@ -400,6 +401,6 @@ def test_same_actions_give_identical_runs_here_and_in_a_subprocess():
         capture_output=True,
         text=True,
         check=True,
-        env={"PYTHONHASHSEED": "123", "PATH": "", "PYTHONPATH": str(ROOT)},
+        env={"PYTHONHASHSEED": "123", "PATH": "", "PYTHONPATH": str(ROOT), **WINDOWS_ROOT},
     )
     assert _digest(out.stdout) == _digest(runs[0])

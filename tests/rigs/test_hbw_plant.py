@@ -41,7 +41,9 @@ def test_the_crane_keeps_the_protocol_and_is_registered_as_a_rig():
     h = HBW()
     assert isinstance(h, Plant)
     assert check_plant(h)["signals"] == 18
-    rigs = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["entry-points"]["plcsim.rigs"]
+    rigs = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["entry-points"][
+        "plcsim.rigs"
+    ]
     assert rigs["HBW"] == "plants.hbw:HBW"
     assert list(h.signals)[:12] == [*X_CAMS, *Y_CAMS, *Z_CAMS]  # Fig. 4.161: %I0.0 x1 … %I1.3 z3
 

@@ -52,7 +52,9 @@ def test_the_skip_keeps_the_protocol_and_is_registered_as_a_rig():
     plant = Skip()
     assert isinstance(plant, Plant)
     assert check_plant(plant)["signals"] == 7
-    rigs = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["entry-points"]["plcsim.rigs"]
+    rigs = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["entry-points"][
+        "plcsim.rigs"
+    ]
     assert rigs["SKIP"] == "plants.skip:Skip"
     assert list(plant.signals)[:3] == ["SNIMAC_DOLNY", "SNIMAC_HORNY", "SNIMAC_SPOMAL"]  # %I0.0..%I0.2, Fig. 4.132
 

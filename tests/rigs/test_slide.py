@@ -23,7 +23,9 @@ def test_the_slide_keeps_the_protocol_and_is_registered_as_a_rig():
     plant = Slide()
     assert isinstance(plant, Plant)
     assert check_plant(plant)["signals"] == 11
-    rigs = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["entry-points"]["plcsim.rigs"]
+    rigs = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["entry-points"][
+        "plcsim.rigs"
+    ]
     assert rigs["SLIDE"] == "plants.slide:Slide"
 
 

@@ -196,8 +196,8 @@ def test_a_program_that_writes_a_sensor_cannot_hide_its_late_stop(tmp_path: Path
     (so that a trace of the program's S2 shows no object at S2 while D1 is on) changes nothing."""
     ex = get("4.3.5")
     plain, forged = tmp_path / "late_stop.py", tmp_path / "late_stop_forged.py"
-    plain.write_text(LATE_STOP.format(hide_doc="", hide=""))
-    forged.write_text(LATE_STOP.format(hide_doc=", and hides it by writing S2", hide=HIDE))
+    plain.write_text(LATE_STOP.format(hide_doc="", hide=""), encoding="utf-8")
+    forged.write_text(LATE_STOP.format(hide_doc=", and hides it by writing S2", hide=HIDE), encoding="utf-8")
     for path in (plain, forged):
         report = grade(ex, path, seed=seed)
         assert not report.passed
@@ -241,7 +241,7 @@ def test_4_3_14_a_meter_counted_in_ob30_passes(tmp_path: Path):
     failed the three NULUJ checks when they searched the rows by start time; seed 10 has an OB30 call
     that counts a second inside the reset scan, after its reset network)."""
     path = tmp_path / "ob30_meter.py"
-    path.write_text(OB30_METER)
+    path.write_text(OB30_METER, encoding="utf-8")
     failed = {
         s: [c.check for c in r.checks if not c.passed]
         for s in range(1, 21)

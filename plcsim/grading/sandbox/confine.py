@@ -98,7 +98,7 @@ def forbid_processes(cgroup: str | None) -> list[str]:
         try:
             if cgroup is None:
                 raise OSError("no pids cgroup")
-            with open(os.path.join(cgroup, "cgroup.procs"), "w") as f:
+            with open(os.path.join(cgroup, "cgroup.procs"), "w", encoding="ascii") as f:
                 f.write(str(os.getpid()))
         except OSError:
             missing.append("running as root without a writable pids cgroup: the process count is not limited")

@@ -36,6 +36,9 @@ class Budget:
     >>> print(Budget.fitted(1.3).too_slow().replace(" (", "\\n("))
     too slow for this exercise: it used more than 10× the reference's CPU time
     (the reference 1.30 s, the budget 13 s)
+    >>> print(Budget.fitted(0.0).too_slow().replace(" (", "\\n("))
+    too slow for this exercise: it used more than the budget fitted to the reference
+    (the reference 0.00 s, the budget 10 s)
     """
 
     cpu_seconds: int
@@ -55,11 +58,11 @@ class Budget:
         if self.reference_cpu_s is None:
             budget = f"the exercise's budget of {self.cpu_seconds} s of CPU time"
             return f"too slow for this exercise: it used more than {budget}"
-        times = self.cpu_seconds / max(self.reference_cpu_s, 1e-3)
-        return (
-            f"too slow for this exercise: it used more than {times:.0f}× the reference's CPU time "
-            f"(the reference {self.reference_cpu_s:.2f} s, the budget {self.cpu_seconds} s)"
-        )
+        figures = f"(the reference {self.reference_cpu_s:.2f} s, the budget {self.cpu_seconds} s)"
+        if not self.reference_cpu_s:  # under one tick of the thread clock (about 16 ms on Windows): no multiple
+            return f"too slow for this exercise: it used more than the budget fitted to the reference {figures}"
+        times = self.cpu_seconds / self.reference_cpu_s
+        return f"too slow for this exercise: it used more than {times:.0f}× the reference's CPU time {figures}"
 
 
 @dataclass

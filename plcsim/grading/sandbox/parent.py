@@ -233,7 +233,7 @@ def _start_posix(entry: str, request: dict[str, Any], write_end: int) -> _PosixC
     return _PosixChild(proc.pid, functools.partial(_exited, proc.pid), functools.partial(_reap, proc))
 
 
-_PER_CHILD_ENV = ("HOME", "TMPDIR")
+_PER_CHILD_ENV = ("HOME", "TMPDIR", "TEMP", "TMP")
 """The variables of a child's environment that name its own scratch folder (not the fork server's)."""
 
 
@@ -440,12 +440,12 @@ def child_path(submission: str, module: str) -> list[str]:
 def _child_env(request: dict[str, Any]) -> dict[str, str]:
     scratch = request["scratch"]
     return {
-        "PATH": os.environ.get("PATH", "/usr/bin:/bin"),
+        "PATH": os.environ.get("PATH", os.defpath),
         "PYTHONPATH": os.pathsep.join(child_path(request["path"], request["module"])),
         "PYTHONHASHSEED": "0",
         "PYTHONDONTWRITEBYTECODE": "1",
         "HOME": scratch,
-        "TMPDIR": scratch,
+        **dict.fromkeys(("TMPDIR", "TEMP", "TMP"), scratch),  # the temporary folder: POSIX's name, Windows' two
         "OPENBLAS_NUM_THREADS": "1",
         "OMP_NUM_THREADS": "1",
         "MKL_NUM_THREADS": "1",
@@ -468,7 +468,7 @@ def _make_cgroup() -> str | None:
         except OSError:
             continue
         try:
-            with open(os.path.join(path, "pids.max"), "w") as f:
+            with open(os.path.join(path, "pids.max"), "w", encoding="ascii") as f:
                 f.write("1")
             return path
         except OSError:

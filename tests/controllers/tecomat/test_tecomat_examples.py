@@ -79,7 +79,7 @@ def test_ex03_wr_and_wrc_stepwise():
     assert (cpu.peek("R4"), cpu.peek("R5"), cpu.peek("RW4")) == (0x8A, 0x60, 0x608A)
     assert cpu.stack[0] == 0x9F75 and cpu.stack[1] == 0  # the stack is unchanged throughout
     for stop, expected in ((2, ("Y0.0", 1)), (4, ("R1", 0x75)), (6, ("RW4", 0x9F75))):
-        lines = (EXAMPLES / "ex03_wr_wrc.il").read_text().splitlines()[1 : 1 + stop]
+        lines = (EXAMPLES / "ex03_wr_wrc.il").read_text(encoding="utf-8").splitlines()[1 : 1 + stop]
         step = TecomatCPU("\n".join(lines))
         step.scan()
         assert step.peek(expected[0]) == expected[1]
@@ -310,7 +310,7 @@ def test_ex18_pulse_filter_suppresses_200ms_and_delays_1s_by_250ms():
 def test_ex18_a_timer_skipped_by_a_jump_does_not_advance():
     text = (
         (EXAMPLES / "ex18_pulse_filter.il")
-        .read_text()
+        .read_text(encoding="utf-8")
         .replace("    ld      signal\n", "    ld      x0.1\n    jmd     skip\n    ld      signal\n")
         .replace("    wr      vystup\n", "    wr      vystup\nskip:\n")
     )
@@ -393,7 +393,7 @@ def test_ex22_four_modes_by_indirect_call():
 
 
 def test_t1_t3_table_layouts():
-    tables = assemble((EXAMPLES / "tables_layout.il").read_text()).tables
+    tables = assemble((EXAMPLES / "tables_layout.il").read_text(encoding="utf-8")).tables
     bit, byte, word = tables["logik_bit"], tables["cisla_byte"], tables["data_word"]
     assert bit.layout() == bytes([0x09, 0x16]) and bit.limit == 12
     assert byte.layout() == bytes([22, 45, 240, 10, 100])

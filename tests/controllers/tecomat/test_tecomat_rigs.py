@@ -40,7 +40,7 @@ def failed(report: Report) -> set[str]:
 
 def test_il_files_are_read_by_the_tecomat_front_end_and_refused_by_the_s7_cpu(tmp_path: Path):
     path = tmp_path / "led.il"
-    path.write_text("LD TLACIDLO\nWR LED\n")
+    path.write_text("LD TLACIDLO\nWR LED\n", encoding="utf-8")
     program = read_program(path)
     assert isinstance(program, IlProgram)
     with pytest.raises(ProgramError, match=r"led\.il is a Tecomat instruction-list program: it runs on the Tecomat"):
