@@ -100,12 +100,16 @@ class Recorder:
             kinds[name], types[name] = "analog", "real"
         self.trace = Trace(names + extra, kinds, types)
         self.row = _compile_getter(sources, sample=sample)
-        self._sources, self._sample, self._sampled = sources, sample, len(extra)
         physical = [f"o[{n!r}]" if kinds[n] == "output" else src for n, src in zip(names, sources)]
         self._stopped_row = _compile_getter(physical, outputs=True, sample=sample)
         self.changes_only = changes_only
         self._last: tuple[Any, ...] | None = None
         self._subscriptions: list[tuple[Subscribers, Callable[..., None]]] = []
+        self.packed_row = _compile_getter(sources, sample=sample, into=(self.trace.row_sink().pack_values, len(extra)))
+        """:attr:`row` packed for the trace's rows (raises one of :data:`~plcsim.trace.rows.UNPACKABLE` for a value its
+        column cannot hold): what every-row recording writes."""
+        self.scan_hook: Callable[[Controller], None] | None = None
+        """What :meth:`attach` subscribed to the CPU's scan end (None while detached)."""
 
     def _locate(self, name: str) -> tuple[str, str, str]:
         cpu = self.cpu
@@ -141,8 +145,9 @@ class Recorder:
         """Start recording: every OB1 scan, every interrupt execution and every execution a power cut
         interrupts writes a row."""
         cpu = self.cpu
+        self.scan_hook = self.on_scan if self.changes_only else self._fast_on_scan()
         self._subscriptions = [
-            (cpu.scan_end, self.on_scan if self.changes_only else self._fast_on_scan()),
+            (cpu.scan_end, self.scan_hook),
             (cpu.task_end, self.on_task),
             (cpu.cut, self.on_cut),
         ]
@@ -155,6 +160,7 @@ class Recorder:
         for hook, subscriber in self._subscriptions:
             hook.remove(subscriber)
         self._subscriptions = []
+        self.scan_hook = None
 
     def on_scan(self, cpu: Controller) -> None:
         values = self.row(cpu.t.__dict__, cpu.image_in)
@@ -169,7 +175,7 @@ class Recorder:
         the hot path of a run."""
         rows = self.trace.row_sink()
         heads, values_at, changes, last, pack = rows.heads, rows.values, rows.changes, rows.last, rows.pack
-        packed_row = _compile_getter(self._sources, sample=self._sample, into=(rows.pack_values, self._sampled))
+        packed_row = self.packed_row
         pack_head, row, add, d = rows.pack_head, self.row, rows.add, self.cpu.t.__dict__
 
         def on_scan(cpu: Controller) -> None:

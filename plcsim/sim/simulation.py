@@ -41,6 +41,7 @@ from plcsim.scenario.planning import Scenario
 from plcsim.scenario.runner import ActionRunner
 from plcsim.scenario.verbs import ScenarioError
 from plcsim.sim.recorder import Recorder
+from plcsim.sim.stepping import fused_scan
 from plcsim.sim.wiring import Wire, Wiring
 from plcsim.trace.facade import Trace, TraceEvent
 
@@ -241,6 +242,7 @@ class Simulation:
         out_version, diag_last = self._out_version, self._diag_last
         next_frame = self._next_frame if frame_ns else NEVER  # (one comparison per step instead of two)
         diagnostics = cpu.diagnostics
+        fused = fused_scan(cpu, wiring, self.recorder, dt)
         try:
             while t < end_ns and not self.paused:
                 if t >= actions.next_due:
@@ -250,9 +252,11 @@ class Simulation:
                         self._downloads = cpu.downloads
                         self.recorder.detach()
                         self.recorder.attach()
-                if wiring is not None:
-                    wiring.step_inputs(inputs, t)
-                run_cpu(t + dt)
+                        fused = fused_scan(cpu, wiring, self.recorder, dt)
+                if fused is None or not fused(t):  # (the fused step: wiring in, the scan and its row in one call)
+                    if wiring is not None:
+                        wiring.step_inputs(inputs, t)
+                    run_cpu(t + dt)
                 if cpu.mode != RUN:
                     self.recorder.on_stopped(t, t + dt)
                 if diagnostics and diagnostics[-1] is not diag_last:  # (a length stops growing at the buffer's cap)

@@ -9,6 +9,10 @@ table of :class:`plcsim.trace.table.TraceTable`, the same bit for bit as convert
 ``np.float64``. A row with a value its column's code cannot hold (an Int column given 2.5, a None) is kept
 as a tuple, stored whatever the last row was, and converted as numpy converts it.
 
+A row of a *regular* execution (:attr:`RunLengthRows.regular`: one scan per physics step, the case of almost
+every row of a co-simulation) keeps no head at all but its start time, an ``int``: its end and task follow
+from the regular step and task, and :meth:`RunLengthRows.pack` derives them, so the hot path packs no head.
+
 >>> rows = RunLengthRows("bd")
 >>> for k, values in enumerate([(False, 0.0), (False, 0.0), (True, 0.0), (True, -0.0), (True, -0.0)]):
 ...     rows.add(k, k + 1, 1, values)
@@ -43,7 +47,8 @@ _DTYPES = {"b": "i1", "q": "<i8", "d": "<f8"}
 class RunLengthRows:
     """The rows of a trace being written; :meth:`take` hands them over as one dense array.
 
-    A writer appends to :attr:`heads` (a row's ``(start, end, task)``, packed by :attr:`pack_head`) and, when
+    A writer appends to :attr:`heads` (a row's ``(start, end, task)``, packed by :attr:`pack_head`, or a regular
+    row's start alone) and, when
     the row's values packed by :attr:`pack_values` differ from :attr:`last` ``[0]``, to :attr:`values` and
     :attr:`changes` (the row's place in ``heads``); it calls :meth:`pack` when ``heads`` holds :data:`BLOCK`
     rows. :meth:`add` does all that; a recorder's hot path does it inline.
@@ -66,6 +71,7 @@ class RunLengthRows:
         "_values",
         "_changes",
         "_rows",
+        "regular",
     )
 
     def __init__(self, codes: str):
@@ -83,6 +89,15 @@ class RunLengthRows:
         self._values: list[np.ndarray] = []
         self._changes: list[np.ndarray] = []
         self._rows = 0
+        self.regular: tuple[int, int] = (0, 0)
+        """``(duration, task)`` of the rows whose head is their start time alone (an ``int`` in :attr:`heads`);
+        change it only with no such row unpacked (:meth:`set_regular`)."""
+
+    def set_regular(self, duration_ns: int, task: int) -> None:
+        """Make the rows appended from now on as a start time alone last ``duration_ns`` and belong to ``task``."""
+        if (duration_ns, task) != self.regular:
+            self.pack()
+            self.regular = (duration_ns, task)
 
     def add(self, t_ns: int, t_end_ns: int, task: int, values: tuple[Any, ...]) -> None:
         """Append one row."""
@@ -108,7 +123,7 @@ class RunLengthRows:
         heads = self.heads
         if not heads:
             return
-        self._heads.append(self._floats(heads, _HEAD, np.dtype((np.int64, HEAD))))
+        self._heads.append(self._head_floats(heads))
         if self.values:
             self._values.append(self._floats(self.values, self._values_format, self._dtype))
             self._changes.append(np.array(self.changes, dtype=np.int64) + self._rows)
@@ -138,6 +153,17 @@ class RunLengthRows:
 
     def __len__(self) -> int:
         return self._rows + len(self.heads)
+
+    def _head_floats(self, heads: list[Any]) -> np.ndarray:
+        """The heads as a (rows, 3) float64 array, those of regular rows (a start time alone) derived."""
+        duration, task = self.regular
+        kinds = set(map(type, heads))
+        if kinds == {int}:  # every row regular (a co-simulation's block): three columns from the start times
+            starts = np.fromiter(heads, np.int64, len(heads))
+            return np.column_stack((starts, starts + duration, np.full(len(starts), task, np.int64))).astype(np.float64)
+        if int in kinds:
+            heads = [_HEAD.pack(head, head + duration, task) if type(head) is int else head for head in heads]
+        return self._floats(heads, _HEAD, np.dtype((np.int64, HEAD)))
 
     @staticmethod
     def _floats(items: list[bytes | tuple[Any, ...]], layout: struct.Struct, dtype: np.dtype) -> np.ndarray:

@@ -130,3 +130,34 @@ def test_an_input_the_recorder_cannot_pack_takes_the_general_path_with_the_same_
         cpu.scan()
         rows.append((k * 1_000_000, (k + 1) * 1_000_000, 1, level, k + 1))
     assert same_bits(recorder.trace.table, dense(rows))
+
+
+def test_regular_rows_keep_their_start_alone_and_read_back_as_rows_with_whole_heads():
+    """A co-simulation's fused step (plcsim.sim.stepping) appends a regular row's start time alone: among rows
+    with whole heads (an interrupt's, one past Int64 kept as a tuple), across blocks and a change of the regular
+    step, the table is the one of every row added with its head."""
+    fused, added = RunLengthRows("bq"), RunLengthRows("bq")
+    expected = []
+    fused.set_regular(1_000_000, 1)
+    for k in range(2 * BLOCK + 50):
+        t, values = k * 1_000_000, (k % 300 < 100, k // 1000)
+        if k == BLOCK + 7:
+            fused.set_regular(2_000_000, 4)  # rows unpacked so far keep the step they were appended with
+        duration, task = fused.regular
+        if k % 97 == 0 or k == 5:  # an interrupt's row (and one head that packs as a tuple)
+            head = (2**64, 2**64 + 1, 30) if k == 5 else (t, t + 500, 30)
+            fused.add(*head, values)
+        else:
+            head = (t, t + duration, task)
+            fused.heads.append(t)
+            packed = fused.pack_values(*values)
+            if packed != fused.last[0]:
+                fused.last[0] = packed
+                fused.changes.append(len(fused.heads) - 1)
+                fused.values.append(packed)
+            if len(fused.heads) >= BLOCK:
+                fused.pack()
+        added.add(*head, values)
+        expected.append((*head, *values))
+    assert len(fused) == len(expected) and same_bits(fused.take(), dense(expected))
+    assert same_bits(added.take(), dense(expected))

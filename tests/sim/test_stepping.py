@@ -1,0 +1,118 @@
+"""The fused step (plcsim.sim.stepping): wiring in, the scan and its trace row in one call gives the trace the
+general path gives, bit for bit, and declines every step that holds more than one plain scan.
+
+Each run is compared with the same run on the general path: a second subscriber of the CPU's scan end (a
+live panel, a test) makes the fused step decline, so the CPU's own loop and the recorder's hook do the work.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import pytest
+
+from exercises import get
+from plants import Panel
+from plcsim import CPU, STOP, Simulation, Tag
+from plcsim.scenario.planning import Scenario
+from plcsim.scenario.verbs import press, release, start_cpu, stop_cpu
+from plcsim.sim import simulation as simulation_module
+from plcsim.sim.wiring import NO
+
+MS = 1_000_000
+
+
+def both_paths(
+    build: Callable[[], Simulation], monkeypatch: pytest.MonkeyPatch
+) -> tuple[Simulation, Simulation, list[int]]:
+    """The run on the fused path and on the general path, and the steps the fused step did."""
+    fused_steps: list[int] = []
+    make = simulation_module.fused_scan
+
+    def counted(*args):
+        scan = make(*args)
+        if scan is None:
+            return None
+
+        def counting(t: int) -> bool:
+            done = scan(t)
+            if done:
+                fused_steps.append(t)
+            return done
+
+        return counting
+
+    monkeypatch.setattr(simulation_module, "fused_scan", counted)
+    fused = build()
+    fused.run()
+    steps = list(fused_steps)
+    general = build()
+    general.cpu.scan_end.add(lambda cpu: None)
+    general.run()
+    assert fused_steps == steps  # the general run never took the fused step
+    return fused, general, steps
+
+
+def same_run(fused: Simulation, general: Simulation) -> None:
+    assert fused.trace.digest() == general.trace.digest()
+    assert fused.trace.events == general.trace.events
+    assert [f.t_ns for f in fused.trace.frames] == [f.t_ns for f in general.trace.frames]
+    assert (fused.now, fused.cpu.scan_count, fused.cpu.mode) == (general.now, general.cpu.scan_count, general.cpu.mode)
+
+
+def panel(program: str, scenario: Scenario) -> Callable[[], Simulation]:
+    def build() -> Simulation:
+        cpu = CPU(tags={"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")}, program=program)
+        plant = Panel(buttons=("TL",), switches=(), lamps=("LED",))
+        return Simulation(cpu, plant, [NO("TL"), NO("LED")], scenario, fast_forward=False)
+
+    return build
+
+
+def test_an_error_in_a_fused_scan_stops_the_cpu_as_the_general_path_does(monkeypatch):
+    program = "N = Int(0)\n\ndef OB1(t):\n    t.N = t.N + 1\n    t.LED = t.TL\n    if t.TL:\n        x = 1 // 0\n"
+    scenario = Scenario("s", press("TL", t="10ms"), release("TL", t="20ms"), start_cpu(t="30ms"), duration="50ms")
+    fused, general, steps = both_paths(panel(program, scenario), monkeypatch)
+    same_run(fused, general)
+    assert fused.cpu.read("N") == 20 and fused.cpu.scan_count == 30  # stopped at 10 ms, N from 0 again at 30 ms
+    assert "ZeroDivisionError" in fused.trace.events_of("error in the program")[0].detail
+    assert steps[:10] == [k * MS for k in range(1, 11)]  # the scan that raised at 10 ms among them (the first
+    # scan latches the clock memory: the general path)
+    assert len(steps) > 10 + 15 and steps[10] >= 30 * MS  # the scans after the restart
+
+
+def test_stop_and_start_by_the_scenario_on_the_fused_path(monkeypatch):
+    scenario = Scenario("s", press("TL", t="5ms"), stop_cpu(t="10ms"), start_cpu(t="20ms"), duration="30ms")
+    fused, general, steps = both_paths(panel("def OB1(t):\n    t.LED = t.TL\n", scenario), monkeypatch)
+    same_run(fused, general)
+    assert fused.cpu.mode != STOP and 25 > len(steps) > 15 and 15 * MS not in steps  # the steps in STOP declined
+
+
+@pytest.mark.parametrize(
+    ("number", "scenario"),
+    [
+        ("4.3.5", "three objects"),  # parts removed by sensor triggers polled in every step
+        ("4.3.6", None),  # every scenario: chatter faults on the wiring, in the middle of the run
+        ("4.3.8", None),  # Clock_1Hz: the clock memory latched at its edges (by the general path)
+        ("4.3.17", "six mixed"),  # an analog input
+        ("4.3.20", None),  # a cyclic interrupt OB30: never fused
+    ],
+)
+def test_a_shipped_solution_gives_the_same_trace_fused_or_not(number, scenario, monkeypatch):
+    exercise = get(number)
+    names = [scenario] if scenario is not None else [s.name for s in exercise.scenarios]
+    shares = []
+    for name in names:
+
+        def build(name=name) -> Simulation:
+            sim = exercise.simulation(exercise.reference.program(), exercise.scenario(name), seed=2)
+            sim.fast_forward = False
+            return sim
+
+        fused, general, steps = both_paths(build, monkeypatch)
+        same_run(fused, general)
+        shares.append(len(steps) / fused.cpu.scan_count)
+    if number == "4.3.20":
+        assert max(shares) == 0
+    else:  # (a wire chattering from the start takes every step of its run to the general path)
+        assert max(shares) > 0.9
