@@ -2,8 +2,9 @@
 
 It draws what a recording draws, the plant's :class:`~plcsim.plant.protocol.Drawable` shapes (fixed ones, then the
 moving ones at rest after ``reset``), with the recording's rule for texts (:func:`~plcsim.trace.rerun.static_texts`:
-each text once), in plant coordinates (mm, y up) with a millimetre grid, and adds what a scenario names: the
-stations, as ``▼ name``. Like the timing diagrams the figure is a plain matplotlib ``Figure``, not pyplot's.
+each text once), each written as the viewer writes it (centred below its point, on a light box), in plant
+coordinates (mm, y up) with a millimetre grid, and adds what a scenario names: the stations, as ``▼ name``.
+Like the timing diagrams the figure is a plain matplotlib ``Figure``, not pyplot's.
 
 >>> from plcsim.plant import Drawable, Station, PARTS
 >>> import numpy as np
