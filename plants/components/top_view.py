@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -445,7 +446,7 @@ class TopViewPlant:
     def retire(self, pid: str) -> None:
         """Take part ``pid`` out of the physics where it lies (it is done: in a bin); it is still drawn there."""
         p = self.parts.pop(pid)
-        self.retired[pid] = p.drawable()
+        self.retired[pid] = replace(p.drawable(), text="")  # unnamed: names of parts piled in a bin overlap
         p.shape.part = None
         self.space.remove(p.shape, p.body, *self._joints.pop(pid))
         self._still = False

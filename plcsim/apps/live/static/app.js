@@ -76,7 +76,10 @@ function buildLayout(layout) {
   $("subtitle").textContent = `${layout.program} · scenario ${layout.scenario} · seed ${layout.seed}`;
   document.title = `plcsim live · ${layout.title}`;
   page.labels = new Set(layout.static.filter((d) => d[1] === "label").map((d) => d[5]));
-  const stat = $("static"); stat.replaceChildren(...layout.static.map((d) => shape(d)));
+  // the fixed names above everything (a piston's plate must not hide the name of the barrier beside it)
+  const isLabel = (d) => d[1] === "label";
+  $("static").replaceChildren(...layout.static.filter((d) => !isLabel(d)).map((d) => shape(d)));
+  $("labels").replaceChildren(...layout.static.filter(isLabel).map((d) => shape(d)));
   page.controls = Object.fromEntries(layout.controls.map((c) => [c.name, c]));
   buildStations(layout);
   buildControls(layout);
