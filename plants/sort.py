@@ -75,7 +75,7 @@ class Sort(TopViewPlant):
     VERBS = {"set_ambient": SET_AMBIENT, "fail_compressor": FAIL_COMPRESSOR}
     PART_PROPERTIES = {
         **TopViewPlant.PART_PROPERTIES,
-        "colour": "1 white, 2 red, 3 blue: what the colour sensor reads (and the part is drawn in)",
+        "colour": "1 white, 2 red, 3 blue: what the colour sensor reads (drawn yellow, red, blue)",
         "colour_raw": "the colour sensor's mean reading of the part, raw 0..27648 (instead of a colour)",
     }
 
@@ -147,7 +147,7 @@ class Sort(TopViewPlant):
                 self.retire(pid)
 
     def place(self, station: str, **kw: Any) -> str:
-        """Put a part at ``station`` (``colour=1|2|3``: drawn white, red or blue)."""
+        """Put a part at ``station`` (``colour=1|2|3``: drawn yellow (white), red or blue)."""
         colour = kw.get("colour")
         if colour in RGB:
             kw.setdefault("color", RGB[colour])
