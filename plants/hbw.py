@@ -317,9 +317,10 @@ class HBW:
                 zc = SIDE_X0 + RACK_FRONT + RACK_DEPTH / 2
                 side = draw.rect(zc - d / 2, top, zc + d / 2, top + h)
                 out.append(draw.polygon(f"side/parts/{part}", side, draw.PART))
-        if self.rack.on_fork is not None:
+        if self.rack.on_fork is not None:  # named in the side view: in the front view it passes over stored parts
             part = self.rack.on_fork
-            out.append(draw.polygon(f"parts/{part}", draw.rect(x - w / 2, y, x + w / 2, y + h), draw.PART_HELD, part))
+            out.append(draw.polygon(f"parts/{part}", draw.rect(x - w / 2, y, x + w / 2, y + h), draw.PART_HELD))
             zc = SIDE_X0 + z
-            out.append(draw.polygon(f"side/parts/{part}", draw.rect(zc - d / 2, y, zc + d / 2, y + h), draw.PART_HELD))
+            side = draw.rect(zc - d / 2, y, zc + d / 2, y + h)
+            out.append(draw.polygon(f"side/parts/{part}", side, draw.PART_HELD, part))
         return out

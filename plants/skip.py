@@ -63,6 +63,7 @@ ORIGIN = (0.0, 40.0)  # the bottom sensor's centre in the drawing
 SENSORS = {"SNIMAC_DOLNY": 0.0, "SNIMAC_SPOMAL": 800.0, "SNIMAC_HORNY": 1000.0}
 CAM_HALF = 10.0
 LABEL_SHIFT = {"SNIMAC_DOLNY": 80.0, "SNIMAC_SPOMAL": -40.0, "SNIMAC_HORNY": -60.0}
+STATE_X = 90.0  # where the VFD, skip and mixer states are written (mm)
 """Each sensor's label sits this far along the track from it (clear of the pouring stream), on the right side."""
 BUFFERS = (-25.0, 1030.0)
 V_FAST, V_SLOW = 40.0, 25.0  # mm/s, variant A of §5.7
@@ -305,9 +306,12 @@ class Skip:
         out += self._mixer(b)
         state = "fault" if w.fault else "jammed" if w.jammed else "brake" if w.braked else f"{abs(w.f):.1f} Hz"
         arrow = " up" if w.f > 0 else " down" if w.f < 0 else ""
-        out.append(draw.label("VFD/state", -190.0, 1170.0, f"VFD: {state}{arrow}, {abs(w.v):.1f} mm/s"))
-        out.append(draw.label("skip/state", -190.0, 1120.0, f"skip: {b.load_g:.0f} g at {s:.0f} mm"))
-        out.append(draw.label("mixer/mass", -190.0, 1070.0, f"mixer: {b.bin_g:.0f} g"))
+        # the state in the empty room left of the rail, centred (a recording centres a text on its point), 70 mm
+        # apart: at the scale a recording draws this tall rig, a line of text is 60 mm high
+        x = STATE_X
+        out.append(draw.label("VFD/state", x, 880.0, f"VFD: {state}{arrow}, {abs(w.v):.1f} mm/s"))
+        out.append(draw.label("skip/state", x, 810.0, f"skip: {b.load_g:.0f} g at {s:.0f} mm"))
+        out.append(draw.label("mixer/mass", x, 740.0, f"mixer: {b.bin_g:.0f} g"))
         return out
 
     def _bucket(self, s: float, b: Bucket) -> list[Drawable]:

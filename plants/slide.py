@@ -187,7 +187,10 @@ class Slide:
     def static_drawables(self) -> list[Drawable]:
         bed = draw.polygon("bed", draw.rect(0.0, 0.0, SLIDE_X0 + STROKE + 10.0, BED_Y), draw.FRAME, "bed")
         motor = draw.polygon("motor", draw.rect(0.0, BED_Y, 20.0, BED_Y + 30.0), draw.BELT, "hydraulic motor")
-        labels = [draw.label(f"cams/{k}", SLIDE_X0 + lo, BED_Y + 52.0, k.upper()) for k, lo in CAMS.items()]
+        # each cam's name above its lamp: a name hangs below its point, and would cover the lamp
+        labels = [draw.label(f"cams/{k}", SLIDE_X0 + lo, BED_Y + 70.0, k.upper()) for k, lo in CAMS.items()]
+        # the motor's name above it, left of K1's: on the motor it would cover the slide's name and the rod
+        labels.append(draw.label("motor/label", 35.0, BED_Y + 80.0, "hydraulic motor"))
         return [bed, motor, *labels, *self.panel.static_drawables("panel")]
 
     def dynamic_drawables(self) -> list[Drawable]:
@@ -200,5 +203,7 @@ class Slide:
             for k, lo in CAMS.items()
         ]
         rear = SLIDE_X0 + self.slide.s - SLIDE_LENGTH
-        rod = draw.line("rod", [(20.0, BED_Y + 15.0), (rear, BED_Y + 15.0)], draw.BELT, "piston rod")
+        rod = draw.line(
+            "rod", [(20.0, BED_Y + 15.0), (rear, BED_Y + 15.0)], draw.BELT
+        )  # unnamed: too short to write on
         return [rod, *self.assembly.dynamic_drawables(), *cams, *self.panel.dynamic_drawables("panel")]

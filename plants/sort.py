@@ -48,7 +48,13 @@ BARRIERS = {"OS1_Vstup": 30.0, "OS2_Detekcia": 120.0, "OS3_Farba1": 210.0, "OS4_
 PISTONS = {"Piest1_Farba1": 245.0, "Piest2_Farba2": 345.0, "Piest3_Farba3": 445.0}
 COLOURS = {1: 5000.0, 2: 13000.0, 3: 21000.0}
 SETTLE_NS = 600_000_000  # a part that reached a bin has come to rest there after this long: it leaves the physics
-RGB = {1: (245, 245, 240), 2: (215, 45, 40), 3: (40, 80, 215)}  # white, red, blue: how a part is drawn
+# how a part is drawn: red and blue as they are, white as yellow (a white outline vanishes on the light table)
+RGB = {1: (235, 190, 0), 2: (215, 45, 40), 3: (40, 80, 215)}
+# where the names are written (mm): in rows above the belt and below it, clear of one another at the recording's
+# scale (tests/rigs/test_label_layout.py) and of the band under the belt where the parts' names pass
+ROW_TOP, ROW_HIGH, ROW_LOW, ROW_UNDER = 128.0, 92.0, 62.0, -36.0
+BARRIER_LABEL_Y = {"OS1_Vstup": ROW_LOW, "OS2_Detekcia": ROW_HIGH, "OS3_Farba1": ROW_LOW, "OS4_Farba2": ROW_HIGH}
+BIN_LABEL_Y = -93.0
 
 SET_AMBIENT = RigVerb(
     "set_ambient",
@@ -69,17 +75,28 @@ class Sort(TopViewPlant):
     VERBS = {"set_ambient": SET_AMBIENT, "fail_compressor": FAIL_COMPRESSOR}
     PART_PROPERTIES = {
         **TopViewPlant.PART_PROPERTIES,
-        "colour": "1 white, 2 red, 3 blue: what the colour sensor reads (and the part is drawn in)",
+        "colour": "1 white, 2 red, 3 blue: what the colour sensor reads (drawn yellow, red, blue)",
         "colour_raw": "the colour sensor's mean reading of the part, raw 0..27648 (instead of a colour)",
     }
 
     def __init__(self, *, seed: int = 0) -> None:
-        self.belt = TopBelt("D1", "D1_VPRED", (0.0, -HALF_WIDTH, BELT_LENGTH, HALF_WIDTH), speed=50.0)
-        self.air = Compressor("Kompresor", "Kompresor", at=(40.0, 80.0))
-        self.colour = ColourSensor("FARBA", 110.0, 0.0, colours=COLOURS, doc="colour sensor at 110 mm, raw 0..27648")
+        self.belt = TopBelt(
+            "D1", "D1_VPRED", (0.0, -HALF_WIDTH, BELT_LENGTH, HALF_WIDTH), speed=50.0, label_at=(185.0, ROW_UNDER)
+        )
+        self.air = Compressor("Kompresor", "Kompresor", at=(40.0, 80.0), label_at=(40.0, ROW_TOP))
+        self.colour = ColourSensor(
+            "FARBA",
+            110.0,
+            0.0,
+            colours=COLOURS,
+            doc="colour sensor at 110 mm, raw 0..27648",
+            label_at=(100.0, ROW_UNDER),
+        )
         self.colour_sensors = {"FARBA": self.colour}
         self.compressors = {"Kompresor": self.air}
-        beams = [Beam(n, x, -HALF_WIDTH, HALF_WIDTH) for n, x in BARRIERS.items()]
+        beams = [
+            Beam(n, x, -HALF_WIDTH, HALF_WIDTH, label_y=BARRIER_LABEL_Y.get(n, ROW_LOW)) for n, x in BARRIERS.items()
+        ]
         pistons = [
             Piston(
                 f"P{k}",
@@ -94,12 +111,15 @@ class Sort(TopViewPlant):
                 threshold=0.3,
                 supply=self.air.fraction,
                 doc=f"piston {k} forward (single-acting, spring return; needs the compressor's pressure)",
+                label_back=ROW_TOP - HALF_WIDTH - 2.0 - 6.0,
             )
             for k, (valve, x) in enumerate(PISTONS.items(), start=1)
         ]
         bins = {f"bin{k}": (x - 40.0, -110.0, x + 40.0, -HALF_WIDTH - 8.0) for k, x in enumerate(PISTONS.values(), 1)}
         bins["unsorted"] = (BELT_LENGTH + 2.0, -HALF_WIDTH, BELT_LENGTH + 60.0, HALF_WIDTH)
-        self.bins = Bins(bins)
+        labels = {k: (0.5 * (box[0] + box[2]), BIN_LABEL_Y) for k, box in bins.items()}
+        labels["unsorted"] = (BELT_LENGTH + 31.0, ROW_LOW)
+        self.bins = Bins(bins, label_at=labels)
         super().__init__(
             "SORT",
             components=[self.belt, self.air, self.colour, *beams, *pistons, self.bins],
@@ -127,7 +147,7 @@ class Sort(TopViewPlant):
                 self.retire(pid)
 
     def place(self, station: str, **kw: Any) -> str:
-        """Put a part at ``station`` (``colour=1|2|3``: drawn white, red or blue)."""
+        """Put a part at ``station`` (``colour=1|2|3``: drawn yellow (white), red or blue)."""
         colour = kw.get("colour")
         if colour in RGB:
             kw.setdefault("color", RGB[colour])

@@ -41,10 +41,14 @@ class Bins:
         *,
         name: str = "bins",
         report: Iterable[str] = GRADED,
+        label_at: Mapping[str, tuple[float, float]] | None = None,
     ) -> None:
         self.name = name
         self.report = tuple(report)
         self.bins = {k: tuple(float(v) for v in box) for k, box in bins.items()}
+        # where each bin's "name: count" is written: given, or low in the bin (parts land near its top)
+        at = dict(label_at or {})
+        self.label_at = {k: at.get(k, (0.5 * (x0 + x1), y0 + 17.0)) for k, (x0, y0, x1, y1) in self.bins.items()}
         self._sketch = Sketch(self._draw)
 
     def specs(self) -> list[SignalSpec]:
@@ -83,20 +87,13 @@ class Bins:
         return False
 
     def static_drawables(self) -> list[Drawable]:
-        out = []
-        for k, (x0, y0, x1, y1) in self.bins.items():
-            out.append(draw.polygon(f"bins/{k}", draw.rect(x0, y0, x1, y1), (200, 205, 215), k))
-            out.append(draw.label(f"bins/{k}/label", 0.5 * (x0 + x1), y0 + 4.0, k))
-        return out
+        return [draw.polygon(f"bins/{k}", draw.rect(*box), (200, 205, 215)) for k, box in self.bins.items()]
 
     def dynamic_drawables(self) -> list[Drawable]:
         return self._sketch(tuple(map(len, self.contents.values())))
 
     def _draw(self) -> list[Drawable]:
-        return [
-            draw.label(f"bins/{k}/count", 0.5 * (x0 + x1), y1 - 8.0, str(len(self.contents[k])))
-            for k, (x0, y0, x1, y1) in self.bins.items()
-        ]
+        return [draw.label(f"bins/{k}/count", *self.label_at[k], f"{k}: {len(self.contents[k])}") for k in self.bins]
 
 
 class _Zone:

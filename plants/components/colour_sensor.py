@@ -41,8 +41,10 @@ class ColourSensor:
         bare: float = 26_500.0,
         noise: float = 500.0,
         doc: str = "",
+        label_at: tuple[float, float] | None = None,
     ) -> None:
         self.name, self.x, self.y, self.radius = name, float(x), float(y), float(radius)
+        self.label_at = label_at  # where "name reading" is written (default: name under the spot, reading on it)
         self.colours = dict(colours or {})
         self.bare, self.noise = float(bare), float(noise)
         self.doc = doc or f"colour sensor at ({x:g}, {y:g}): raw 0..{RAW_MAX} (σ {noise:g})"
@@ -97,6 +99,8 @@ class ColourSensor:
         return False
 
     def static_drawables(self) -> list[Drawable]:
+        if self.label_at is not None:
+            return []
         return [draw.label(f"sensors/{self.name}/label", self.x, self.y - self.radius - 6.0, self.name)]
 
     def dynamic_drawables(self) -> list[Drawable]:
@@ -104,4 +108,11 @@ class ColourSensor:
 
     def _draw(self) -> list[Drawable]:
         grey = int(255 * self.value / RAW_MAX)  # the reading as a grey level: dark = low raw value
-        return [draw.circle(f"sensors/{self.name}", self.x, self.y, self.radius, (grey, grey, grey), str(self.value))]
+        if self.label_at is None:
+            return [
+                draw.circle(f"sensors/{self.name}", self.x, self.y, self.radius, (grey, grey, grey), str(self.value))
+            ]
+        return [
+            draw.circle(f"sensors/{self.name}", self.x, self.y, self.radius, (grey, grey, grey)),
+            draw.label(f"sensors/{self.name}/label", *self.label_at, f"{self.name} {self.value}"),
+        ]

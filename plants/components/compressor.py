@@ -45,12 +45,14 @@ class Compressor:
         tau_down_s: float = 0.5,
         at: tuple[float, float] = (0.0, 0.0),
         doc: str = "",
+        label_at: tuple[float, float] | None = None,
     ) -> None:
         if tau_up_s <= 0 or tau_down_s <= 0:
             raise ValueError(f"compressor {name}: time constants must be > 0")
         self.name, self.actuator = name, actuator
         self.tau_up, self.tau_down = float(tau_up_s), float(tau_down_s)
         self.at = at
+        self.label_at = label_at  # where the name is written (default: under the symbol)
         self.doc = doc or f"compressor {name}: builds pressure while True (τ {tau_up_s:g} s; decays τ {tau_down_s:g} s)"
         self._decay: tuple[float, float, float] = (-1.0, 0.0, 0.0)
         self._sketch = Sketch(self._draw)
@@ -94,8 +96,8 @@ class Compressor:
         return self.p > 0.0
 
     def static_drawables(self) -> list[Drawable]:
-        x, y = self.at
-        return [draw.label(f"compressor/{self.name}/label", x, y - 14.0, self.name)]
+        x, y = self.label_at or (self.at[0], self.at[1] - 14.0)
+        return [draw.label(f"compressor/{self.name}/label", x, y, self.name)]
 
     def dynamic_drawables(self) -> list[Drawable]:
         return self._sketch((self.on, self.p))

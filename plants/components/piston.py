@@ -82,11 +82,13 @@ class Piston:
         rear: LimitSwitch | None = None,
         front: LimitSwitch | None = None,
         doc: str = "",
+        label_back: float = 48.0,
     ) -> None:
         n = math.hypot(*direction)
         if n == 0 or stroke <= 0:
             raise ValueError(f"piston {name}: needs a direction and a stroke > 0")
         self.name, self.valve = name, valve
+        self.label_back = float(label_back)  # the name is written this far behind the retracted plate (mm)
         self.origin = (float(origin[0]), float(origin[1]))
         self.dir = (direction[0] / n, direction[1] / n)
         self.stroke = float(stroke)
@@ -228,7 +230,7 @@ class Piston:
             (back[0] - nx * w * 0.3 + dx * 30, back[1] - ny * w * 0.3 + dy * 30),
             (back[0] + nx * w * 0.3 + dx * 30, back[1] + ny * w * 0.3 + dy * 30),
         ]
-        label = self._point(-t - 48.0)
+        label = self._point(-t - self.label_back)
         return [
             draw.polygon(f"pistons/{self.name}/cylinder", body, draw.FRAME, self.name),
             draw.label(f"pistons/{self.name}/label", label[0], label[1], self.name),

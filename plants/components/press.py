@@ -144,7 +144,7 @@ class Press:
         self.travel = travel
         self.s_reach = self.z0 - self.rearm  # from this travel on the tool may reach a part
         self.EVENTS = Axis.EVENTS | {"press stroke", "part damaged"}
-        self._cache: dict[tuple, Drawable] = {}
+        self._cache: dict[tuple, Any] = {}
 
     # --- the component protocol --------------------------------------------------------------------------------
     def specs(self) -> list[SignalSpec]:
@@ -257,10 +257,27 @@ class Press:
             host.emit("part damaged", self.name, pid, cause=cause, z=round(self.z, 3))
 
     # --- drawing ---------------------------------------------------------------------------------------------
+    # The ram carries an arm with a dog (a cam bar) that runs between the two limit switches: at the top the dog's
+    # upper end presses the upper switch's lever, at the bottom its lower end presses the lower one's. Heights are
+    # relative to the tool tip; the switches sit where the dog meets them at their make points.
+    DOG_X, DOG_W, DOG_LO, DOG_HI, ARM_LO, ARM_HI = 26.0, 5.0, 8.0, 20.0, 12.0, 16.0
+
+    def _switch_height(self, sw: LimitSwitch) -> float:
+        """Where the dog meets switch ``sw``'s lever: its make point (shifted as mounted) plus the dog's end."""
+        if sw is self.upper:
+            return self.z0 - (sw.hi + sw.dx) + self.DOG_HI
+        return self.z0 - (sw.lo + sw.dx) + self.DOG_LO
+
     def static_drawables(self) -> list[Drawable]:
-        out = [draw.label(f"press/{self.name}/label", self.x - 30.0, self.frame_top + 6.0, self.name)]
-        for sw, z in ((self.upper, self.top), (self.lower, self.bottom)):
-            out.append(draw.label(f"press/switches/{sw.name}/label", self.x + 42.0, z, sw.name))
+        x = self.x + self.DOG_X + 17.0  # the switches' mounting bar, hung from the press frame
+        low = self._switch_height(self.lower) - 8.0
+        out = [
+            draw.polygon(f"press/{self.name}/switch_bar", draw.rect(x, low, x + 3.0, self.frame_top), draw.FRAME),
+            draw.label(f"press/{self.name}/label", self.x - 30.0, self.frame_top + 6.0, self.name),
+        ]
+        for sw, side in ((self.upper, 1.0), (self.lower, -1.0)):
+            z = self._switch_height(sw)
+            out.append(draw.label(f"press/switches/{sw.name}/label", self.x + 52.0, z + 3.0 + 4.0 * side, sw.name))
         return out
 
     def dynamic_drawables(self) -> list[Drawable]:
@@ -268,18 +285,43 @@ class Press:
         key = ("ram", axis.s, axis.stalled)
         ram = cache.get(key) if axis.v == 0.0 else None
         if ram is None:
-            box = draw.rect(self.x - half, self.z, self.x + half, self.frame_top)
-            ram = Drawable(f"press/{self.name}/ram", "polygon", box, STALLED if axis.stalled else RAM)
+            x, z = self.x, self.z
+            box = draw.rect(x - half, z, x + half, self.frame_top)
+            ram = [
+                Drawable(f"press/{self.name}/ram", "polygon", box, STALLED if axis.stalled else RAM),
+                draw.polygon(f"press/{self.name}/dog", self._dog(x + half, z), RAM),
+            ]
             if axis.v == 0.0:  # a ram at rest: one drawable per pose, shared by every frame
                 cache[key] = ram
-        out = [ram]
-        for sw, z in ((self.upper, self.top), (self.lower, self.bottom)):
-            key = ("switch", sw.name, sw.actuated)
+        out = list(ram)
+        for sw, side in ((self.upper, 1.0), (self.lower, -1.0)):
+            key = ("switch", sw.name, sw.actuated, sw.dx)
             d = cache.get(key)
             if d is None:
-                box = draw.rect(self.x + 26.0, z - 2.0, self.x + 34.0, z + 2.0)
                 d = cache[key] = draw.polygon(
-                    f"press/switches/{sw.name}", box, SWITCH_ON if sw.actuated else SWITCH_OFF
+                    f"press/switches/{sw.name}",
+                    self._lever(self._switch_height(sw), side),
+                    SWITCH_ON if sw.actuated else SWITCH_OFF,
                 )
             out.append(d)
         return out
+
+    def _dog(self, x0: float, z: float) -> list[tuple[float, float]]:
+        """The arm from the ram's side at ``x0`` and the dog at its end, for the tool tip at ``z``."""
+        x1, x2 = self.x + self.DOG_X, self.x + self.DOG_X + self.DOG_W
+        return [
+            (x0, z + self.ARM_LO),
+            (x1, z + self.ARM_LO),
+            (x1, z + self.DOG_LO),
+            (x2, z + self.DOG_LO),
+            (x2, z + self.DOG_HI),
+            (x1, z + self.DOG_HI),
+            (x1, z + self.ARM_HI),
+            (x0, z + self.ARM_HI),
+        ]
+
+    def _lever(self, h: float, side: float) -> list[tuple[float, float]]:
+        """A limit switch beside the dog's track: its lever reaches into the track at height ``h``, its body lies
+        above (``side`` 1, the upper switch) or below (-1) the lever."""
+        x = self.x + self.DOG_X + 3.0
+        return [(x, h), (x + 14.0, h), (x + 14.0, h + 6.0 * side), (x + 5.0, h + 6.0 * side), (x + 5.0, h + 1.5 * side)]

@@ -35,8 +35,10 @@ class TopBelt:
         speed: float = 50.0,
         tau_s: float = 0.05,
         doc: str = "",
+        label_at: tuple[float, float] | None = None,
     ) -> None:
         self.name, self.actuator, self.area = name, actuator, tuple(float(v) for v in area)
+        self.label_at = label_at  # where the name is written (default: a caption on the belt)
         self.speed, self.tau_s = float(speed), float(tau_s)
         self.doc = doc or f"belt {name} forward at {speed:g} mm/s while True (τ {tau_s * 1e3:g} ms)"
         self._sketch = Sketch(self._draw)
@@ -81,7 +83,10 @@ class TopBelt:
 
     def static_drawables(self) -> list[Drawable]:
         x0, y0, x1, y1 = self.area
-        return [draw.polygon(f"belt/{self.name}", draw.rect(x0, y0, x1, y1), draw.BELT, self.name)]
+        belt = draw.polygon(f"belt/{self.name}", draw.rect(x0, y0, x1, y1), draw.BELT, self.name)
+        if self.label_at is None:
+            return [belt]
+        return [belt, draw.label(f"belt/{self.name}/label", *self.label_at, self.name)]
 
     def dynamic_drawables(self) -> list[Drawable]:
         return self._sketch(self.v == 0.0)

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -50,6 +51,7 @@ from plcsim.plant import (
 
 G = 9810.0  # mm/s²
 STILL_MM_S = 1e-3
+LEADER = (170, 170, 175)  # the thin line from a sensor to its name written away from it
 
 
 class TopPart:
@@ -154,16 +156,30 @@ class SpotSensor:
 class Beam(SpotSensor):
     """A light barrier across a belt seen from above: True while a part interrupts the line x, y0..y1."""
 
-    def __init__(self, name: str, x: float, y0: float, y1: float, *, width: float = 2.0, doc: str = "") -> None:
+    def __init__(
+        self,
+        name: str,
+        x: float,
+        y0: float,
+        y1: float,
+        *,
+        width: float = 2.0,
+        doc: str = "",
+        label_y: float | None = None,
+    ) -> None:
         super().__init__(name, x, 0.5 * (y0 + y1), 0.5 * width, doc or f"light barrier at x = {x:g} mm")
         self.y0, self.y1 = float(y0), float(y1)
+        self.label_y = label_y  # the name's height (default just past the beam's end), joined to the beam by a line
 
     def _sensing_shape(self, body: pymunk.Body) -> pymunk.Shape:
         x, hw = self.x + self.dx, self.radius
         return pymunk.Poly(body, [(x - hw, self.y0), (x + hw, self.y0), (x + hw, self.y1), (x - hw, self.y1)])
 
     def static_drawables(self) -> list[Drawable]:
-        return [draw.label(f"sensors/{self.name}/label", self.x, self.y1 + 6.0, self.name)]
+        if self.label_y is None:
+            return [draw.label(f"sensors/{self.name}/label", self.x, self.y1 + 6.0, self.name)]
+        leader = draw.line(f"sensors/{self.name}/leader", [(self.x, self.y1 + 4.0), (self.x, self.label_y)], LEADER)
+        return [leader, draw.label(f"sensors/{self.name}/label", self.x, self.label_y, self.name)]
 
     def _draw(self) -> list[Drawable]:
         color = draw.BEAM_CUT if self.parts else draw.BEAM_FREE
@@ -430,7 +446,7 @@ class TopViewPlant:
     def retire(self, pid: str) -> None:
         """Take part ``pid`` out of the physics where it lies (it is done: in a bin); it is still drawn there."""
         p = self.parts.pop(pid)
-        self.retired[pid] = p.drawable()
+        self.retired[pid] = replace(p.drawable(), text="")  # unnamed: names of parts piled in a bin overlap
         p.shape.part = None
         self.space.remove(p.shape, p.body, *self._joints.pop(pid))
         self._still = False

@@ -2,8 +2,9 @@
 
 It draws what a recording draws, the plant's :class:`~plcsim.plant.protocol.Drawable` shapes (fixed ones, then the
 moving ones at rest after ``reset``), with the recording's rule for texts (:func:`~plcsim.trace.rerun.static_texts`:
-each text once), in plant coordinates (mm, y up) with a millimetre grid, and adds what a scenario names: the
-stations, as ``▼ name``. Like the timing diagrams the figure is a plain matplotlib ``Figure``, not pyplot's.
+each text once), each written as the viewer writes it (centred below its point, on a light box), in plant
+coordinates (mm, y up) with a millimetre grid, and adds what a scenario names: the stations, as ``▼ name``.
+Like the timing diagrams the figure is a plain matplotlib ``Figure``, not pyplot's.
 
 >>> from plcsim.plant import Drawable, Station, PARTS
 >>> import numpy as np
@@ -81,16 +82,10 @@ def _draw(ax: Any, d: Drawable, text: str, size: float) -> None:
         from matplotlib.patches import Polygon
 
         ax.add_patch(Polygon(pts, closed=True, facecolor=rgb, edgecolor=_darker(rgb), linewidth=0.8, alpha=0.9))
-        if text:  # a caption in the shape's upper left corner, readable on its fill
-            (left, _), (_, top) = pts.min(axis=0), pts.max(axis=0)
-            colour = "white" if sum(rgb) < 1.2 else "#212529"
-            ax.annotate(
-                text, (left, top), xytext=(3, -3), textcoords="offset points", fontsize=size, va="top", color=colour
-            )
-        return
-    if d.kind == "line":
+        where = np.concatenate([pts, pts[:1]]).mean(axis=0)  # the recording closes the outline: its first corner twice
+    elif d.kind == "line":
         ax.plot(pts[:, 0], pts[:, 1], color=rgb, linewidth=2.0)
-        where = pts[-1]
+        where = pts.mean(axis=0)
     elif d.kind == "circle":
         from matplotlib.patches import Circle
 
@@ -98,8 +93,19 @@ def _draw(ax: Any, d: Drawable, text: str, size: float) -> None:
         where = pts[0]
     else:
         where = pts[0]
-    if text:
-        ax.text(*where, text, fontsize=size, ha="center", va="center", zorder=6, color="#212529")
+    if text:  # as a recording writes it: centred below its point, on a light box readable on any fill
+        ax.annotate(
+            text,
+            tuple(where),
+            xytext=(0, -3),
+            textcoords="offset points",
+            fontsize=size,
+            ha="center",
+            va="top",
+            zorder=6,
+            color="#212529",
+            bbox={"boxstyle": "round,pad=0.2", "facecolor": "white", "edgecolor": "none", "alpha": 0.75},
+        )
 
 
 def _darker(rgb: tuple[float, ...]) -> tuple[float, ...]:

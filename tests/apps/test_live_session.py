@@ -241,3 +241,23 @@ def test_an_exercise_s_hmi_tags_are_offered_as_controls_and_written_by_them():
     session.write_text("DB_SKIP.MAN_HORE", "1")
     session.advance(500 * MS)
     assert session.sim.cpu.read("START_HORE") is True and session.state()["watch"]["DB_SKIP.MAN_HORE"] is True
+
+
+def test_only_parts_still_on_the_machine_are_offered_verbs():
+    """On the colour sorter: a part pushed into its bin, and one taken away, get no remove/jam buttons on the page;
+    the one still riding does."""
+    session = LiveSession("4.3.17", "exercises/solutions/4_3_17/reference.py", seed=3)
+    events = session.sim.trace.events
+    session.do("place", station="OS1", colour=2)
+    session.advance(4000 * MS)
+    session.do("place", station="OS1", colour=1)
+    session.advance(500 * MS)
+    session.do("remove", "p2")
+    session.do("place", station="OS1", colour=3)
+    session.advance(20_000 * MS, stop=lambda: any(e.kind == "part in bin" for e in events))
+    assert [(e.kind, e.part) for e in events if e.kind in ("part in bin", "part removed")] == [
+        ("part removed", "p2"),
+        ("part in bin", "p1"),
+    ]
+    assert "p1" in session.sim.plant.parts  # just in its bin: the plant still simulates it
+    assert sorted(session.state()["parts"]) == ["p3"]

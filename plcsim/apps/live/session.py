@@ -95,6 +95,8 @@ class LiveSession:
         self.extra_watch: list[str] = []
         """Tags the student added to the watch table (a click on a contact in the Program card)."""
         self._ladder: Any = None
+        self._done: set[str] = set()  # parts no operator verb applies to any more (see _parts_in_play)
+        self._events_seen = 0
         self._program_mtime = Path(self.program_file).stat().st_mtime_ns if self.program_file else None
 
     # -- time ------------------------------------------------------------------------------------------
@@ -376,11 +378,35 @@ class LiveSession:
             "doc": verb.doc,
         }
 
+    def _parts_in_play(self) -> dict[str, str]:
+        """Scenario name by id of the parts an operator can still act on (remove, jam, knock off): no event has put
+        them in a bin, taken them away or dropped them since they were placed, and a plant that keeps its parts still
+        has them, free or held. The events are read once each, as they come."""
+        sim = self.sim
+        events = sim.trace.events
+        for e in events[self._events_seen :]:
+            if e.kind in DONE_WITH and e.part is not None:
+                self._done.add(e.part)
+            elif e.kind == "part placed":  # an id given again to a new part
+                self._done.discard(e.part)
+        self._events_seen = len(events)
+        kept = getattr(sim.plant, "parts", None)
+
+        def playing(pid: str) -> bool:
+            if pid in self._done:
+                return False
+            if kept is None:
+                return True
+            part = kept.get(pid)
+            return part is not None and getattr(part, "state", "on") in ("on", "held")
+
+        return {pid: name for name, pid in sim.actions.parts.items() if playing(pid)}
+
     def state(self) -> dict[str, Any]:
         """The state now: time, CPU, the machine's moving shapes, the watch table, faults, logs."""
         sim, cpu = self.sim, self.sim.cpu
         plant = sim.plant
-        parts = {pid: name for name, pid in sim.actions.parts.items()}
+        parts = self._parts_in_play()
         return {
             "t_ns": self.now,
             "time": format_ns(self.now),
@@ -399,6 +425,10 @@ class LiveSession:
             "events": [str(e) for e in sim.trace.events[-40:]],
             "actions": [a.describe() for a in self.recorded[-40:]],
         }
+
+
+DONE_WITH = frozenset({"part in bin", "part removed", "part fell off"})
+"""Plant events after which an operator can no longer act on a part (it lies in a bin, is gone or fell)."""
 
 
 def drawable_json(d: Drawable) -> list[Any]:

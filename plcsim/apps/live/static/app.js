@@ -54,14 +54,15 @@ function shape(d, { caption = false } = {}) {
   if (kind === "polygon") e = el("polygon", { points: pts(p), fill: rgb(color), stroke: "rgba(0,0,0,.35)" });
   else if (kind === "line") e = el("polyline", { points: pts(p), fill: "none", stroke: rgb(color), "stroke-width": 2.5 });
   else if (kind === "circle") e = el("circle", { cx: p[0][0], cy: flip(p[0][1]), r: radius, fill: rgb(color), stroke: "rgba(0,0,0,.35)" });
-  else e = el("text", { x: p[0][0], y: flip(p[0][1]), "font-size": fontSize(), fill: rgb(color), "text-anchor": "middle" }, text);
-  e.setAttribute("vector-effect", "non-scaling-stroke");
+  // a label hangs centred below its point, as a recording draws it (the rigs lay their labels out for that)
+  else e = el("text", { x: p[0][0], y: flip(p[0][1]) + fontSize() * 0.3, "font-size": fontSize(), "stroke-width": fontSize() / 4, fill: rgb(color), "text-anchor": "middle", "dominant-baseline": "hanging" }, text);
+  if (kind !== "label") e.setAttribute("vector-effect", "non-scaling-stroke"); // a text's halo scales with the text
   e.dataset.path = path;
   const g = el("g");
   g.appendChild(e);
   if (caption && (kind === "polygon" || kind === "circle") && text && !page.labels.has(text)) {
     const x = p.reduce((a, q) => a + q[0], 0) / p.length, top = Math.max(...p.map((q) => q[1])) + radius;
-    g.appendChild(el("text", { x, y: flip(top) - 3, "font-size": fontSize() * 0.8, fill: "#333", "text-anchor": "middle" }, text));
+    g.appendChild(el("text", { x, y: flip(top) - 3, "font-size": fontSize() * 0.8, "stroke-width": fontSize() / 5, fill: "#333", "text-anchor": "middle" }, text));
   }
   return g;
 }
@@ -75,7 +76,10 @@ function buildLayout(layout) {
   $("subtitle").textContent = `${layout.program} · scenario ${layout.scenario} · seed ${layout.seed}`;
   document.title = `plcsim live · ${layout.title}`;
   page.labels = new Set(layout.static.filter((d) => d[1] === "label").map((d) => d[5]));
-  const stat = $("static"); stat.replaceChildren(...layout.static.map((d) => shape(d)));
+  // the fixed names above everything (a piston's plate must not hide the name of the barrier beside it)
+  const isLabel = (d) => d[1] === "label";
+  $("static").replaceChildren(...layout.static.filter((d) => !isLabel(d)).map((d) => shape(d)));
+  $("labels").replaceChildren(...layout.static.filter(isLabel).map((d) => shape(d)));
   page.controls = Object.fromEntries(layout.controls.map((c) => [c.name, c]));
   buildStations(layout);
   buildControls(layout);
