@@ -25,6 +25,7 @@ error still names its own line. ``TecomatConfig.fuse = False`` runs every instru
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple
 
 from plcsim.controllers.tecomat.blocks import BLOCKS
@@ -60,12 +61,29 @@ class Level(NamedTuple):
 IDENTITY = tuple(Level(f"s[{k}]") for k in range(8))
 
 
-def fuse(m: Machine, closures: list[Code]) -> list[Code]:
-    """``closures`` with each run's first entry replaced by the run's generated function."""
+@dataclass
+class Cycle:
+    """What a caller adds around the run of a program's only process to make it a whole cycle: the lines
+    before the run (the turnaround at ``t0``) and after it (the cycle's end), and the names they use;
+    :func:`fuse` sets ``head`` to the generated function if the program is of that kind."""
+
+    before: list[str]
+    after: list[str]
+    names: dict[str, object]
+    head: Callable[..., int] | None = None
+
+
+def fuse(m: Machine, closures: list[Code], cycle: Cycle | None = None) -> list[Code]:
+    """``closures`` with each run's first entry replaced by the run's generated function.
+
+    With ``cycle``, a program whose only process is P0 (P60 aside) and whose P0 is one run gets that run
+    as ``run(start=None)``: called without ``start`` it is P0's run as any other; ``run(start)`` is the whole
+    cycle starting at ``start`` (``cycle.before``, P0, ``cycle.after``) in one call. Generated once, it serves both."""
     code = m.asm.code
     alone = [_ends(instr) or not _fusible(instr) for instr in code]
     entries = set(m.asm.processes.values()) | set(m.asm.labels.values())
     entries |= {i + 1 for i, a in enumerate(alone) if a}
+    head = m.asm.processes[0] if cycle is not None and set(m.asm.processes) <= {0, 60} else None
     out = list(closures)
     for start in sorted(e for e in entries if e < len(code) and not alone[e]):
         end = start
@@ -73,17 +91,30 @@ def fuse(m: Machine, closures: list[Code]) -> list[Code]:
         while end < len(code) and not alone[end] and (end == start or end not in entries):
             run.add(code[end], end, closures[end])
             end += 1
-        if end - start < 2:
+        length = end - start
+        if end < len(code) and code[end].mnemonic == "E" and code[end].process != 60:
+            whole, end = start == head, END  # outside P60 nothing is called when a process ends (E checks that)
+        else:
+            whole = False
+        if length < 2 and not whole:
             continue
         run.finish()
-        if end < len(code) and code[end].mnemonic == "E" and code[end].process != 60:
-            end = END  # outside P60 nothing is called when a process ends (E checks that), so end it here
-        names = ["m", *(f"a{area}" for area in AREAS), *run.bound]
-        source = f"def make({', '.join(names)}):\n    def run():\n        s = m.st\n"
-        source += "".join(f"        {line}\n" for line in run.lines) + f"        return {end}\n    return run\n"
+        names = {"m": m, **{f"a{area}": m.pad.areas[area] for area in AREAS}, **run.bound}
+        if whole:
+            assert cycle is not None
+            lines = ["if start is not None:", *(f"    {line}" for line in cycle.before), "s = m.st", *run.lines]
+            lines += [f"if start is None: return {end}", *cycle.after]
+            names |= cycle.names
+            signature = "run(start=None)"
+        else:
+            lines, signature = ["s = m.st", *run.lines], "run()"
+        source = f"def make({', '.join(names)}):\n    def {signature}:\n"
+        source += "".join(f"        {line}\n" for line in lines) + f"        return {end}\n    return run\n"
         namespace: dict = {}
         exec(source, {"__builtins__": {}}, namespace)  # generated from decoded operands, not program text
-        out[start] = namespace["make"](m, *(m.pad.areas[a] for a in AREAS), *run.bound.values())
+        out[start] = namespace["make"](*names.values())
+        if whole:
+            cycle.head = out[start]  # type: ignore[union-attr]
     return out
 
 
