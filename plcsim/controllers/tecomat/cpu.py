@@ -143,6 +143,7 @@ class TecomatCPU:
         """What the program uses, for an exercise's static checks (``program_uses_no("SET")``)."""
         self.machine: Machine | None = None
         self._head: Any = None
+        self._p0 = 0
         self.warnings: list[str] = []
         self.events_raised: set[int] = set()
         self._pending: int | None = None
@@ -194,7 +195,9 @@ class TecomatCPU:
         self._build_table()
         cycle = self._cycle()
         self.machine.code = link(self.machine, cycle=cycle)
-        self._head = cycle.head  # the whole cycle of a program of P0 alone as one call head(t0), or None
+        self._head, self._p0 = cycle.head, asm.processes.get(0, 0)
+        """The whole cycle of a program of P0 alone as one call ``head(t0)``, or None; used while it is still
+        P0's code (the online view links the machine again, one closure per line, and then runs that)."""
         ops = {i.mnemonic for i in asm.code} - {"E"}
         self.loaded = LoadedProgram(
             asm.filename,
@@ -408,9 +411,9 @@ class TecomatCPU:
         target = self.scan_count + count
         while self.mode == RUN and self.scan_count < target:
             if self._pending is None:
-                m = self.machine
-                if self._head is not None and m.pass_no and not self.events_raised:  # type: ignore[union-attr]
-                    self._head(self._next_start)
+                m, head = self.machine, self._head
+                if head is not None and m.code[self._p0] is head and m.pass_no and not self.events_raised:  # type: ignore[union-attr]
+                    head(self._next_start)
                     continue
                 self._begin(self._next_start)
                 if self._pending is None:  # the program stopped the CPU
@@ -431,13 +434,15 @@ class TecomatCPU:
                     break
                 self._end()
             elif self._next_start < until_ns:
+                m, head = self.machine, self._head
                 if (
-                    self._head is not None
+                    head is not None
+                    and m.code[self._p0] is head  # type: ignore[union-attr]
                     and self._next_start + self._cycle_ns <= until_ns
-                    and self.machine.pass_no  # type: ignore[union-attr]
+                    and m.pass_no  # type: ignore[union-attr]
                     and not self.events_raised
                 ):
-                    self._head(self._next_start)  # the cycle's end too: nothing happens between them
+                    head(self._next_start)  # the cycle's end too: nothing happens between them
                 else:
                     self._begin(self._next_start)
             else:
