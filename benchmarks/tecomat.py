@@ -7,7 +7,7 @@ Figures:
   ``plc`` group drives the S7 CPU (same input schedule through ``cpu.inputs``, same scan budget). The S7
   figure of the same run is in ``s7_scans_per_s``, and their ratio (the figure a busy machine changes
   least) in ``ratio_to_s7``; ``load_1min`` is the machine's load when it was taken. Budget (issue 15):
-  >= 50 k scans/s.
+  >= 50 k scans/s. The workload is P0 alone and straight, so each cycle is one generated call (issue 29).
 * ``tecomat_assemble_ms`` -- assembling and linking the workload into a fresh controller.
 * ``tecomat_assemble_defs_data_ms`` -- assembling ``n`` ``#def`` constants and ``n`` ``#data`` items that
   name them (issue 26: each item re-evaluated every ``#def`` before, quadratic); ``per_item_us`` at ``n``

@@ -3,7 +3,8 @@
 Inputs come from stack levels (a binary input is the OR of its level), outputs go back into them. Each
 block is a *core*, a function from its input levels to its output levels, and a :class:`Shape` saying
 which levels those are; the plain path wraps the core into a closure working on the stack, the fused
-path (:mod:`plcsim.controllers.tecomat.fused`) calls it with the levels it holds in locals. The
+path (:mod:`plcsim.controllers.tecomat.fused`) writes the same statements out in its generated code, on
+the levels and registers it holds in locals (the two are compared on random programs). The
 word is read from R at every execution, so ordinary instructions may change it (EX-16 clears a counter
 with ``res low citac``). Each block also keeps hidden state, keyed by its kind and word (G39): the edge
 memories ("dynamic control variables") and a timer's phase. A cold restart initialises them as the
@@ -75,6 +76,11 @@ def _state(m: Machine, kind: str, index: int, initial: bool = True) -> BlockStat
     block = BlockState(kind, index, initial)
     m.blocks.append(block)
     return block
+
+
+def state_of(m: Machine, instr: Instruction) -> BlockState:
+    """The hidden state of the block of ``instr`` (the one its core works on)."""
+    return _state(m, instr.mnemonic, _word(m, instr)[1], instr.mnemonic != "TOF")
 
 
 def _word(m: Machine, instr: Instruction) -> tuple[bytearray, int]:
@@ -338,7 +344,7 @@ BLOCKS: dict[str, tuple[Callable[[Machine, Instruction], Core], Shape]] = {
 
 
 def block(m: Machine, index: int, instr: Instruction) -> Code:
-    """The closure running the block of ``instr`` on the active stack (its core is ``closure.core``)."""
+    """The closure running the block of ``instr`` on the active stack."""
     build, shape = BLOCKS[instr.mnemonic]
     core = build(m, instr)
     nxt, n, places = index + 1, shape.inputs, shape.places
@@ -372,5 +378,4 @@ def block(m: Machine, index: int, instr: Instruction) -> Code:
             return nxt
 
         closure = push
-    closure.core = core  # type: ignore[attr-defined]
     return closure

@@ -41,8 +41,9 @@ from plcsim.controllers.tecomat import verbs
 from plcsim.controllers.tecomat.analysis import IlAnalysis, IlCompiled
 from plcsim.controllers.tecomat.assembler import assemble
 from plcsim.controllers.tecomat.assembly import Assembly
+from plcsim.controllers.tecomat.fused import Cycle
 from plcsim.controllers.tecomat.linker import link
-from plcsim.controllers.tecomat.machine import END_CYCLE, Machine, TecomatRuntimeError
+from plcsim.controllers.tecomat.machine import END_CYCLE, ZEROS, Machine, TecomatRuntimeError
 from plcsim.controllers.tecomat.memory import Operand, OperandError, Scratchpad, parse_address, read, write
 from plcsim.controllers.tecomat.settings import TecomatConfig
 from plcsim.controllers.tecomat.symbols import loader, overlapping, reader, snapshot
@@ -141,6 +142,8 @@ class TecomatCPU:
         self.compiled: IlCompiled | None = None
         """What the program uses, for an exercise's static checks (``program_uses_no("SET")``)."""
         self.machine: Machine | None = None
+        self._head: Any = None
+        self._p0 = 0
         self.warnings: list[str] = []
         self.events_raised: set[int] = set()
         self._pending: int | None = None
@@ -185,12 +188,16 @@ class TecomatCPU:
         self.program, self.warnings = asm, list(asm.warnings)
         self._started = False
         self.machine = Machine(asm, self.config)
-        self.machine.code = link(self.machine)
         self.compiled = IlCompiled(IlAnalysis.of(asm))
         self.terminals = Scratchpad({"X": bytearray(self.config.x_size)})
         """The input terminals as the plant drives them; the turnaround samples them into X and U."""
         self.symbols = self._symbol_table(asm)
         self._build_table()
+        cycle = self._cycle()
+        self.machine.code = link(self.machine, cycle=cycle)
+        self._head, self._p0 = cycle.head, asm.processes.get(0, 0)
+        """The whole cycle of a program of P0 alone as one call ``head(t0)``, or None; used while it is still
+        P0's code (the online view links the machine again, one closure per line, and then runs that)."""
         ops = {i.mnemonic for i in asm.code} - {"E"}
         self.loaded = LoadedProgram(
             asm.filename,
@@ -404,6 +411,10 @@ class TecomatCPU:
         target = self.scan_count + count
         while self.mode == RUN and self.scan_count < target:
             if self._pending is None:
+                m, head = self.machine, self._head
+                if head is not None and m.code[self._p0] is head and m.pass_no and not self.events_raised:  # type: ignore[union-attr]
+                    head(self._next_start)
+                    continue
                 self._begin(self._next_start)
                 if self._pending is None:  # the program stopped the CPU
                     break
@@ -423,7 +434,17 @@ class TecomatCPU:
                     break
                 self._end()
             elif self._next_start < until_ns:
-                self._begin(self._next_start)
+                m, head = self.machine, self._head
+                if (
+                    head is not None
+                    and m.code[self._p0] is head  # type: ignore[union-attr]
+                    and self._next_start + self._cycle_ns <= until_ns
+                    and m.pass_no  # type: ignore[union-attr]
+                    and not self.events_raised
+                ):
+                    head(self._next_start)  # the cycle's end too: nothing happens between them
+                else:
+                    self._begin(self._next_start)
             else:
                 break
         if self.clock.now < until_ns:
@@ -461,22 +482,26 @@ class TecomatCPU:
             self._copies = None
             self._decode_traced(self._t.__dict__, *copies)
         if self._y_copy is not None and copies[self._y_copy] != self._last_y:
-            self._last_y = y = bytes(copies[self._y_copy])
-            decoded = self._outputs_of.get(y)
-            if decoded is None:
-                if len(self._outputs_of) >= 4096:
-                    self._outputs_of.clear()
-                outputs = self._read_outputs()
-                decoded = self._outputs_of[y] = (outputs, dict(zip(self.output_names, outputs, strict=True)))
-            if decoded[0] != self._last_outputs:
-                self._last_outputs = decoded[0]
-                self.outputs.update(decoded[1])
-                self.output_version += 1
+            self._new_y(copies[self._y_copy])
         self.scan_end_ns = end
         self.scan_count += 1
         self._next_start = end
         if subscriber is not None:
             subscriber(self)
+
+    def _new_y(self, copy: bytearray) -> None:
+        """Y changed in the cycle that ended: the outputs as it holds them (each state decoded once)."""
+        self._last_y = y = bytes(copy)
+        decoded = self._outputs_of.get(y)
+        if decoded is None:
+            if len(self._outputs_of) >= 4096:
+                self._outputs_of.clear()
+            outputs = self._read_outputs()
+            decoded = self._outputs_of[y] = (outputs, dict(zip(self.output_names, outputs, strict=True)))
+        if decoded[0] != self._last_outputs:
+            self._last_outputs = decoded[0]
+            self.outputs.update(decoded[1])
+            self.output_version += 1
 
     # -- the turnaround and the processes -------------------------------------------------------
 
@@ -490,11 +515,7 @@ class TecomatCPU:
         changed = levels != self._last_inputs
         if changed:  # the wiring (or set_input) changed some
             if self._aliased_inputs:
-                seen = self.image_in
-                for name in self.input_names:
-                    if inputs[name] != seen[name]:
-                        write(terminals, self.symbols[name], int(inputs[name]))
-                self._refresh_inputs()
+                self._sample_aliased()
             else:
                 self._load_terminals(levels)
                 self._sampled = self._last_inputs = levels
@@ -506,6 +527,71 @@ class TecomatCPU:
             s[2] = S2_RUNNING
         else:
             self._system_registers(s, t0)
+
+    def _sample_aliased(self) -> None:
+        """Two input names share a terminal: only the one the wiring changed writes it."""
+        inputs, seen = self.inputs, self.image_in
+        for name in self.input_names:
+            if inputs[name] != seen[name]:
+                write(self.terminals, self.symbols[name], int(inputs[name]))
+        self._refresh_inputs()
+
+    def _cycle(self) -> Cycle:
+        """The turnaround (:meth:`_turnaround`, the machine's part included) and the cycle's end
+        (:meth:`_end`) as lines around P0 in one generated function, for a program of P0 alone (see
+        :func:`plcsim.controllers.tecomat.fused.fuse`): what the CPU does between them in a cycle that runs
+        only P0; ``start`` is the cycle's t0 (``t0``, ``t1`` ... name the run's locals). The lines must do
+        what those methods do, step for step (the tests run both ways)."""
+        m = self.machine
+        assert m is not None
+        stacks = "for k in stacks: k[:] = ZEROS" if self.config.clear_all_stacks else "sA[:] = ZEROS"
+        sample = "sample()" if self._aliased_inputs else "load(levels); c._sampled = c._last_inputs = levels"
+        before = [
+            "if clock.now < start: clock.now = start",
+            "m.prev_t0 = m.t0; m.t0 = start; m.pass_no += 1; m.jumps = 0",  # (m.calls: P0 alone calls nothing)
+            stacks,
+            "m.active = 0; m.st = sA",
+            "levels = levels_of(c.inputs)",
+            "if levels != c._last_inputs:",
+            f"    {sample}",
+            "    c._fresh_terminals = False; aX[:] = aU[:] = tX",
+            f"elif {self._writes_x} or c._fresh_terminals:",
+            "    c._fresh_terminals = False; aX[:] = aU[:] = tX",
+            f"if start < c._rtc_until: aS[2] = {S2_RUNNING}",
+            "else: system(aS, start)",
+        ]
+        after = [
+            "end = start + c._cycle_ns",
+            "c.scan_start_ns = start",
+            "if clock.now < end: clock.now = end",
+            "copies = take()",
+            "subscriber = c.scan_end.call",
+            "if subscriber is None: c._copies = copies",
+            "else: c._copies = None; decode(values, *copies)",
+        ]
+        if self._y_copy is not None:
+            after.append(f"if copies[{self._y_copy}] != c._last_y: new_y(copies[{self._y_copy}])")
+        after += [
+            "c.scan_end_ns = end; c.scan_count += 1; c._next_start = end",
+            "if subscriber is not None: subscriber(c)",
+        ]
+        names = {
+            "c": self,
+            "clock": self.clock,
+            "sA": m.stacks[0],
+            "stacks": m.stacks,
+            "ZEROS": ZEROS,
+            "levels_of": self._input_levels,
+            "sample": self._sample_aliased,
+            "load": self._load_terminals,
+            "tX": self.terminals.areas["X"],
+            "system": self._system_registers,
+            "take": self._take_traced,
+            "decode": self._decode_traced,
+            "values": self._t.__dict__,
+            "new_y": self._new_y,
+        }
+        return Cycle(before, after, names)
 
     def _system_registers(self, s: bytearray, t0: int) -> None:
         first = self.machine.pass_no == 1  # type: ignore[union-attr]

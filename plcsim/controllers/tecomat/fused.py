@@ -12,24 +12,30 @@ pop brings in; the real stack is written once, as a whole, before a closure that
 run's end. A level that holds a boolean (a bit LD, a comparison, LET, logic between booleans) is kept as
 a Python truth value and turned into the machine's mask 0000H/FFFFH only where a number is needed. The
 registers of X, Y, R, D and U the run touches are read into locals once and written back once.
-Function blocks call their cores (:mod:`plcsim.controllers.tecomat.blocks`) with the levels as arguments; the rest
-(tables, CHG ...) call their closures. The S0 flags a comparison sets are written only if something can
-read them before the next instruction that sets all three again. Pushes past A7 drop it and pops fill
-A7 exactly as the machine does, so the stack after a run is the same level for level.
+Function blocks are written out in place, statement for statement as their cores in
+:mod:`plcsim.controllers.tecomat.blocks` (the levels as inputs, the word in the held registers, the hidden
+state an object the code is given); the rest (tables, CHG ...) call their closures. The S0 flags a
+comparison sets are written only if something can read them before the next instruction that sets all
+three again. Pushes past A7 drop it and pops fill A7 exactly as the machine does, so the stack after a
+run is the same level for level.
 
 Instructions that can fail at run time (a table in R reaching past its end) stay out of the runs, so an
-error still names its own line. ``TecomatConfig.fuse = False`` runs every instruction's closure instead
-(the tests run the examples both ways, and compare the two on random programs).
+error still names its own line. A program whose only process is P0 and whose P0 is one run may have its
+whole cycle generated around that run (``cycle`` of :func:`fuse`): then a cycle is one call.
+``TecomatConfig.fuse = False`` runs every instruction's closure instead (the tests run the examples both
+ways, and compare the two on random programs).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple
 
-from plcsim.controllers.tecomat.blocks import BLOCKS
+from plcsim.controllers.tecomat.blocks import BLOCKS, state_of
 from plcsim.controllers.tecomat.machine import END
 from plcsim.controllers.tecomat.memory import Operand
+from plcsim.controllers.tecomat.settings import TIME_BASES_NS
 
 if TYPE_CHECKING:
     from plcsim.controllers.tecomat.assembly import Instruction
@@ -60,30 +66,60 @@ class Level(NamedTuple):
 IDENTITY = tuple(Level(f"s[{k}]") for k in range(8))
 
 
-def fuse(m: Machine, closures: list[Code]) -> list[Code]:
-    """``closures`` with each run's first entry replaced by the run's generated function."""
+@dataclass
+class Cycle:
+    """What a caller adds around the run of a program's only process to make it a whole cycle: the lines
+    before the run (the turnaround at ``t0``) and after it (the cycle's end), and the names they use;
+    :func:`fuse` sets ``head`` to the generated function if the program is of that kind."""
+
+    before: list[str]
+    after: list[str]
+    names: dict[str, object]
+    head: Callable[..., int] | None = None
+
+
+def fuse(m: Machine, closures: list[Code], cycle: Cycle | None = None) -> list[Code]:
+    """``closures`` with each run's first entry replaced by the run's generated function.
+
+    With ``cycle``, a program whose only process is P0 (P60 aside) and whose P0 is one run gets that run
+    as ``run(start=None)``: called without ``start`` it is P0's run as any other; ``run(start)`` is the whole
+    cycle starting at ``start`` (``cycle.before``, P0, ``cycle.after``) in one call. Generated once, it serves both."""
     code = m.asm.code
     alone = [_ends(instr) or not _fusible(instr) for instr in code]
     entries = set(m.asm.processes.values()) | set(m.asm.labels.values())
     entries |= {i + 1 for i, a in enumerate(alone) if a}
+    head = m.asm.processes[0] if cycle is not None and set(m.asm.processes) <= {0, 60} else None
     out = list(closures)
     for start in sorted(e for e in entries if e < len(code) and not alone[e]):
         end = start
-        run = _Run(m.config.pop_fill_keeps_a7, m.config.ci_in_compare)
+        run = _Run(m, m.config.pop_fill_keeps_a7, m.config.ci_in_compare)
         while end < len(code) and not alone[end] and (end == start or end not in entries):
             run.add(code[end], end, closures[end])
             end += 1
-        if end - start < 2:
+        length = end - start
+        if end < len(code) and code[end].mnemonic == "E" and code[end].process != 60:
+            whole, end = start == head, END  # outside P60 nothing is called when a process ends (E checks that)
+        else:
+            whole = False
+        if length < 2 and not whole:
             continue
         run.finish()
-        if end < len(code) and code[end].mnemonic == "E" and code[end].process != 60:
-            end = END  # outside P60 nothing is called when a process ends (E checks that), so end it here
-        names = ["m", *(f"a{area}" for area in AREAS), *run.bound]
-        source = f"def make({', '.join(names)}):\n    def run():\n        s = m.st\n"
-        source += "".join(f"        {line}\n" for line in run.lines) + f"        return {end}\n    return run\n"
+        names = {"m": m, **{f"a{area}": m.pad.areas[area] for area in AREAS}, **run.bound}
+        if whole:
+            assert cycle is not None
+            lines = ["if start is not None:", *(f"    {line}" for line in cycle.before), "s = m.st", *run.lines]
+            lines += [f"if start is None: return {end}", *cycle.after]
+            names |= cycle.names
+            signature = "run(start=None)"
+        else:
+            lines, signature = ["s = m.st", *run.lines], "run()"
+        source = f"def make({', '.join(names)}):\n    def {signature}:\n"
+        source += "".join(f"        {line}\n" for line in lines) + f"        return {end}\n    return run\n"
         namespace: dict = {}
         exec(source, {"__builtins__": {}}, namespace)  # generated from decoded operands, not program text
-        out[start] = namespace["make"](m, *(m.pad.areas[a] for a in AREAS), *run.bound.values())
+        out[start] = namespace["make"](*names.values())
+        if whole:
+            cycle.head = out[start]  # type: ignore[union-attr]
     return out
 
 
@@ -108,8 +144,8 @@ class _Run:
     stays in memory: the system flags are read and written by the cores, the closures and the pending
     S0 write."""
 
-    def __init__(self, keep_a7: bool, ci: bool):
-        self.keep_a7, self.ci = keep_a7, ci
+    def __init__(self, m: Machine, keep_a7: bool, ci: bool):
+        self.m, self.keep_a7, self.ci = m, keep_a7, ci
         self.levels: list[Level] = list(IDENTITY)
         self.lines: list[str] = []
         self.bound: dict[str, Callable] = {}
@@ -245,7 +281,7 @@ class _Run:
         elif m in _RELATIONS:
             self._compare(_RELATIONS[m], op)
         elif m in BLOCKS:
-            self._block(m, index, instr, closure)
+            self._block(m, index, instr)
         else:
             self._closure(m, index, closure)
 
@@ -319,7 +355,8 @@ class _Run:
         self.pending_flags = f"aS[0] = aS[0] & 248 | ({a} == {b}) | ({a} < {b}) << 1 | ({a} <= {b}) << 2"
         self.levels[0] = self.local(f"{a} {relation} {b}", True)
 
-    def _block(self, mnemonic: str, index: int, instr: Instruction, closure: Code) -> None:
+    def _block(self, mnemonic: str, index: int, instr: Instruction) -> None:
+        """The block written out in place, step for step as its core in :mod:`.blocks` (the word held in locals)."""
         shape = BLOCKS[mnemonic][1]
         if mnemonic in SETS_S0:
             self.pending_flags = None
@@ -327,21 +364,22 @@ class _Run:
         else:  # TOF, IMP write S0.3 = 0 or leave S0 alone, the shift registers leave it
             self.flush()
         word = getattr(instr.arg, "word", instr.arg).index
-        self.write_back([("R", word), ("R", word + 1)], forget=True)  # the core works on its word in R
-        name = f"k{index}"
-        self.bound[name] = closure.core  # type: ignore[attr-defined]
-        inputs = self.levels[shape.inputs - 1 :: -1]
-        args = [level.expr for level in inputs[:-1]]
-        args.append(self.num(inputs[-1]) if shape.preset else inputs[-1].expr)
-        outputs = [f"t{self.count + k}" for k in range(len(shape.places))]
-        self.count += len(outputs)
-        self.lines.append(f"{', '.join(outputs)} = {name}({', '.join(args)})")
+        state = f"b{index}"
+        self.bound[state] = state_of(self.m, instr)
+        lo, hi = self.reg("R", word), self.reg("R", word + 1)
+        self.wrote("R", word)
+        self.wrote("R", word + 1)
+        inputs = [level.expr for level in self.levels[shape.inputs - 1 :: -1]]
+        if shape.preset:
+            inputs[-1] = self.held(self.num(self.levels[0]))
+        write = _Block(self, state, lo, hi, instr)
+        outputs = getattr(write, _WRITERS[mnemonic])(*inputs)
         if shape.push:
-            self.push(Level(outputs[0]))
+            self.push(outputs[0])
         else:
-            self.levels[0] = Level(outputs[0])
+            self.levels[0] = outputs[0]
         for level, out in zip(shape.places[1:], outputs[1:], strict=True):
-            self.levels[level] = Level(out)
+            self.levels[level] = out
 
     def _closure(self, mnemonic: str, index: int, closure: Code) -> None:
         if mnemonic == "ADD":
@@ -361,3 +399,196 @@ class _Run:
 def _plain(op: object) -> bool:
     """An operand the generated code reads and writes itself (not a long one: those run as closures)."""
     return isinstance(op, Operand) and op.width != "long"
+
+
+_WRITERS = {"CTU": "counter", "CTD": "counter", "CNT": "cnt", "SFL": "shift", "SFR": "shift"} | {
+    m: m.lower() for m in ("TON", "TOF", "IMP", "RTO")
+}
+"""Which method of :class:`_Block` writes each block out."""
+
+
+class _Block:
+    """One function block's code, written into its run: each method takes the input levels' expressions
+    (A(n-1) first, a preset as its number) and returns the output levels, as the core returns its outputs.
+    The lines mirror the cores of :mod:`.blocks` statement by statement; ``lo``, ``hi`` hold the word."""
+
+    def __init__(self, run: _Run, state: str, lo: str, hi: str, instr: Instruction):
+        self.run, self.b, self.lo, self.hi, self.instr = run, state, lo, hi, instr
+        config = run.m.config
+        self.preset, self.top = config.ctd_set_value, config.timer_max
+        self.per_timer = config.timer_ticks == "per_timer"
+
+    def name(self) -> str:
+        name = f"t{self.run.count}"
+        self.run.count += 1
+        return name
+
+    def emit(self, *lines: str) -> None:
+        self.run.lines.extend(lines)
+
+    # -- counters and shift registers --------------------------------------------------------------
+
+    def counter(self, count: str, clear: str) -> list[Level]:
+        up = self.instr.mnemonic == "CTU"
+        b, lo, hi = self.b, self.lo, self.hi
+        c, edge, v, carry = self.name(), self.name(), self.name(), self.name()
+        self.emit(
+            f"{c} = {count} != 0",
+            f"{edge} = {c} and not {b}.prev",
+            f"{b}.prev = {c}",
+            f"{v} = {lo} | {hi} << 8",
+            f"{carry} = False",
+            f"if {clear}: {v} = {0 if up else self.preset}",
+            f"elif {edge}:",
+            f"    {v} {'+' if up else '-'}= 1",
+            f"    if {v} {'> 65535' if up else '< 0'}: {v} &= 65535; {carry} = True",
+            f"{lo} = {v} & 255; {hi} = {v} >> 8",
+            f"aS[0] = (5 if {v} == 0 else 0) | (6 if {carry} else 0)",
+        )
+        return [Level(v), Level(carry, True)]
+
+    def cnt(self, up: str, down: str, clear: str) -> list[Level]:
+        b, lo, hi = self.b, self.lo, self.hi
+        u, d, ru, rd, v, upc, downc = (self.name() for _ in range(7))
+        self.emit(
+            f"{u} = {up} != 0; {d} = {down} != 0",
+            f"{ru} = {u} and not {b}.prev; {rd} = {d} and not {b}.prev2",
+            f"{b}.prev = {u}; {b}.prev2 = {d}",
+            f"{v} = {lo} | {hi} << 8",
+            f"{upc} = {downc} = False",
+            f"if {clear}: {v} = 0",
+            f"elif {ru} and not {rd}:",
+            f"    {v} += 1",
+            f"    if {v} > 65535: {v} = 0; {upc} = True",
+            f"elif {rd} and not {ru}:",
+            f"    {v} -= 1",
+            f"    if {v} < 0: {v} = 65535; {downc} = True",
+            f"{lo} = {v} & 255; {hi} = {v} >> 8",
+            f"aS[0] = (5 if {v} == 0 else 0) | (6 if {upc} or {downc} else 0)",
+        )
+        return [Level(v), Level(upc, True), Level(downc, True)]
+
+    def shift(self, clock: str, serial: str) -> list[Level]:
+        left = self.instr.mnemonic == "SFL"
+        b, lo, hi = self.b, self.lo, self.hi
+        c, edge, v, out = self.name(), self.name(), self.name(), self.name()
+        if left:
+            step = f"{v} = {v} << 1 & 65535 | (1 if {serial} else 0)"
+        else:
+            step = f"{v} = {v} >> 1 | (32768 if {serial} else 0)"
+        self.emit(
+            f"{c} = {clock} != 0",
+            f"{edge} = {c} and not {b}.prev",
+            f"{b}.prev = {c}",
+            f"{v} = {lo} | {hi} << 8",
+            f"{out} = False",
+            f"if {edge}:",
+            f"    {out} = {v} & {32768 if left else 1}",
+            f"    {step}",
+            f"    {lo} = {v} & 255; {hi} = {v} >> 8",
+        )
+        return [Level(v), Level(out, True)]
+
+    # -- timers -------------------------------------------------------------------------------------
+
+    def units(self, indent: str, count: str = "") -> str:
+        """``units()`` of the timer's clock: the name holding the whole units to add."""
+        b, unit = self.b, TIME_BASES_NS[self.instr.arg.code]
+        ran, passed = self.name(), self.name()
+        self.emit(
+            f"{indent}{ran} = {b}.last_pass == m.pass_no - 1",
+            f"{indent}{b}.last_pass = m.pass_no",
+            f"{indent}if {count}{b}.timing and {ran}:",
+        )
+        if self.per_timer:
+            acc = self.name()
+            self.emit(
+                f"{indent}    {acc} = {b}.acc + m.t0 - m.prev_t0",
+                f"{indent}    {b}.acc = {acc} % {unit}; {passed} = {acc} // {unit}",
+            )
+        else:
+            self.emit(f"{indent}    {passed} = m.t0 // {unit} - m.prev_t0 // {unit}")
+        self.emit(f"{indent}else: {passed} = 0")
+        return passed
+
+    def clear(self, indent: str) -> None:
+        self.emit(f"{indent}{self.lo} = {self.hi} = 0; {self.b}.acc = 0; {self.b}.overflow = False; aS[0] = 0")
+
+    def advance(self, indent: str, passed: str, value: str, over: str) -> None:
+        b, lo, hi = self.b, self.lo, self.hi
+        self.emit(
+            f"{indent}{value} = {lo} | {hi} << 8; {over} = False",
+            f"{indent}if {passed}:",
+            f"{indent}    {value} += {passed}",
+            f"{indent}    if {value} >= {self.top}:",
+            f"{indent}        {value} = {self.top}; {over} = not {b}.overflow; {b}.overflow = True",
+            f"{indent}    {lo} = {value} & 255; {hi} = {value} >> 8",
+        )
+
+    def flags(self, indent: str, preset: str, value: str, over: str) -> None:
+        p, v, b = preset, value, self.b
+        self.emit(
+            f"{indent}aS[0] = ({p} == {v}) | ({p} < {v}) << 1 | ({p} <= {v}) << 2 | {b}.overflow << 4 | {over} << 5"
+        )
+
+    def ton(self, xt: str, preset: str) -> list[Level]:
+        b, v, over, out = self.b, self.name(), self.name(), self.name()
+        self.emit(f"if not {xt}:", f"    {b}.last_pass = m.pass_no; {b}.timing = False")
+        self.clear("    ")
+        self.emit(f"    {out} = False", "else:")
+        passed = self.units("    ")
+        self.emit(f"    if not {b}.timing:")
+        self.clear("        ")
+        self.emit(f"        {b}.timing = True; {passed} = 0")
+        self.advance("    ", passed, v, over)
+        self.flags("    ", preset, v, over)
+        self.emit(f"    {out} = {v} >= {preset}")
+        return [Level(out, True)]
+
+    def tof(self, xt: str, preset: str) -> list[Level]:
+        b, v, over, out, falling = self.b, self.name(), self.name(), self.name(), self.name()
+        self.emit(f"if {xt}:", f"    {b}.last_pass = m.pass_no; {b}.prev = True; {b}.timing = False")
+        self.clear("    ")
+        self.emit(f"    {out} = True", "else:")
+        passed = self.units("    ")
+        self.emit(f"    {falling} = {b}.prev; {b}.prev = False", f"    if {falling}:")
+        self.clear("        ")
+        self.emit(f"        {b}.timing = True; {passed} = 0", f"    if not {b}.timing: {out} = False", "    else:")
+        self.advance("        ", passed, v, over)
+        self.flags("        ", preset, v, over)
+        self.emit(f"        {out} = {v} < {preset}")
+        return [Level(out, True)]
+
+    def imp(self, xt: str, preset: str) -> list[Level]:
+        b = self.b
+        v, over, out, x, rising, going = (self.name() for _ in range(6))
+        passed = self.units("")
+        self.emit(
+            f"{x} = {xt} != 0",
+            f"{rising} = {x} and not {b}.prev",
+            f"{b}.prev = {x}",
+            f"{going} = True",
+            f"if not {b}.timing:",
+            f"    if not {rising}: {going} = False",
+            "    else:",
+        )
+        self.clear("        ")
+        self.emit(f"        {b}.timing = True; {passed} = 0", f"{out} = False", f"if {going}:")
+        self.advance("    ", passed, v, over)
+        self.flags("    ", preset, v, over)
+        self.emit(f"    if {v} >= {preset}: {b}.timing = False", f"    else: {out} = True")
+        return [Level(out, True)]
+
+    def rto(self, xt: str, rt: str, preset: str) -> list[Level]:
+        b, v, over, out, carry = self.b, self.name(), self.name(), self.name(), self.name()
+        passed = self.units("", f"{xt} and not {rt} and ")
+        self.emit(f"if {rt}:", f"    {b}.timing = False")
+        self.clear("    ")
+        self.emit(f"    {out} = {carry} = False", "else:", f"    if {xt}:", f"        if not {b}.timing: {passed} = 0")
+        self.emit(f"        {b}.timing = True")
+        self.advance("        ", passed, v, over)
+        self.emit("    else:", f"        {b}.timing = False", f"        {v} = {self.lo} | {self.hi} << 8")
+        self.emit(f"        {over} = False")
+        self.flags("    ", preset, v, over)
+        self.emit(f"    {out} = {v} >= {preset}; {carry} = {b}.overflow")
+        return [Level(out, True), Level(carry, True)]

@@ -21,7 +21,7 @@ EXAMPLES = Path(__file__).resolve().parents[3] / "examples" / "tecomat"
 def linking(request, monkeypatch):
     """Every test runs on the fast path (fused runs) and on the plain closures: the same behaviour."""
     if request.param == "closures":
-        monkeypatch.setattr(linker, "fuse", lambda m, code: code)
+        monkeypatch.setattr(linker, "fuse", lambda m, code, cycle=None: code)
     return request.param
 
 
