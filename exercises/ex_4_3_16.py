@@ -15,11 +15,16 @@ from exercises._skip import DOLNY, HORNY, SPOMAL, WrongPosition, auto_cycle, ref
 from plants.skip import Skip
 from plcsim.check import all_of, any_of, becomes, event, event_data, holds, never, off, on, rises
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, after_event, jam_motor, power_cycle, stuck, write
+from plcsim.scenario import FAULTS, Scenario, after_event, jam_motor, power_cycle, stuck, write
 from plcsim.tags import DB
 from plcsim.tags.types import Bool
 
 NUMBER = "4.3.16"
+FAULT_WORDS = (
+    "Faults happen: the rope may jam (the skip then stands where it is), and a sensor may fail (it never reports the "
+    "skip)"
+)
+"""The task's words for its fault scenarios (``Scenario(outside=...)``)."""
 AUTO, PLNY, POVOL = "DB_SKIP.AUTO", "DB_SKIP.PLNY", "DB_MIESACKA.KAMENIVO_POVOL"
 UP, DOWN, FAST, SLOW = "START_HORE", "START_DOLE", "RYCHLOST_RYCHLO", "RYCHLOST_POMALY"
 ALARM_UP, ALARM_DOWN, ALARM_SLOW = (
@@ -236,6 +241,7 @@ EXERCISE = Exercise(
             JAM_UP,
             *auto_cycle(),
             jam_motor(UP, t="10s..14s"),
+            outside={FAULTS: FAULT_WORDS},
             duration="35s",
             description="the rope jams during the fast ascent: the skip stands where it is",
         ),
@@ -243,6 +249,7 @@ EXERCISE = Exercise(
             JAM_DOWN,
             *auto_cycle(),
             jam_motor(DOWN, when=after_event("pour ended"), delay="8s..12s"),
+            outside={FAULTS: FAULT_WORDS},
             duration="83s",
             description="the rope jams during the descent: the skip stands where it is",
         ),
@@ -250,6 +257,7 @@ EXERCISE = Exercise(
             DEAD_SLOW,
             stuck(SPOMAL, False, t="0s"),
             *auto_cycle(),
+            outside={FAULTS: FAULT_WORDS},
             duration="28s",
             description="SNIMAC_SPOMAL never reports the skip (a dead sensor): an automatic ascent",
         ),
@@ -257,6 +265,7 @@ EXERCISE = Exercise(
             DEAD_TOP,
             stuck(HORNY, False, t="0s"),
             *auto_cycle(),
+            outside={FAULTS: FAULT_WORDS},
             duration="35s",
             description="SNIMAC_HORNY never reports the skip (a dead sensor): an automatic ascent",
         ),
@@ -264,6 +273,7 @@ EXERCISE = Exercise(
             DEAD_BOTTOM,
             stuck(DOLNY, False, t="0s"),
             *auto_cycle(),
+            outside={FAULTS: FAULT_WORDS},
             duration="5s",
             description="SNIMAC_DOLNY never reports the skip (a dead sensor) standing at the bottom, full, in AUTO",
         ),
