@@ -79,7 +79,14 @@ from plcsim.check.occurrences import (
     seen,
     seen_at,
 )
-from plcsim.check.operating import FAULTS, OperatingCondition, assumes, parts_at_once, undeclared_breaks
+from plcsim.check.operating import (
+    FAULTS,
+    OperatingCondition,
+    assumes,
+    fault_problems,
+    parts_at_once,
+    undeclared_breaks,
+)
 from plcsim.check.quantities import Quantity, count, durations, duty, event_data, final, measure, spacing, value_at
 from plcsim.check.static import StaticCheck, program_uses_no
 from plcsim.check.temporal import Always, Eventually, Holds, HoldsBuilder, Never, always, eventually, holds, never
@@ -143,6 +150,7 @@ __all__ = [
     "assumes",
     "parts_at_once",
     "undeclared_breaks",
+    "fault_problems",
     "OperatingCondition",
     "FAULTS",
     "evaluate_all",

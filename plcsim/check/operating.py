@@ -12,8 +12,8 @@ A scenario that injects a fault (``jam``, ``stuck``, a rig verb declared ``fault
 normal operation: it declares :data:`~plcsim.scenario.planning.FAULTS` with the task words that speak of the fault.
 
 The exercise checks the words when it is loaded (:mod:`plcsim.exercise.validation`); whether a scenario stays
-inside the conditions depends on the run, so :func:`undeclared_breaks` reads a run of the reference
-(tests/course/test_operating_conditions.py does it for every shipped exercise).
+inside the conditions depends on the run, so :func:`undeclared_breaks` reads a run of the reference, and
+:func:`fault_problems` the faults (tests/course/test_operating_conditions.py does both for every shipped exercise).
 """
 
 from __future__ import annotations
@@ -76,10 +76,26 @@ def _gone(trace: Trace) -> list[Any]:
     return [e for kind in GONE for e in trace.events_of(kind)]
 
 
+def fault_problems(scenario: Scenario) -> list[str]:
+    """What is wrong with ``scenario``'s declaration of faults: one it injects without declaring :data:`FAULTS` with
+    the task's words, or one it declares and does not inject."""
+    faults = scenario.faults
+    if faults and FAULTS not in scenario.outside:
+        return [
+            f"scenario {scenario.name!r} injects a fault ({faults[0].describe()}, {faults[0].defined_at}) and does not "
+            "say which words of the task speak of it: declare outside={FAULTS: the task's words for what must happen "
+            "then}, or state it in the task"
+        ]
+    if FAULTS in scenario.outside and not faults:
+        return [f"scenario {scenario.name!r} declares a fault but injects none: drop outside[FAULTS]"]
+    return []
+
+
 def undeclared_breaks(conditions: list[OperatingCondition], scenario: Scenario, trace: Trace) -> list[str]:
-    """What is wrong with ``scenario``'s declarations, read on ``trace`` (a run of the reference): each condition the
-    run broke that the scenario does not declare in ``outside``, and each it declares that the run kept."""
-    out = []
+    """What is wrong with ``scenario``'s declarations, read on ``trace`` (a run of the reference): its faults
+    (:func:`fault_problems`), each condition the run broke that the scenario does not declare in ``outside``, and
+    each it declares that the run kept."""
+    out = fault_problems(scenario)
     for condition in conditions:
         kept, message = condition.holds(trace)
         declared = condition.words in scenario.outside
@@ -97,4 +113,4 @@ def undeclared_breaks(conditions: list[OperatingCondition], scenario: Scenario, 
     return out
 
 
-__all__ = ["FAULTS", "GONE", "OperatingCondition", "assumes", "parts_at_once", "undeclared_breaks"]
+__all__ = ["FAULTS", "GONE", "OperatingCondition", "assumes", "fault_problems", "parts_at_once", "undeclared_breaks"]

@@ -243,8 +243,9 @@ class _Validation:
                 )
 
     def _conditions(self, traced: list[str]) -> None:
-        """The operating conditions quote the task and read names the exercise has; each scenario declares, with the
-        task's words, the conditions it leaves and the faults it injects (see :mod:`plcsim.check.operating`)."""
+        """The operating conditions quote the task and read names the exercise has; what a scenario declares it leaves
+        is a condition (or ``FAULTS``) and the task's words for what must happen then (see
+        :mod:`plcsim.check.operating`; whether a scenario leaves one depends on the run, and is tested there)."""
         ex = self.exercise
         task = plain_words(ex.task)
         words = [c.words for c in ex.conditions]
@@ -271,15 +272,6 @@ class _Validation:
                         f"{label} leaves {left!r} on the strength of {said!r}, which the task text does not state: "
                         "the task says what must happen then, or the scenario goes",
                     )
-            faults = scenario.faults
-            if faults and FAULTS not in scenario.outside:
-                self.add(
-                    faults[0].defined_at,
-                    f"{label} injects a fault ({faults[0].describe()}) the task does not speak of: declare "
-                    f"outside={{FAULTS: the task's words for what must happen then}}, or the scenario goes",
-                )
-            elif FAULTS in scenario.outside and not faults:
-                self.add(scenario.defined_at, f"{label} declares a fault but injects none; drop outside[FAULTS]")
 
     def _where(self, gc: GradedCheck) -> str:
         own = getattr(gc.check, "defined_at", "?")

@@ -38,8 +38,8 @@ class Scenario:
     ``outside`` declares the operating conditions of the task the scenario deliberately leaves, each with the words
     of the task that say what must happen then: ``{"the operator loads one object at a time": "If a second object
     is loaded ..."}``; the key :data:`FAULTS` for a scenario that injects a fault (``{FAULTS: "If the object does
-    not reach S2 within 10 s, ..."}``). The exercise refuses to load a fault nobody declared, or words its task does
-    not state (see :mod:`plcsim.check.operating`).
+    not reach S2 within 10 s, ..."}``). The exercise refuses to load words its task does not state; a fault or a
+    condition left undeclared is found on a run (see :mod:`plcsim.check.operating`).
     """
 
     def __init__(

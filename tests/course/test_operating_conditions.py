@@ -3,9 +3,9 @@ then (issue 27).
 
 Each exercise states its operating conditions with the task's words (``Exercise(conditions=[assumes(...)])``); a
 scenario that leaves one declares it (``Scenario(outside={words: the task's words for what must happen then})``), as
-one that injects a fault declares ``FAULTS``. The words are checked when the exercise loads; whether a scenario stays
-inside a condition depends on the run, so here every exercise's reference runs every scenario, on the two seeds the
-course is graded with in its tests.
+one that injects a fault declares ``FAULTS``. The words are checked when the exercise loads; the faults here, and
+whether a scenario stays inside a condition depends on the run, so every exercise's reference runs every scenario,
+on the two seeds the course is graded with in its tests.
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from __future__ import annotations
 import pytest
 
 from exercises import all_exercises, get
-from plcsim.check import FAULTS, assumes, parts_at_once, undeclared_breaks
+from plcsim.check import FAULTS, assumes, fault_problems, parts_at_once, undeclared_breaks
 from plcsim.core.errors import ExerciseError
 from plcsim.exercise import Exercise
 from plcsim.scenario import Scenario, held, place, remove, stuck
@@ -44,14 +44,20 @@ def test_the_course_states_its_conditions_where_its_tasks_do():
         assert stated.get(number), number
 
 
-def test_a_fault_the_task_does_not_speak_of_fails_the_exercise_at_load_time():
+@pytest.mark.parametrize("exercise", EXERCISES, ids=[ex.number for ex in EXERCISES])
+def test_every_fault_a_scenario_injects_is_one_the_task_speaks_of(exercise):
+    assert not [p for s in exercise.scenarios for p in fault_problems(s)]
+
+
+def test_a_fault_the_task_does_not_speak_of_is_reported_and_words_it_does_not_have_do_not_load():
     ex = get("4.3.5")
     dead = Scenario("S2 dead", stuck("S2", False, t="0s"), place("p1", at="S1", t="0.5s"), duration="4s")
-    with pytest.raises(ExerciseError, match="injects a fault .* the task does not speak of"):
-        rebuilt(ex, scenarios=[*ex.scenarios, dead])
+    (problem,) = fault_problems(dead)
+    assert "injects a fault (stick S2 at False at 0 ns" in problem
     words = Scenario(
         "S2 dead", stuck("S2", False, t="0s"), duration="4s", outside={FAULTS: "the belt stops when S2 fails"}
     )
+    assert not fault_problems(words)
     with pytest.raises(ExerciseError, match="which the task text does not state"):
         rebuilt(ex, scenarios=[*ex.scenarios, words])
 
