@@ -583,6 +583,13 @@ EXERCISE = Exercise(
             "it differs only when AUTO is selected with that empty skip between the sensors (it goes on down, the "
             "reference waits), of which the task says nothing"
         ),
+        "s.AUTO and t.SNIMAC_HORNY and (not s.PLNY) → s.AUTO and (not s.PLNY)": (
+            "N8 without SNIMAC_HORNY sets AUTO_DOLE whenever the skip is empty in AUTO, the textbook's own item 3 "
+            "('travel down in automatic mode if the skip is empty'); at the bottom SNIMAC_DOLNY resets it in the "
+            "same network, so it drives nothing there. It differs when SNIMAC_DOLNY is dead: AUTO selected before "
+            "PLNY comes takes the skip standing at the bottom down into the end buffer, which the task forbids only "
+            "'when nothing is wrong'"
+        ),
     },
     notes=(
         "Variant A of spec §5.7 (fast 40 mm/s, slow 25 mm/s, 1000 mm track, SNIMAC_SPOMAL 200 mm below the top): a "
