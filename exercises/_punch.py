@@ -457,6 +457,11 @@ def shuttle_words(*, reverse_at_os2: bool = True) -> str:
 WAITS = "waits there until the operator takes it away"
 COUNTED = "0 again once the object has been removed"
 """The words of the tasks that :func:`waits_at_os1` and :func:`counts_arrivals` grade."""
+PRESS_JAM = (
+    "The press may jam on its way down (a fault of the machine) and be freed a few seconds later; it then goes on down "
+    "to KS2 and the stroke is finished as usual, the machine kept safe meanwhile."
+)
+"""6.3.3-6.3.5's fault scenario 'jammed press', as their tasks state it (``Scenario(outside={FAULTS: ...})``)."""
 PRESS_WORDS = (
     "The press goes down only for an object at OS2; if the operator takes the object from under the press, the press "
     "strikes no more and waits at the top (KS1)."

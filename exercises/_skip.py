@@ -78,12 +78,12 @@ def refill() -> list:
     ]
 
 
-def auto_cycle() -> list:
+def auto_cycle(mixer_ready: str = "0.5s..0.9s") -> list:
     """The operator selects AUTO, the hopper fills the skip and the dosing control reports it (PLNY), and the
-    mixer allows aggregate (KAMENIVO_POVOL): one automatic cycle."""
+    mixer allows aggregate (KAMENIVO_POVOL) at ``mixer_ready``: one automatic cycle."""
     return [
         write("DB_SKIP.AUTO", True, t="0.1s"),
         FILL("skip", t="0.2s..0.4s"),
         write("DB_SKIP.PLNY", True, t="0.5s..0.7s"),
-        write("DB_MIESACKA.KAMENIVO_POVOL", True, t="0.5s..0.9s"),
+        write("DB_MIESACKA.KAMENIVO_POVOL", True, t=mixer_ready),
     ]

@@ -5,9 +5,11 @@ from exercises._panel import press_pattern
 from plants import Panel
 from plcsim.check import action, always, count, falls, rises, value
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, press, wire_break
+from plcsim.scenario import FAULTS, Scenario, press, wire_break
 
 NUMBER = "4.3.2"
+FAULT_WORDS = "A broken wire reads as a pressed button (the input is FALSE) and lights the LED"
+"""The task's words for its fault scenarios (``Scenario(outside=...)``)."""
 
 
 EXERCISE = Exercise(
@@ -48,6 +50,7 @@ EXERCISE = Exercise(
             "broken wire",
             *press("TLACIDLO", t="200ms..400ms", hold="50ms..150ms"),
             wire_break("TLACIDLO", t="1s..1.5s"),
+            outside={FAULTS: FAULT_WORDS},
             duration="2s",
             description="one press, then the wire of the NC button breaks: the input reads FALSE, as if "
             "the button were pressed for good",

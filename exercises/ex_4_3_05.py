@@ -12,7 +12,7 @@ as the alternative ``solution-reset-first``.
 from exercises._common import solution
 from exercises._conveyor import CARRY, CONV1_IO, carries_objects, shuttle
 from plants import Conv1
-from plcsim.check import always, event, implies, never, off, rises
+from plcsim.check import always, assumes, event, implies, never, off, parts_at_once, rises
 from plcsim.exercise import Exercise, only
 from plcsim.scenario import Scenario, place, remove
 
@@ -88,6 +88,7 @@ EXERCISE = Exercise(
             fails=("D1 stops when the object reaches S2", "transport S1 -> S2 takes 4.8 s +-10 %"),
         ),
     ],
+    conditions=[assumes("Only one object is on the conveyor at a time", parts_at_once(1))],
     requirements={
         "D1 starts when S1 sees an object": "start the belt in the scan in which S1 detects the object",
         "the belt never runs while S2 sees an object": "so that the object stays on the belt at S2",

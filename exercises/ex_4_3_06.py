@@ -15,9 +15,11 @@ from exercises._truth import EdgeBalance, Parts, parts_equal
 from plants import Conv1
 from plcsim.check import all_of, always, count, event, falls, final, implies, never, off, rises
 from plcsim.exercise import IO, Exercise, Solution, only
-from plcsim.scenario import Scenario, after_event, chatter, held, place, remove
+from plcsim.scenario import FAULTS, Scenario, after_event, chatter, held, place, remove
 
 NUMBER = "4.3.6"
+FAULT_WORDS = "A bouncing sensor makes extra edges, and the count takes each edge as it comes"
+"""The task's words for its fault scenarios (``Scenario(outside=...)``)."""
 
 # --------------------------------------------------------------------------------------------
 # The exercise
@@ -92,6 +94,7 @@ EXERCISE = Exercise(
             place("p1", at="S1", t="0.3s..0.8s"),
             place("p2", at="S1", when=after_event("part left", "p1"), delay="1s..2s"),
             *removals(("1s", "1.2s")),
+            outside={FAULTS: FAULT_WORDS},
             duration="16s",
             description="demonstration (textbook, not pass/fail): S1 bounces 3..5 times at every beam change, "
             "so each object is counted several times; the count never returns to 0 and the belt runs on "
@@ -103,6 +106,7 @@ EXERCISE = Exercise(
             place("p1", at="S1", t="0.3s..0.8s"),
             place("p2", at="S1", when=after_event("part removed", "S2"), delay="1s..2s"),
             *removals(("1s",)),
+            outside={FAULTS: FAULT_WORDS},
             duration="12s",
             description="demonstration (textbook, not pass/fail): S2 bounces while the operator takes the "
             "object away, the count drops below 0 and a newly loaded object does not start the belt",

@@ -9,11 +9,13 @@ from __future__ import annotations
 from exercises._common import solution
 from exercises._conveyor import CARRY, CONV1_IO, carries_objects, shuttle
 from plants import Conv1
-from plcsim.check import all_of, always, count, event, falls, holds, implies, never, off, rises
+from plcsim.check import all_of, always, assumes, count, event, falls, holds, implies, never, off, parts_at_once, rises
 from plcsim.exercise import IO, Exercise, GradedCheck, only
-from plcsim.scenario import Scenario, after_event, held, jam, knock_off, place, remove, write
+from plcsim.scenario import FAULTS, Scenario, after_event, held, jam, knock_off, place, remove, write
 
 NUMBER = "4.3.7"
+FAULT_WORDS = "If S2 does not detect the object within the protection time of 10 s"
+"""The task's words for its fault scenarios (``Scenario(outside=...)``)."""
 
 
 ALARM_SCENARIOS = ("jam", "knocked off", "new object during the alarm")
@@ -48,6 +50,7 @@ NEW_OBJECT_DURING_ALARM = Scenario(
     remove("p2", t="15.6s..15.9s"),
     place("p3", at="S1", t="16.1s..16.4s"),
     remove("p3", when=held("S2", "1s")),
+    outside={FAULTS: FAULT_WORDS},
     duration="24s",
     description="after the alarm the operator frees the belt and loads a new object before "
     "acknowledging; the belt must wait for ACK (version 3); after ACK the operator lifts the object and "
@@ -149,6 +152,7 @@ EXERCISE = Exercise(
             "jam",
             *JAMMED,
             *acknowledge(13, 14),
+            outside={FAULTS: FAULT_WORDS},
             duration="16s",
             description="the object jams 0.2..2 s after leaving S1; the belt slips under it; the operator "
             "acknowledges the alarm 2..3.7 s after it was raised",
@@ -158,6 +162,7 @@ EXERCISE = Exercise(
             place("p1", at="S1", t="0.3s..0.8s"),
             knock_off("p1", when=after_event("part left", "p1"), delay="1s..3s"),
             *acknowledge(12.5, 13.5),
+            outside={FAULTS: FAULT_WORDS},
             duration="15s",
             description="the object is pushed off the side of the belt on its way to S2",
         ),
@@ -193,6 +198,7 @@ EXERCISE = Exercise(
             "new object during the alarm",
         ),
     ],
+    conditions=[assumes("One object at a time", parts_at_once(1))],
     requirements={
         **WATCHDOG_WORDS,
         "after ACK the waiting object is carried to S2": "after ACK an object at S1 starts it again",

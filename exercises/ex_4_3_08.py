@@ -18,6 +18,7 @@ import numpy as np
 from exercises._common import solution
 from exercises._conveyor import CARRY, CONV1_IO, carries_objects
 from exercises.ex_4_3_07 import (
+    FAULT_WORDS,
     NEW_OBJECT_DURING_ALARM,
     SPEC_EQUIVALENT,
     THREE_OBJECTS,
@@ -26,9 +27,21 @@ from exercises.ex_4_3_07 import (
     watchdog_checks,
 )
 from plants import Conv1
-from plcsim.check import Condition, Context, all_of, always, durations, duty, implies, never, off
+from plcsim.check import (
+    Condition,
+    Context,
+    all_of,
+    always,
+    assumes,
+    durations,
+    duty,
+    implies,
+    never,
+    off,
+    parts_at_once,
+)
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, after_event, jam, place, write
+from plcsim.scenario import FAULTS, Scenario, after_event, jam, place, write
 
 NUMBER = "4.3.8"
 
@@ -115,6 +128,7 @@ EXERCISE = Exercise(
             TIMER_LIT,
             *jammed("0.3s..1.3s"),
             *acknowledge_after_placement(20.6, 20.9),
+            outside={FAULTS: FAULT_WORDS},
             duration="24s",
             description="the object jams on its way to S2; ALARM comes 10.3..11.3 s after the start, in any phase of "
             "Clock_1Hz; the operator acknowledges 20.6..20.9 s after the placement (10.6..10.9 s after the alarm): "
@@ -125,6 +139,7 @@ EXERCISE = Exercise(
             *jammed("0.3s..1.3s"),
             write("ACK", True, t="21.6s..21.9s"),
             write("ACK", False, t="22.2s..22.5s"),
+            outside={FAULTS: FAULT_WORDS},
             duration="24s",
             description="as the other, but the operator acknowledges at 21.6..21.9 s, while Clock_1Hz is TRUE, in "
             "either phase of the timer solutions; the LED blinks from 11.3 s at the latest to 21.6 s at the earliest",
@@ -152,6 +167,7 @@ EXERCISE = Exercise(
             NEW_OBJECT_DURING_ALARM.name,
         ),
     ],
+    conditions=[assumes("One object at a time", parts_at_once(1))],
     requirements={
         **WATCHDOG_WORDS,
         "each flash lasts 0.5 s": "0.5 s lit",

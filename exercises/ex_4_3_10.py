@@ -24,11 +24,13 @@ from plcsim.check import (
     program_uses_no,
 )
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, after_event, held, place, remove, wire_break
+from plcsim.scenario import FAULTS, Scenario, after_event, held, place, remove, wire_break
 from plcsim.tags import DB
 from plcsim.tags.types import Bool
 
 NUMBER = "4.3.10"
+FAULT_WORDS = "A broken sensor wire reads FALSE, 'object present': at D2_OS2 it stops D2 at once"
+"""The task's words for its fault scenarios (``Scenario(outside=...)``)."""
 
 STRAY = ("stray",)  # a part put straight in front of D1_OS2 on the idle model: by design not an object of the line
 D1_POZ1 = Parts("D1_OS1", "D1_OS2", STRAY, "objects at D1 position 1")
@@ -104,6 +106,7 @@ EXERCISE = Exercise(
             "wire break",
             place("p1", at="D1_OS1", t="0.3s..0.8s"),
             wire_break("D2_OS2", when=after_event("part entered", "D2_OS1"), delay="1s..3s"),
+            outside={FAULTS: FAULT_WORDS},
             duration="12s",
             description="the wire of D2_OS2 breaks while p1 travels on D2: the NC input reads FALSE, 'object present'",
         ),

@@ -12,9 +12,11 @@ from exercises._common import solution
 from plants.align import JAM_PISTON, Align
 from plcsim.check import all_of, count, event, event_data, final, holds, never, off, on, rises
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, after_event, place, remove, wire_break
+from plcsim.scenario import FAULTS, Scenario, after_event, place, remove, wire_break
 
 NUMBER = "4.3.12"
+FAULT_WORDS = "it never comes when the piston jams or the rear sensor is dead"
+"""The task's words for its fault scenarios (``Scenario(outside=...)``)."""
 CROOKED = {"offset_mm": (0.0, 15.0), "angle_deg": (-15.0, 15.0)}  # §5.5: 0–15 mm off the fence, ±15°
 ROBOT = "0.5s..1s"  # the robot takes the aligned object this long after the plate is back
 
@@ -83,6 +85,7 @@ EXERCISE = Exercise(
             JAMMED,
             place("p1", at="table", t="0.3s..0.8s", **CROOKED),
             JAM_PISTON("PIEST", when=after_event("part placed", "p1"), delay="1.15s..1.35s"),
+            outside={FAULTS: FAULT_WORDS},
             duration="5s",
             description="the piston rod sticks half-way out (the task defines no timeout: the program waits)",
         ),
@@ -90,6 +93,7 @@ EXERCISE = Exercise(
             DEAD,
             wire_break("PIEST_SNIMAC_VZAD", t="0s"),
             place("p1", at="table", t="0.3s..0.8s", **CROOKED),
+            outside={FAULTS: FAULT_WORDS},
             duration="6s",
             description="the rear end-position sensor's wire is broken: the piston is never seen at home",
         ),

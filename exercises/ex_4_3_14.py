@@ -21,11 +21,16 @@ from exercises._hours import (
 )
 from plants import Conv1
 from plcsim.exercise import Exercise, only
-from plcsim.scenario import Scenario, held, knock_off, place, power_cycle, remove, write
+from plcsim.scenario import FAULTS, Scenario, held, knock_off, place, power_cycle, remove, write
 from plcsim.tags import DB
 from plcsim.tags.types import DTL, Bool, DInt
 
 NUMBER = "4.3.14"
+FAULT_WORDS = (
+    "An object knocked off the belt on its way leaves the belt running (the control of 4.3.5 stops it only at S2), "
+    "and that running time is counted like any other."
+)
+"""The task's words for the object its scenarios knock off, so that the belt runs long (4.3.15 states them too)."""
 METER = "MOTOR.SEKUNDY"
 
 _PULSE_A_SCAN_LATER = "the count uses the pulse one scan later, still once a second (criterion 1: T +- 1 in T s)"
@@ -56,7 +61,9 @@ EXERCISE = Exercise(
         "time of the last reset) and NULUJ (Bool, 'zero it': triggers the reset). Increment SEKUNDY every second "
         "while the motor is on. When NULUJ becomes TRUE, set SEKUNDY to zero, write the current date and time to "
         "DATUM_CAS and reset NULUJ. SEKUNDY and DATUM_CAS are retentive, NULUJ is not. Keep the conveyor control "
-        "of 4.3.5 (S1 starts the belt, S2 stops it). Over T seconds of running, SEKUNDY grows by T +- 1. NULUJ "
+        "of 4.3.5 (S1 starts the belt, S2 stops it). "
+        + FAULT_WORDS
+        + " Over T seconds of running, SEKUNDY grows by T +- 1. NULUJ "
         "takes effect, and is reset, in the scan that reads it."
     ),
     io=CONV1_IO,
@@ -73,6 +80,7 @@ EXERCISE = Exercise(
             *resets_in_every_phase("30s"),
             place("p2", at="S1", t="80s..85s"),
             remove("p2", when=held("S2", "1s")),
+            outside={FAULTS: FAULT_WORDS},
             duration="125s",
             description="the first object is knocked off, so the belt runs empty; NULUJ ten times from 30 s, "
             "one of them read by the scan of the 1 s pulse; a second object stops the belt at S2 at about "
@@ -86,6 +94,7 @@ EXERCISE = Exercise(
             power_cycle(t="40s..50s"),
             place("p2", at="S1", t="60s..65s"),
             knock_off("p2", t="68s..70s"),
+            outside={FAULTS: FAULT_WORDS},
             duration="100s",
             description="the meter runs, the CPU is powered off and on (the belt stops: D1 is not retentive), "
             "then the belt runs again",

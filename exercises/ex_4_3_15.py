@@ -17,11 +17,11 @@ from exercises._hours import (
     survives_power_cycle,
     zero_after_reset,
 )
-from exercises.ex_4_3_14 import SPEC_EQUIVALENT
+from exercises.ex_4_3_14 import FAULT_WORDS, SPEC_EQUIVALENT
 from plants import Conv1
 from plcsim.check import always, value
 from plcsim.exercise import Exercise, only
-from plcsim.scenario import Action, Scenario, knock_off, place, power_cycle, write
+from plcsim.scenario import FAULTS, Action, Scenario, knock_off, place, power_cycle, write
 from plcsim.tags import DB
 from plcsim.tags.types import DTL, Bool, UInt, USInt
 
@@ -49,7 +49,7 @@ EXERCISE = Exercise(
         "the date and time as in 4.3.14: write the current date and time to DATUM_CAS and reset NULUJ, in the scan "
         "that reads NULUJ. Over T seconds of running, the meter grows by T +- 1 s; at the end of every scan SEKUNDY "
         "and MINUTY are within 0..59. SEKUNDY, MINUTY, HODINY and DATUM_CAS are retentive, NULUJ is not. Keep the "
-        "conveyor control of 4.3.5 (S1 starts the belt, S2 stops it)."
+        "conveyor control of 4.3.5 (S1 starts the belt, S2 stops it). " + FAULT_WORDS
     ),
     io=CONV1_IO,
     dbs={
@@ -71,6 +71,7 @@ EXERCISE = Exercise(
             place("p1", at="S1", t="1s..2s"),
             knock_off("p1", t="4s..5s"),
             write("MOTOR.NULUJ", True, t="10s..20s"),
+            outside={FAULTS: FAULT_WORDS},
             duration="7350s",
             description="the meter holds 17 h 43 min 21 s from earlier runs; the belt runs empty for about "
             "2 h 2 min after NULUJ (the textbook's example: 7325 s)",
@@ -84,6 +85,7 @@ EXERCISE = Exercise(
             power_cycle(t="100s..110s"),
             place("p2", at="S1", t="120s..125s"),
             knock_off("p2", t="128s..130s"),
+            outside={FAULTS: FAULT_WORDS},
             duration="200s",
             description="the meter passes a minute, the CPU is powered off and on, then the belt runs again",
         ),

@@ -15,11 +15,16 @@ from exercises._skip import DOLNY, HORNY, SPOMAL, WrongPosition, auto_cycle, ref
 from plants.skip import Skip
 from plcsim.check import all_of, any_of, becomes, event, event_data, holds, never, off, on, rises
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, after_event, jam_motor, power_cycle, stuck, write
+from plcsim.scenario import FAULTS, Scenario, after_event, jam_motor, power_cycle, stuck, write
 from plcsim.tags import DB
 from plcsim.tags.types import Bool
 
 NUMBER = "4.3.16"
+FAULT_WORDS = (
+    "Faults happen: the rope may jam (the skip then stands where it is), and a sensor may fail (it never reports the "
+    "skip)"
+)
+"""The task's words for its fault scenarios (``Scenario(outside=...)``)."""
 AUTO, PLNY, POVOL = "DB_SKIP.AUTO", "DB_SKIP.PLNY", "DB_MIESACKA.KAMENIVO_POVOL"
 UP, DOWN, FAST, SLOW = "START_HORE", "START_DOLE", "RYCHLOST_RYCHLO", "RYCHLOST_POMALY"
 ALARM_UP, ALARM_DOWN, ALARM_SLOW = (
@@ -40,9 +45,10 @@ JAM_DOWN = "rope jam going down"
 DEAD_SLOW = "slow-down sensor dead"
 DEAD_TOP = "top sensor dead"
 DEAD_BOTTOM = "bottom sensor dead"
+MIXER_WAITS = "mixer not ready yet"
 CYCLES = (ONE, TWO)
 """Normal automatic cycles: everything the task asks of a cycle holds in them."""
-NORMAL = (ONE, TWO, MODE, BETWEEN, MANUAL, BOTH)
+NORMAL = (ONE, TWO, MODE, BETWEEN, MANUAL, BOTH, MIXER_WAITS)
 """No fault: no alarm may be raised and the converter and the buffers must not be troubled."""
 ARRIVALS = (ONE, TWO, MODE, JAM_UP, JAM_DOWN)
 """An automatic ascent with a working slow-down sensor reaches the top (or is meant to)."""
@@ -233,9 +239,17 @@ EXERCISE = Exercise(
             "of MAN_HORE",
         ),
         Scenario(
+            MIXER_WAITS,
+            *auto_cycle(mixer_ready="3s..4s"),
+            duration="8s",
+            description="AUTO and the skip full at the bottom, but the mixer allows aggregate only 2.3..3.5 s later: "
+            "the skip waits for it, then goes up",
+        ),
+        Scenario(
             JAM_UP,
             *auto_cycle(),
             jam_motor(UP, t="10s..14s"),
+            outside={FAULTS: FAULT_WORDS},
             duration="35s",
             description="the rope jams during the fast ascent: the skip stands where it is",
         ),
@@ -243,6 +257,7 @@ EXERCISE = Exercise(
             JAM_DOWN,
             *auto_cycle(),
             jam_motor(DOWN, when=after_event("pour ended"), delay="8s..12s"),
+            outside={FAULTS: FAULT_WORDS},
             duration="83s",
             description="the rope jams during the descent: the skip stands where it is",
         ),
@@ -250,6 +265,7 @@ EXERCISE = Exercise(
             DEAD_SLOW,
             stuck(SPOMAL, False, t="0s"),
             *auto_cycle(),
+            outside={FAULTS: FAULT_WORDS},
             duration="28s",
             description="SNIMAC_SPOMAL never reports the skip (a dead sensor): an automatic ascent",
         ),
@@ -257,6 +273,7 @@ EXERCISE = Exercise(
             DEAD_TOP,
             stuck(HORNY, False, t="0s"),
             *auto_cycle(),
+            outside={FAULTS: FAULT_WORDS},
             duration="35s",
             description="SNIMAC_HORNY never reports the skip (a dead sensor): an automatic ascent",
         ),
@@ -264,6 +281,7 @@ EXERCISE = Exercise(
             DEAD_BOTTOM,
             stuck(DOLNY, False, t="0s"),
             *auto_cycle(),
+            outside={FAULTS: FAULT_WORDS},
             duration="5s",
             description="SNIMAC_DOLNY never reports the skip (a dead sensor) standing at the bottom, full, in AUTO",
         ),
@@ -293,6 +311,13 @@ EXERCISE = Exercise(
             .named("AUTO: START_HORE within 2 scans of a full skip at the bottom and the mixer ready")
             .grades(ASCENT),
             *CYCLES,
+            MIXER_WAITS,
+        ),
+        only(
+            never(all_of(AUTO, UP, DOLNY, off(POVOL)))
+            .named("AUTO: no ascent before the mixer allows aggregate")
+            .grades(ASCENT),
+            MIXER_WAITS,
         ),
         only(
             never(all_of(UP, DOLNY, off(FAST)))
@@ -300,6 +325,7 @@ EXERCISE = Exercise(
             .named("the automatic ascent starts fast")
             .grades(FAST_FIRST),
             *CYCLES,
+            MIXER_WAITS,
         ),
         only(
             never(all_of(UP, SPOMAL, FAST))
@@ -539,6 +565,30 @@ EXERCISE = Exercise(
             "AUTO_HORE, and its speed output follows one scan later, inside item 4's 'within 1 scan'; the "
             "direction still drops in the scan that reads SNIMAC_HORNY or SNIMAC_DOLNY (N1/N2 test the sensor "
             "themselves), and N13 and N3-N5 read the direction the skip was driven with, as the reference does"
+        ),
+        "s.MAN_HORE and (not s.MAN_DOLE) → s.MAN_HORE": (
+            "with MAN_HORE and MAN_DOLE pressed together the skip goes on up where the reference stops it: the task "
+            "says only that both may be pressed by mistake and that START_HORE and START_DOLE are never TRUE "
+            "together (N2 still has NOT START_HORE), not which command wins or that neither does"
+        ),
+        "s.MAN_DOLE and (not s.MAN_HORE) → s.MAN_DOLE": (
+            "with MAN_HORE and MAN_DOLE pressed together the skip goes down where the reference stops it: the task "
+            "says only that both may be pressed by mistake and that START_HORE and START_DOLE are never TRUE "
+            "together, not which command wins or that neither does"
+        ),
+        "s.AUTO and t.SNIMAC_HORNY and (not s.PLNY) → t.SNIMAC_HORNY and (not s.PLNY)": (
+            "N8 without AUTO also sets AUTO_DOLE when an empty skip is run up to the top by hand: in manual mode it "
+            "drives nothing (N2 reads AUTO_DOLE only in AUTO), SNIMAC_DOLNY resets it, and AUTO selected at the top "
+            "takes the empty skip down at once, as the reference does (its N8 sets AUTO_DOLE in that first scan); "
+            "it differs only when AUTO is selected with that empty skip between the sensors (it goes on down, the "
+            "reference waits), of which the task says nothing"
+        ),
+        "s.AUTO and t.SNIMAC_HORNY and (not s.PLNY) → s.AUTO and (not s.PLNY)": (
+            "N8 without SNIMAC_HORNY sets AUTO_DOLE whenever the skip is empty in AUTO, the textbook's own item 3 "
+            "('travel down in automatic mode if the skip is empty'); at the bottom SNIMAC_DOLNY resets it in the "
+            "same network, so it drives nothing there. It differs when SNIMAC_DOLNY is dead: AUTO selected before "
+            "PLNY comes takes the skip standing at the bottom down into the end buffer, which the task forbids only "
+            "'when nothing is wrong'"
         ),
     },
     notes=(

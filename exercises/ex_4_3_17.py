@@ -11,13 +11,36 @@ from __future__ import annotations
 from exercises._common import solution
 from exercises._sort import NoMissort, OnlyAfter, Phantom, Unmarked, WrongType
 from plants.sort import FAIL_COMPRESSOR, SET_AMBIENT, Sort
-from plcsim.check import all_of, any_of, count, durations, event, event_data, final, never, not_, off
+from plcsim.check import (
+    action,
+    all_of,
+    any_of,
+    assumes,
+    count,
+    durations,
+    event,
+    event_data,
+    final,
+    never,
+    not_,
+    off,
+    spacing,
+)
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, after_event, place
+from plcsim.scenario import FAULTS, Scenario, after_event, place
 from plcsim.tags import DB
 from plcsim.tags.types import Bool, Int
 
 NUMBER = "4.3.17"
+FAULT_WORDS = "also when the compressor fails to build pressure"
+APART = "The operator loads the objects at least 3 s apart"
+"""The operating condition the task states, left by the scenario 'objects too close', where the task says what must
+happen then."""
+CLOSER = (
+    "loaded closer, the sorter may lose some (they end unsorted), but a piston still pushes only an object of its own "
+    "colour"
+)
+"""The task's words for its fault scenarios (``Scenario(outside=...)``)."""
 PISTONS = ("Piest1_Farba1", "Piest2_Farba2", "Piest3_Farba3")
 OCCUPANCY = tuple(
     f"DATA.{n}"
@@ -157,6 +180,7 @@ EXERCISE = Exercise(
             NO_AIR,
             FAIL_COMPRESSOR("Kompresor", t="0s"),
             *loads((1,)),
+            outside={FAULTS: FAULT_WORDS},
             duration="10s",
             description="the compressor runs but builds no pressure: the piston cannot move, the object ends unsorted",
         ),
@@ -176,6 +200,7 @@ EXERCISE = Exercise(
         Scenario(
             CLOSE,
             *spaced((1, ""), (2, "1.4s..1.6s"), (3, "1.4s..1.6s"), (1, "1.4s..1.6s")),
+            outside={APART: CLOSER},
             duration="20s",
             description="four objects 1.5 s apart, closer than the task's 3 s: the sorter's positions lose objects, "
             "which end unsorted or stuck; a piston may still only push an object of its colour",
@@ -289,6 +314,7 @@ EXERCISE = Exercise(
             *ONE_AT_A_TIME,
         ),
     ],
+    conditions=[assumes(APART, spacing(action("place")).at_least("3s"))],
     requirements={
         "bin 1 receives colour 1 only": "Every object of a colour lands in its own bin",
         "bin 2 receives colour 2 only": "Every object of a colour lands in its own bin",

@@ -14,11 +14,13 @@ from exercises._hbw import DONE, Estimate, FinalStep, OneRowInRack, Served, oper
 from plants.hbw import HBW, Z_ZONE
 from plcsim.check import all_of, any_of, count, event, never, not_, value
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, shift_sensor, stuck
+from plcsim.scenario import FAULTS, Scenario, shift_sensor, stuck
 from plcsim.tags import DB
 from plcsim.tags.types import Bool, Int, Real
 
 NUMBER = "4.3.18"
+FAULT_WORDS = "A position sensor may be mounted a few millimetres off its place, or fail: the crane must then stay safe"
+"""The task's words for its fault scenarios (``Scenario(outside=...)``)."""
 STEPS = ("s0_request", "s1_z_middle", "s2_x_y_target", "s3_z_forward", "s4_y_opposite", "s5_z_back")
 """The reference's step networks, in their order (the mutants that reorder them are one scan apart)."""
 HALF_STEP_LATE = (
@@ -204,6 +206,7 @@ EXERCISE = Exercise(
             shift_sensor("y4", 3.0, t="0s"),
             shift_sensor("x3", -4.0, t="0s"),
             *operator([("put", 3, 2), ("take", 3, 2)]),
+            outside={FAULTS: FAULT_WORDS},
             duration="17s",
             description="the cams y4 and x3 mounted 3 and 4 mm off their places (still inside the zones' margins)",
         ),
@@ -211,6 +214,7 @@ EXERCISE = Exercise(
             FAILED,
             stuck("x2", False, t="0s"),
             *operator([("put", 2, 1)]),
+            outside={FAULTS: FAULT_WORDS},
             duration="10s",
             description="the cam x2 fails (its contact never closes): a put-in for column 2 cannot be served; the "
             "crane must stay safe",

@@ -20,7 +20,7 @@ from exercises._punch import (
     shuttle_words,
 )
 from plants import Punch
-from plcsim.check import count, rises
+from plcsim.check import assumes, count, parts_at_once, rises
 from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import Scenario, after_event, held, place, remove
 
@@ -98,6 +98,7 @@ EXERCISE = Exercise(
         ),
         *machine_safe(),
     ],
+    conditions=[assumes("Consider one object at a time", parts_at_once(1))],
     requirements={
         "every object is carried to OS2 exactly once": CARRIED,
         "every object waits at OS1 until it is taken away": WAITS,

@@ -21,6 +21,7 @@ from exercises._punch import (
     waits_at_os1,
 )
 from plants import Punch
+from plcsim.check import assumes, parts_at_once
 from plcsim.exercise import IO, Exercise
 from plcsim.scenario import Scenario, after_event, held, place, remove, write
 
@@ -105,6 +106,7 @@ EXERCISE = Exercise(
         *interlocks(press=False),
         *machine_safe(),
     ],
+    conditions=[assumes("One object at a time", parts_at_once(1))],
     requirements={
         "every object is carried to OS2 M1_ZIADANY_POCET times": "The object makes the required number of moves",
     },

@@ -5,6 +5,7 @@ from __future__ import annotations
 from exercises._common import solution
 from exercises._punch import (
     MODEL,
+    PRESS_JAM,
     PUNCH_IO,
     AwaitingStroke,
     PerObject,
@@ -18,11 +19,18 @@ from exercises._punch import (
     strokes_on,
 )
 from plants import Punch
-from plcsim.check import all_of, count, final, never, off, rises
+from plcsim.check import all_of, assumes, count, final, never, off, parts_at_once, rises
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, after_event, chatter, free_motor, held, jam_motor, place, remove
+from plcsim.scenario import FAULTS, Scenario, after_event, chatter, free_motor, held, jam_motor, place, remove
 
 NUMBER = "6.3.3"
+AT_OS2 = "The operator puts the object straight under the press (at OS2) and takes it away there"
+"""The operating condition the task states: one object at OS2 at a time (an exchange takes one away first)."""
+BOUNCING = (
+    "KS1 and KS2 are contacts and may bounce: a change can come with a few extra toggles of 2 to 10 ms, and every "
+    "object still gets exactly one stroke."
+)
+"""The task's words for the scenario 'bouncing limit switches' (``Scenario(outside={FAULTS: ...})``)."""
 OBJECTS = 3
 BOUNCE = "bouncing limit switches"
 EXCHANGED = "object exchanged while the ram goes up"
@@ -50,7 +58,10 @@ EXERCISE = Exercise(
         "is at the top (KS1) with an object at OS2 that it has not punched yet, reverses in the scan that sees KS2 "
         "and stops in the scan that sees KS1 again. If the object is taken away while the press goes down, the press "
         "finishes its stroke and waits at the top. Remember that the press has been down for the object in the bit "
-        "OBJEKT_BOL_DOLE; the removal is the rising edge of OS2 (edge memory bit POM_P_OS2)."
+        "OBJEKT_BOL_DOLE; the removal is the rising edge of OS2 (edge memory bit POM_P_OS2). "
+        + BOUNCING
+        + " "
+        + PRESS_JAM
     ),
     io=[
         *PUNCH_IO,
@@ -71,6 +82,7 @@ EXERCISE = Exercise(
             chatter("KS1", t="0s"),
             chatter("KS2", t="0s"),
             *cycles(OBJECTS, at="OS2", rest=HOLDS),
+            outside={FAULTS: BOUNCING},
             duration="22s",
             description="the limit switches are contacts and bounce: each change of KS1 and KS2 comes with 3..5 "
             "extra toggles of 2..10 ms; three objects as in 'three objects'",
@@ -83,6 +95,7 @@ EXERCISE = Exercise(
             remove("p1", when=held("OS2", "7s")),
             place("p2", at="OS2", when=after_event("part removed", "p1"), delay="1s..2s"),
             remove("p2", when=held("OS2", "4s")),
+            outside={FAULTS: PRESS_JAM},
             duration="18s",
             description="a fault: the press jams on its way down (KS2 is not reached) and is freed 1.5..3 s later; "
             "the stroke then completes; a second object follows",
@@ -186,6 +199,7 @@ EXERCISE = Exercise(
             ),
         ),
     ],
+    conditions=[assumes(AT_OS2, parts_at_once(1))],
     spec_equivalent={
         "P(t.OS2, 'POM_P_OS2') → t.OS2": (
             "OBJEKT_BOL_DOLE is cleared in every scan without an object at OS2 instead of once as it leaves: 'the "

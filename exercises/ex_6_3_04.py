@@ -6,6 +6,7 @@ from exercises._common import solution
 from exercises._punch import (
     COUNT_RUNG_MOVED,
     MODEL,
+    PRESS_JAM,
     PRESS_WORDS,
     PUNCH_IO,
     TAKEN_FROM_THE_PRESS,
@@ -19,8 +20,9 @@ from exercises._punch import (
     taken_from_the_press,
 )
 from plants import Punch
+from plcsim.check import assumes, parts_at_once
 from plcsim.exercise import IO, Exercise
-from plcsim.scenario import Scenario, after_event, free_motor, jam_motor
+from plcsim.scenario import FAULTS, Scenario, after_event, free_motor, jam_motor
 
 NUMBER = "6.3.4"
 REQUIRED = "M1_ZIADANY_POCET"
@@ -52,6 +54,8 @@ EXERCISE = Exercise(
         + shuttle_words(reverse_at_os2=False)
         + " "
         + PRESS_WORDS
+        + " "
+        + PRESS_JAM
     ),
     io=IO_TABLE,
     rig=Punch,
@@ -68,6 +72,7 @@ EXERCISE = Exercise(
             *cycles(1, writes={1: {REQUIRED: 1}}),
             jam_motor("M2_DOLE", when=after_event("part entered", "OS2"), delay="0.4s..0.9s"),
             free_motor("M2_DOLE", when=after_event("motor jammed"), delay="1.5s..3s"),
+            outside={FAULTS: PRESS_JAM},
             duration="18s",
             description="a fault: the press jams on its way down and is freed 1.5..3 s later; the belt must wait",
         ),
@@ -80,6 +85,7 @@ EXERCISE = Exercise(
         ),
     ],
     checks=punching_checks(constant(1), parameter(REQUIRED), "exactly one stroke", (REQUIRED,), WHOLE),
+    conditions=[assumes("One object at a time", parts_at_once(1))],
     requirements={
         "every stay under the press gets exactly one stroke": "is punched once at every visit to OS2",
         "every stroke comes down on an object": "The press goes down only for an object at OS2",

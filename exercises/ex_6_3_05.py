@@ -6,6 +6,7 @@ from exercises._common import solution
 from exercises._punch import (
     COUNT_RUNG_MOVED,
     MODEL,
+    PRESS_JAM,
     PRESS_WORDS,
     PUNCH_IO,
     TAKEN_FROM_THE_PRESS,
@@ -21,7 +22,7 @@ from exercises._punch import (
 from plants import Punch
 from plcsim.check import all_of, never, value
 from plcsim.exercise import IO, Exercise
-from plcsim.scenario import Scenario, after_event, free_motor, jam_motor
+from plcsim.scenario import FAULTS, Scenario, after_event, free_motor, jam_motor
 
 NUMBER = "6.3.5"
 MOVES, STROKES = "M1_ZIADANY_POCET", "M2_ZIADANY_POCET"
@@ -47,6 +48,8 @@ EXERCISE = Exercise(
         + shuttle_words(reverse_at_os2=False)
         + " "
         + PRESS_WORDS
+        + " "
+        + PRESS_JAM
     ),
     io=[
         *PUNCH_IO,
@@ -82,6 +85,7 @@ EXERCISE = Exercise(
             *cycles(1, writes={1: {MOVES: 1, STROKES: 2}}),
             jam_motor("M2_DOLE", when=after_event("press stroke"), delay="1.8s..2.2s"),
             free_motor("M2_DOLE", when=after_event("motor jammed"), delay="1.5s..3s"),
+            outside={FAULTS: PRESS_JAM},
             duration="22s",
             description="a fault: the press jams on its way down to the second stroke and is freed 1.5..3 s later",
         ),

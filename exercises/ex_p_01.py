@@ -11,7 +11,7 @@ from exercises._common import solution
 from exercises._mechanisms import mech_solution, spindle, spindle_io
 from plcsim.check import all_of, becomes, falls, holds, never, rises, value
 from plcsim.exercise import Exercise, only
-from plcsim.scenario import Scenario, jam_motor, press, stuck, write
+from plcsim.scenario import FAULTS, Scenario, jam_motor, press, stuck, write
 
 NUMBER = "P-01"
 SMP_OFF = "SMP is switched off within 2 scans after REV is pressed"
@@ -38,12 +38,14 @@ ERROR_5_WORDS = (
 NO_ERROR_WORDS = "A reversal that succeeds leaves BZH11 at 0"
 
 
-def _reversal(name: str, *faults, description: str) -> Scenario:
+def _reversal(name: str, *faults, description: str, fault_words: str = "") -> Scenario:
+    """The reversal of the spindle running clockwise, with ``faults`` (stated in the task's ``fault_words``)."""
     return Scenario(
         name,
         write("SMP", True, t="0ms"),
         *press("REV", t="1s..1.5s", hold="50ms..150ms"),
         *faults,
+        outside={FAULTS: fault_words} if faults else None,
         duration="3s",
         description=description,
     )
@@ -73,11 +75,13 @@ EXERCISE = Exercise(
         _reversal(
             "KSMP stuck",
             stuck("KSMP", True, t="0ms"),
+            fault_words="If KSMP does not open within 1 s",
             description="the contact of SMP is stuck closed (a welded contact or a short on its wire)",
         ),
         _reversal(
             "SMN never closes",
             jam_motor("SMN", t="0ms"),
+            fault_words="If KSMN does not close within 1 s of switching SMN on (the contactor does not pick up)",
             description="the motor-negative contactor never picks up",
         ),
     ],

@@ -14,9 +14,11 @@ from exercises._common import solution
 from exercises._mechanisms import mech_solution, spindle, spindle_io
 from plcsim.check import all_of, becomes, durations, falls, holds, never, off, rises, value
 from plcsim.exercise import IO, Exercise, only
-from plcsim.scenario import Scenario, jam_motor, press
+from plcsim.scenario import FAULTS, Scenario, jam_motor, press
 
 NUMBER = "P-02"
+FAULT_WORDS = "if it has not closed (the contactor does not pick up), switch SMP off"
+"""The task's words for its fault scenarios (``Scenario(outside=...)``)."""
 SMP_ON = "SMP is switched on within 2 scans after START is pressed"
 READY = "READY lights within 2 scans after KSMP closes"
 ERROR_12 = "a spindle that never starts: BZH11 = 18 (12H) 10 s after START (at most 3 scans later)"
@@ -77,6 +79,7 @@ EXERCISE = Exercise(
             "SMP never closes",
             *press("START", t="0.5s..1s", hold="50ms..150ms"),
             jam_motor("SMP", t="0ms"),
+            outside={FAULTS: FAULT_WORDS},
             duration="12s",
             description="the motor-positive contactor never picks up",
         ),

@@ -60,6 +60,7 @@ JAM_PISTON = RigVerb(
     "jam piston {target}",
     targets="pistons",
     doc="the piston rod sticks where it is (commanded or not)",
+    fault=True,
 )
 
 

@@ -64,7 +64,7 @@ SET_AMBIENT = RigVerb(
     targets="colour_sensors",
 )
 FAIL_COMPRESSOR = RigVerb(
-    "fail_compressor", "fail_compressor", "compressor", "fail compressor {target}", targets="compressors"
+    "fail_compressor", "fail_compressor", "compressor", "fail compressor {target}", targets="compressors", fault=True
 )
 
 

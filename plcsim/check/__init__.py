@@ -25,6 +25,8 @@ Building blocks:
   ``count(X)``, ``spacing(X)``, ``durations(c)``, ``duty(c)``, ``final("MOTOR.SEKUNDY")``, ``program_uses_no("SET")``,
   ``event_data(kind, key)`` for a plant's own measurement (the data of its events),
   and ``measure(label, fn)`` for a number computed from the trace by a Python function.
+* **operating conditions** (what the task assumes, not graded): ``assumes("task words", check)``,
+  ``parts_at_once(1)``; see :mod:`plcsim.check.operating`.
 
 Durations are literals with scans: ``"1 scan"``, ``"10s + 2 scans"``, ``"0.5s - 1 scan"`` (a scan is the
 CPU's cycle time). Conditions are evaluated per scan on the values of that scan: an input as the
@@ -76,6 +78,14 @@ from plcsim.check.occurrences import (
     rises,
     seen,
     seen_at,
+)
+from plcsim.check.operating import (
+    FAULTS,
+    OperatingCondition,
+    assumes,
+    fault_problems,
+    parts_at_once,
+    undeclared_breaks,
 )
 from plcsim.check.quantities import Quantity, count, durations, duty, event_data, final, measure, spacing, value_at
 from plcsim.check.static import StaticCheck, program_uses_no
@@ -137,6 +147,12 @@ __all__ = [
     "measure",
     "event_data",
     "program_uses_no",
+    "assumes",
+    "parts_at_once",
+    "undeclared_breaks",
+    "fault_problems",
+    "OperatingCondition",
+    "FAULTS",
     "evaluate_all",
     "AllOf",
     "AnyOf",

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from plcsim.check import Check
+from plcsim.check import Check, OperatingCondition
 from plcsim.controllers.choice import controller_for
 from plcsim.controllers.loaded import SourceProgram
 from plcsim.core.errors import ConfigurationError, ExerciseError, defined_at
@@ -124,6 +124,11 @@ class Exercise:
     a helper that several exercises share; a check of one exercise can say it itself with ``.grades(...)``).
     Each must be in the task text, or the exercise does not load: a check grades only what the task states.
 
+    ``conditions`` are the operating conditions the task states (:func:`~plcsim.check.operating.assumes`: the
+    task's words and a check a run inside them passes), such as "Only one object is on the conveyor at a time".
+    A scenario that leaves one declares it in ``Scenario(outside={words: ...})`` with the task's words for what
+    must happen then, as one that injects a fault declares ``FAULTS``; the words must be in the task text.
+
     ``aliases`` are the other names the textbook gives a tag or a data-block member (``{"Dopravník":
     "D1_VPRED", "DATA.POZ3_OBS_Farba 1": "DATA.POZ3_OBS_Farba1"}``): a program may use either; a name with a
     space is also accepted with ``_`` for the space (see :meth:`~plcsim.tags.table.TagTable.add_alias`).
@@ -153,6 +158,7 @@ class Exercise:
     what the reference uses, measured once per batch, at least 10 s (:mod:`plcsim.grading.sandbox.limits`)."""
     requirements: Mapping[str, str] = field(default_factory=dict)
     aliases: Mapping[str, str] = field(default_factory=dict)
+    conditions: Sequence[OperatingCondition] = ()
 
     def __post_init__(self) -> None:
         self.defined_at = defined_at()

@@ -26,7 +26,7 @@ from plcsim.core.errors import ExerciseError, PlcError, did_you_mean
 from plcsim.core.literals import to_ns
 from plcsim.plant.protocol import rig_verbs, stations_of, traced_observables
 from plcsim.scenario.names import name_problems, plant_vocabulary
-from plcsim.scenario.planning import Scenario
+from plcsim.scenario.planning import FAULTS, Scenario
 from plcsim.scenario.verbs import VERBS
 from plcsim.sim.recorder import default_signals
 from plcsim.sim.wiring import Wiring
@@ -222,8 +222,9 @@ class _Validation:
                         f"check {gc.name!r} applies to scenario {s!r}, which does not exist"
                         f"{did_you_mean(s, scenario_names)}; scenarios: {_choices(scenario_names)}",
                     )
-            self._check(gc, where, traced)
+            self._check(gc.check, f"check {gc.name!r}", gc.scenarios, where, traced)
         self._requirements()
+        self._conditions(traced)
 
     def _requirements(self) -> None:
         """Each check's requirement is words of the task text, and ``requirements`` names only checks."""
@@ -241,14 +242,46 @@ class _Validation:
                     "task's own words, or state the requirement in the task",
                 )
 
+    def _conditions(self, traced: list[str]) -> None:
+        """The operating conditions quote the task and read names the exercise has; what a scenario declares it leaves
+        is a condition (or ``FAULTS``) and the task's words for what must happen then (see
+        :mod:`plcsim.check.operating`; whether a scenario leaves one depends on the run, and is tested there)."""
+        ex = self.exercise
+        task = plain_words(ex.task)
+        words = [c.words for c in ex.conditions]
+        for condition in ex.conditions:
+            if plain_words(condition.words) not in task:
+                self.add(
+                    condition.defined_at,
+                    f"the condition {condition.words!r} is not in the task text: quote the task's own words, or state "
+                    "the condition in the task",
+                )
+            self._check(condition.check, f"condition {condition.words!r}", None, condition.defined_at, traced)
+        for scenario in ex.scenarios:
+            label = f"scenario {scenario.name!r}"
+            for left, said in scenario.outside.items():
+                if left != FAULTS and left not in words:
+                    self.add(
+                        scenario.defined_at,
+                        f"{label} declares it leaves {left!r}, which is not a condition of the exercise"
+                        f"{did_you_mean(left, words)}; conditions: {_choices([*words, FAULTS])}",
+                    )
+                if plain_words(said) not in task:
+                    self.add(
+                        scenario.defined_at,
+                        f"{label} leaves {left!r} on the strength of {said!r}, which the task text does not state: "
+                        "the task says what must happen then, or the scenario goes",
+                    )
+
     def _where(self, gc: GradedCheck) -> str:
         own = getattr(gc.check, "defined_at", "?")
         return own if own != "?" else (gc.defined_at if gc.defined_at != "?" else self.exercise.defined_at)
 
-    def _check(self, gc: GradedCheck, where: str, traced: list[str]) -> None:
-        check: Check = gc.check
+    def _check(
+        self, check: Check, label: str, scenarios: tuple[str, ...] | None, where: str, traced: list[str]
+    ) -> None:
+        """The names ``check`` reads (a check applied to ``scenarios``, None: all) exist in the exercise."""
         used = check.names()
-        label = f"check {gc.name!r}"
         for name in used.signals:
             if name not in traced:
                 self.add(
@@ -256,7 +289,7 @@ class _Validation:
                     f"{label} reads {name!r}, which the exercise does not have{did_you_mean(name, traced)}; "
                     f"a check can read: {_choices(traced)}",
                 )
-        applies = [s for s in self.exercise.scenarios if gc.scenarios is None or s.name in gc.scenarios]
+        applies = [s for s in self.exercise.scenarios if scenarios is None or s.name in scenarios]
         events, subjects = self.plant_events, self.plant_subjects
         parts = sorted({a.target for s in applies for a in s.actions if a.verb == "place"})
         plant = getattr(self.plant, "name", "(no plant)")

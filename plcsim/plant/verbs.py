@@ -50,6 +50,8 @@ class RigVerb:
         controller: True for a verb the controller brings rather than the rig (the Tecomat's ``interrupt``):
             it lists it in its own ``VERBS``, ``method`` and ``targets`` are the controller's, and a run on a
             controller without it is refused before it starts (:func:`plcsim.scenario.names.controller_verb_problems`).
+        fault: True for a verb that injects a fault (a jammed piston, a failed compressor): a scenario using it is
+            outside the machine's normal operation, and declares the task's words for it (``Scenario(outside=...)``).
     """
 
     name: str
@@ -60,6 +62,7 @@ class RigVerb:
     state: bool = False
     doc: str = ""
     controller: bool = False
+    fault: bool = False
 
     def __call__(self, target: str, t: Any = None, *, when: Any = None, delay: Any = 0, **args: Any) -> Any:
         """The scenario action (a :class:`plcsim.scenario.verbs.Action`) of this verb on ``target``, at ``t`` or

@@ -2,8 +2,9 @@
 
 from plcsim.plant.verbs import RigVerb
 from plcsim.scenario.names import check_names, controller_verb_problems, name_problems, plant_vocabulary
-from plcsim.scenario.planning import Planned, Scenario, plan
+from plcsim.scenario.planning import FAULTS, Planned, Scenario, plan
 from plcsim.scenario.verbs import (
+    FAULT_VERBS,
     TARGET_ROLES,
     VERB_CAPABILITY,
     VERBS,
@@ -50,6 +51,8 @@ __all__ = [
     "TARGET_ROLES",
     "VERBS",
     "VERB_CAPABILITY",
+    "FAULT_VERBS",
+    "FAULTS",
     "RigVerb",
     "press",
     "release",

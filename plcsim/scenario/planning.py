@@ -7,7 +7,7 @@ run, in the order the actions were written, and the runner (:mod:`plcsim.scenari
 from __future__ import annotations
 
 import random
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -28,15 +28,34 @@ def _flatten(items: Iterable[Any]) -> list[Action]:
     return out
 
 
-class Scenario:
-    """A named timeline of actions with a duration and a short description."""
+FAULTS = "faults"
+"""The key of :attr:`Scenario.outside` for a scenario that injects a fault (an action whose ``fault`` is True)."""
 
-    def __init__(self, name: str, *actions: Action | list[Action], duration: str | int = "10s", description: str = ""):
+
+class Scenario:
+    """A named timeline of actions with a duration and a short description.
+
+    ``outside`` declares the operating conditions of the task the scenario deliberately leaves, each with the words
+    of the task that say what must happen then: ``{"the operator loads one object at a time": "If a second object
+    is loaded ..."}``; the key :data:`FAULTS` for a scenario that injects a fault (``{FAULTS: "If the object does
+    not reach S2 within 10 s, ..."}``). The exercise refuses to load words its task does not state; a fault or a
+    condition left undeclared is found on a run (see :mod:`plcsim.check.operating`).
+    """
+
+    def __init__(
+        self,
+        name: str,
+        *actions: Action | list[Action],
+        duration: str | int = "10s",
+        description: str = "",
+        outside: Mapping[str, str] | None = None,
+    ):
         self.name = name
         self.actions = _flatten(actions)
         self.defined_at = defined_at()
         self.duration_ns = parse_at_line(lambda d: to_ns(d, "duration"), duration, f"scenario {name!r}")
         self.description = description
+        self.outside = dict(outside or {})
         if self.duration_ns <= 0:
             raise ScenarioError(
                 f"{self.defined_at}: scenario {name!r}: duration {duration!r} is not positive; "
@@ -49,6 +68,11 @@ class Scenario:
                     f"{format_ns(self.duration_ns)}, so this action may never happen; "
                     f"make it earlier or the duration longer"
                 )
+
+    @property
+    def faults(self) -> list[Action]:
+        """The actions that inject a fault."""
+        return [a for a in self.actions if a.fault]
 
     def __repr__(self) -> str:
         return f"<Scenario {self.name}: {len(self.actions)} actions, {format_ns(self.duration_ns)}>"

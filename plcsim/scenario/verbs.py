@@ -177,6 +177,11 @@ class Action:
             "download": f"download the program {self.args.get('file') or ''}".rstrip(),
         }.get(self.verb, self.verb)
 
+    @property
+    def fault(self) -> bool:
+        """True if the action injects a fault (:data:`FAULT_VERBS`, or a rig verb declared ``fault=True``)."""
+        return self.rig.fault if self.rig is not None else self.verb in FAULT_VERBS
+
     def names(self) -> list[tuple[str, str]]:
         """The names this action relies on, by role: ``[("station", "S1"), ("signal to wait for", "S2")]``."""
         out = [("station", self.args["station"])] if self.verb == "place" else []
@@ -214,6 +219,10 @@ TARGET_ROLES = {
 """What the target of each verb names (the verbs on the CPU have none)."""
 VERBS = (*TARGET_ROLES, "place", "stop_cpu", "start_cpu", "power_cycle", "download")
 """Every verb of plcsim's own (the kinds of the scenario's trace events, with ``action failed`` and the rig's verbs)."""
+FAULT_VERBS = frozenset({"jam", "knock_off", "stick", "break_wire", "chatter", "shift", "jam_motor"})
+"""plcsim's verbs that inject a fault: a part jammed or knocked off, a sensor stuck, broken, chattering or off its
+place, a motor jammed. A scenario using one is outside the operating conditions of the task unless the task says
+what must happen then (see :mod:`plcsim.check.operating`); the verbs that clear a fault inject none."""
 
 VERB_CAPABILITY = {
     "place": PARTS,
