@@ -15,6 +15,7 @@ from rich.text import Text
 from plcsim.core.console_table import print_records
 from plcsim.core.literals import format_ns
 from plcsim.core.untrusted_text import for_terminal
+from plcsim.scenario.planning import FAULTS
 
 
 def print_report(report: Any, console: Console | None = None, *, verbose: bool = False, quiet: bool = False) -> None:
@@ -182,6 +183,10 @@ def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool =
     for s in ex.scenarios:
         said = f": {s.description}" if s.description else ""
         console.print(Text(f"  • {s.name} ({format_ns(s.duration_ns)}){said}"))
+        for left, then in s.outside.items():
+            what = "injects a fault" if left == FAULTS else f'leaves "{left}"'
+            console.print(Text(f'      {what}; the task says: "{then}"'))
+    _print_conditions(ex, console)
     _print_requirements(ex, console)
     if solutions:
         from plcsim.exercise.catalog import command_name
@@ -197,6 +202,14 @@ def print_exercise(ex: Any, console: Console | None = None, *, solutions: bool =
 
 def _retained(db: Any, member: Any) -> str:
     return "yes" if member.retain or db.retain else ""
+
+
+def _print_conditions(ex: Any, console: Console) -> None:
+    """What the task assumes of the operator and the machine: no scenario leaves it without saying so above."""
+    if ex.conditions:
+        console.print("[bold]The task assumes[/] (a scenario that leaves it says so above, with the task's words)")
+        for condition in ex.conditions:
+            console.print(Text(f'  • "{condition.words}"'))
 
 
 def _print_requirements(ex: Any, console: Console) -> None:

@@ -93,6 +93,21 @@ def test_show(capsys):
         assert hidden not in out, hidden
 
 
+def test_show_states_what_the_task_assumes_and_the_scenarios_that_leave_it(capsys):
+    """Every operating condition is printed with the task's words, and a scenario outside one (or injecting a
+    fault) says which and what the task says must happen then."""
+    assert main(["show", "4.3.17"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "The task assumes (a scenario that leaves it says so above, with the task's words)" in out
+    assert get("4.3.17").conditions
+    for condition in get("4.3.17").conditions:
+        assert f'• "{" ".join(condition.words.split())}"' in out
+    too_close = get("4.3.17").scenario("objects too close")
+    ((left, then),) = too_close.outside.items()
+    assert f'leaves "{" ".join(left.split())}"; the task says: "{" ".join(then.split())}"' in out
+    assert 'injects a fault; the task says: "also when the compressor fails to build pressure"' in out
+
+
 def test_show_solutions_is_the_instructors_view(capsys):
     assert main(["show", "6.3.3", "--solutions"]) == 0
     out = " ".join(capsys.readouterr().out.split())
