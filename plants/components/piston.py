@@ -153,6 +153,8 @@ class Piston:
             sw.reset()
             sw.update(0.0)
             host.sensors[sw.name] = sw.actuated
+        if self.park:  # at rest retracted from the start
+            self._park(host)
         return False
 
     def actuate(self, host: Host, signal: str, value: Any) -> bool:
