@@ -46,18 +46,18 @@ class ColourSensor:
         y: float,
         *,
         radius: float = 2.5,
+        update_s: float = 0.005,
         colours: Mapping[int, float] | None = None,
         bare: float = 26_500.0,
         noise: float = 500.0,
-        update_s: float = 0.005,
         doc: str = "",
     ) -> None:
-        if update_s <= 0:
-            raise ValueError(f"colour sensor {name}: the update time must be > 0")
         self.name, self.x, self.y, self.radius = name, float(x), float(y), float(radius)
-        self.period_ns = round(update_s * 1e9)
         self.colours = dict(colours or {})
         self.bare, self.noise = float(bare), float(noise)
+        if update_s <= 0:
+            raise ValueError(f"colour sensor {name}: the update time must be > 0")
+        self.period_ns = round(update_s * 1e9)
         self.doc = doc or f"colour sensor at ({x:g}, {y:g}): raw 0..{RAW_MAX} (σ {noise:g})"
         self._sketch = Sketch(self._draw)
 
