@@ -4,6 +4,8 @@ Two acceptance criteria of the spec fail the textbook's own reference as written
 compressor rung (Fig. 4.156) and conveyor rung (Fig. 4.155) run before the piston and occupancy rungs, so
 Kompresor follows the pistons, and D1_VPRED the occupancies, one scan late. They are checked "within 1 scan".
 Where each object ends is the plant's record (``part in bin`` with the object's colour), not the program's bits.
+Each wrong solution is graded only on the scenarios that show its flaw: "three colours" for a slip every run shows,
+daylight and worn objects for intervals drawn too narrow, the objects of no colour for intervals without outer bounds.
 """
 
 from __future__ import annotations
@@ -370,6 +372,7 @@ EXERCISE = Exercise(
             "wrong",
             "(a slip) without the compressor rung the pistons get no air: nothing is pushed off",
             fails=("no object ends unsorted", "the compressor runs whenever a piston is out (within 1 scan)"),
+            scenarios=(THREE,),
         ),
         solution(
             NUMBER,
@@ -378,6 +381,7 @@ EXERCISE = Exercise(
             "(a slip) the belt runs only for positions 1 and 2: it stops with an object in the OS3 beam, and the last "
             "object never reaches its piston",
             fails=("the belt runs while a position is occupied (within 1 scan)",),
+            scenarios=(THREE,),
         ),
         solution(
             NUMBER,
@@ -386,6 +390,7 @@ EXERCISE = Exercise(
             "(a slip) the colour intervals drawn ±1000 raw around the lab's means: daylight or a worn object reads "
             "between them, the object gets no type and ends unsorted",
             fails=("no object ends unsorted", "each position's type is the colour of its object (within 1 scan)"),
+            scenarios=(AMBIENT, EDGES),
         ),
         solution(
             NUMBER,
@@ -397,6 +402,7 @@ EXERCISE = Exercise(
                 "no object lands in another colour's bin",
                 "each position's type is the colour of its object (within 1 scan)",
             ),
+            scenarios=OUT_OF_RANGE,
         ),
         solution(
             NUMBER,
@@ -408,6 +414,7 @@ EXERCISE = Exercise(
                 f"{p} goes out only just after an object of colour {k} passed {b}"
                 for k, (p, b) in enumerate(zip(PISTONS, ("OS3_Farba1", "OS4_Farba2", "OS5_Farba3"), strict=True), 1)
             ),
+            scenarios=(THREE,),
         ),
         solution(
             NUMBER,
@@ -416,6 +423,7 @@ EXERCISE = Exercise(
             "(a slip) in rungs 3-5 the previous type is cleared before it is copied: every type after the detection "
             "is 0, no piston fires",
             fails=("each position's type is the colour of its object (within 1 scan)", "no object ends unsorted"),
+            scenarios=(THREE,),
         ),
         solution(
             NUMBER,
@@ -424,6 +432,7 @@ EXERCISE = Exercise(
             "(a slip) the compressor switched with the conveyor, as the caption of Fig. 4.156 reads: it runs while no "
             "piston needs air",
             fails=("the compressor is off when no piston is out (within 1 scan)",),
+            scenarios=(THREE,),
         ),
     ],
     spec_equivalent={

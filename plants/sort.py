@@ -10,11 +10,14 @@ Parameters are the proposals of ``spec/exercises.md`` §5.8 (mm, y up, the belt 
 * barriers (True = interrupted; the NC wiring is the exercise's): OS1_Vstup 30, OS2_Detekcia 120, OS3_Farba1 210,
   OS4_Farba2 310, OS5_Farba3 410 mm;
 * FARBA: spot Ø5 mm at x = 110 mm on the belt's centre line; colour means 1 white 5000, 2 red 13000, 3 blue 21000,
-  bare belt 26500 raw, σ 500; ambient light offset by the rig verb ``set_ambient``;
+  bare belt 26500 raw, σ 500; ambient light offset by the rig verb ``set_ambient``; a new reading every 5 ms (the
+  analog input's conversion cycle, held in between: :mod:`plants.components.colour_sensor`);
 * pistons Piest1_Farba1…Piest3_Farba3 at x = 245 / 345 / 445 mm on the +y side, pushing toward -y across the belt:
   plate 50 mm along the belt, stroke 70 mm, 200 mm/s out (0.35 s), spring back at 280 mm/s (0.25 s), valve 20 ms,
-  5 N at full pressure; they move only above 30 % of full pressure;
-* Kompresor: pressure τ 0.1 s up, 0.5 s down (the pistons' ``supply``); rig verb ``fail_compressor``;
+  5 N at full pressure; they move only above 30 % of full pressure; at rest retracted a piston is parked out of
+  the solver (a static plate stands in for it);
+* Kompresor: pressure τ 0.1 s up, 0.5 s down (the pistons' ``supply``), in closed form of the time since the last
+  change; rig verb ``fail_compressor``;
 * bins bin1…bin3 beyond the belt's -y edge in front of each piston (x ± 40 mm), ``unsorted`` after the belt end:
   ``part in bin`` (data ``colour``) when a part reaches one; 0.6 s later it lies still there and leaves the physics
   (it is still drawn).
@@ -110,6 +113,7 @@ class Sort(TopViewPlant):
                 valve_s=0.02,
                 threshold=0.3,
                 supply=self.air.fraction,
+                park=True,
                 doc=f"piston {k} forward (single-acting, spring return; needs the compressor's pressure)",
                 label_back=ROW_TOP - HALF_WIDTH - 2.0 - 6.0,
             )
@@ -160,6 +164,6 @@ class Sort(TopViewPlant):
 
     def fail_compressor(self, name: str) -> None:
         """Fault (rig verb ``fail_compressor``): the compressor runs but builds no pressure."""
-        self.assembly.wake(self.compressors[name])
-        self.compressors[name].fail(self, True)
+        if self.compressors[name].fail(self, True):
+            self.assembly.wake(self.compressors[name])
         self._still = False

@@ -6,6 +6,12 @@ compressor runs, ``-p/tau_down`` while it is off (the pistons' consumption and l
 (30 %), so a program that forgets the compressor never ejects anything. ``fail()`` is a fault: the motor runs but
 builds no pressure (a broken belt, an open drain valve).
 
+The pressure is not integrated step by step: between two changes (the motor switched, the fault) it is the exact
+solution ``p = target + (p0 - target)·exp(-(t - t0)/tau)`` of the time since the change, computed when it is read
+(by a piston, by the drawing). The compressor stays busy only until the reservoir has settled (within ``SETTLED``
+of its target; off, it is empty from then on), so that the rig is not quiescent while the gauge still moves; its
+``advance`` is then one comparison of the clock.
+
 >>> from plants.components.component import Bench
 >>> c = Compressor("K", "Kompresor"); host = Bench(); _ = c.reset(host)
 >>> _ = c.actuate(host, "Kompresor", True)
@@ -54,7 +60,6 @@ class Compressor:
         self.at = at
         self.label_at = label_at  # where the name is written (default: under the symbol)
         self.doc = doc or f"compressor {name}: builds pressure while True (τ {tau_up_s:g} s; decays τ {tau_down_s:g} s)"
-        self._decay: tuple[float, float, float] = (-1.0, 0.0, 0.0)
         self._sketch = Sketch(self._draw)
 
     def specs(self) -> list[SignalSpec]:
@@ -64,48 +69,58 @@ class Compressor:
         return {self.name}
 
     def reset(self, host: Host) -> bool:
+        self._host = host  # its clock: the pressure is read as a function of time
         self.on = False
         self.failed = False
-        self.p = 0.0
+        # since t0 (ns) the pressure goes from p0 toward target with time constant tau (s); settled from settled_ns
+        self._p0, self._t0, self._target, self._tau, self._settled_ns = 0.0, 0, 0.0, self.tau_down, 0
         return False
 
     def fraction(self) -> float:
         """The pressure now, as a fraction of full pressure."""
-        return self.p
+        now = self._host.now_ns
+        if self._target == 0.0 and now >= self._settled_ns:
+            return 0.0
+        return self._target + (self._p0 - self._target) * math.exp((self._t0 - now) / 1e9 / self._tau)
+
+    def _change(self, host: Host) -> bool:
+        """The motor or the fault changed: the pressure now starts toward its new target; True while unsettled."""
+        p, now = self.fraction(), host.now_ns
+        building = self.on and not self.failed
+        self._target, self._tau = (1.0, self.tau_up) if building else (0.0, self.tau_down)
+        self._p0, self._t0 = p, now
+        gap = abs(self._target - p)
+        self._settled_ns = now + (math.ceil(self._tau * math.log(gap / SETTLED) * 1e9) if gap > SETTLED else 0)
+        return self._settled_ns > now
 
     def actuate(self, host: Host, signal: str, value: Any) -> bool:
+        if bool(value) == self.on:
+            return False
         self.on = bool(value)
-        return True
+        return self._change(host)
 
     def fail(self, host: Host, failed: bool = True) -> bool:
         """Fault: it runs but builds no pressure."""
         if failed and not self.failed:
             host.emit("compressor failed", self.name)
         self.failed = bool(failed)
-        return True
+        return self._change(host)
 
     def advance(self, host: Host, dt: float) -> bool:
-        if self._decay[0] != dt:
-            self._decay = (dt, math.exp(-dt / self.tau_up), math.exp(-dt / self.tau_down))
-        if self.on and not self.failed:
-            self.p = 1.0 - (1.0 - self.p) * self._decay[1]
-            return 1.0 - self.p > SETTLED
-        self.p *= self._decay[2]
-        if self.p < SETTLED:
-            self.p = 0.0
-        return self.p > 0.0
+        return host.now_ns < self._settled_ns
 
     def static_drawables(self) -> list[Drawable]:
         x, y = self.label_at or (self.at[0], self.at[1] - 14.0)
         return [draw.label(f"compressor/{self.name}/label", x, y, self.name)]
 
     def dynamic_drawables(self) -> list[Drawable]:
-        return self._sketch((self.on, self.p))
+        return self._sketch((self.on, self.fraction()))
 
     def _draw(self) -> list[Drawable]:
         x, y = self.at
-        gauge = [(x - 10.0, y), (x - 10.0 + 20.0 * self.p, y), (x - 10.0 + 20.0 * self.p, y + 6.0), (x - 10.0, y + 6.0)]
+        p = self.fraction()
+        gauge = [(x - 10.0, y), (x - 10.0 + 20.0 * p, y), (x - 10.0 + 20.0 * p, y + 6.0), (x - 10.0, y + 6.0)]
         out = [draw.circle(f"compressor/{self.name}", x, y - 6.0, 6.0, draw.LAMP_ON if self.on else draw.LAMP_OFF)]
-        if self.p > 0.0:
+        if p > 0.0:
             out.append(draw.polygon(f"compressor/{self.name}/pressure", gauge, draw.BELT_RUNNING))
         return out

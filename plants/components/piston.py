@@ -14,6 +14,11 @@ along the unit vector ``direction``. End switches are :class:`~plants.components
 ``s``. Events: ``piston extended`` when ``s`` arrives at ``full - 2 mm``, ``piston retracted`` when it arrives back
 within 0.5 mm of 0 (an arrival counts again once the plate has backed off that end by 3 mm: a piston hammering at
 its front gives one event per blow), ``piston jammed`` for the fault.
+
+**Parked at rest** (``park=True``): a piston back at its rear end with the valve closed does nothing the solver
+needs to compute, so its plate leaves the physics: the body and its groove are taken out of the space and a static
+copy of the plate takes its place (a part pushed against it still meets a wall, as against the plate held at its end
+stop). The first ``advance`` after a wake-up (the valve switches, a fault) puts the body back where it was, at rest.
 """
 
 from __future__ import annotations
@@ -58,6 +63,7 @@ class Piston:
         supply: a callable giving the pressure fraction now (None: always full).
         rear: an optional end switch at the rear (its name becomes a sensor).
         front: an optional end switch at the front.
+        park: take the plate out of the solver while it rests retracted (see the module docstring).
     """
 
     EVENTS = frozenset({"piston extended", "piston retracted", "piston jammed"})
@@ -81,6 +87,7 @@ class Piston:
         supply: Callable[[], float] | None = None,
         rear: LimitSwitch | None = None,
         front: LimitSwitch | None = None,
+        park: bool = False,
         doc: str = "",
         label_back: float = 48.0,
     ) -> None:
@@ -101,6 +108,7 @@ class Piston:
         self.threshold = float(threshold)
         self.supply = supply
         self.switches = [sw for sw in (rear, front) if sw is not None]
+        self.park = park
         self.doc = doc
         self._sketch = Sketch(self._draw)
 
@@ -139,12 +147,16 @@ class Piston:
         a, b = self._point(-0.5 * t), self._point(self.stroke - 0.5 * t)
         groove = pymunk.GrooveJoint(host.space.static_body, body, a, b, (0.0, 0.0))
         host.space.add(body, shape, groove)
-        self.body = body
+        self.body, self._shape, self._groove = body, shape, groove
+        self._corners = corners
+        self._stand_in: pymunk.Shape | None = None  # the static plate while parked
         self._h = chipmunk.handle(body)  # the per-step reads and writes go straight to Chipmunk
         for sw in self.switches:
             sw.reset()
             sw.update(0.0)
             host.sensors[sw.name] = sw.actuated
+        if self.park:  # at rest retracted from the start
+            self._park(host)
         return False
 
     def actuate(self, host: Host, signal: str, value: Any) -> bool:
@@ -169,6 +181,8 @@ class Piston:
         self._recheck = True
 
     def advance(self, host: Host, dt: float) -> bool:
+        if self._stand_in is not None:
+            self._unpark(host)
         if self.due_ns is not None and host.now_ns >= self.due_ns:
             self.open, self.due_ns = self.command, None
             if self.open:
@@ -194,7 +208,26 @@ class Piston:
         at_rest = s <= RETRACTED_WITHIN and target < 0 and abs(v) < 1e-3
         if at_rest:
             chipmunk.set_velocity(h, (0.0, 0.0))
-        return not at_rest or self.open or self.due_ns is not None or self.jammed  # open: waiting for pressure
+        busy = not at_rest or self.open or self.due_ns is not None or self.jammed  # open: waiting for pressure
+        if not busy and self.park:
+            self._park(host)
+        return busy
+
+    def _park(self, host: Host) -> None:
+        """At rest retracted: the body leaves the space, a static plate where it lies stands in for it."""
+        p = chipmunk.get_position(self._h)
+        stand_in = pymunk.Poly(host.space.static_body, [(p.x + cx, p.y + cy) for cx, cy in self._corners])
+        shape = self._shape
+        stand_in.friction, stand_in.collision_type, stand_in.filter = shape.friction, shape.collision_type, shape.filter
+        host.space.remove(self.body, shape, self._groove)
+        host.space.add(stand_in)
+        self._stand_in = stand_in
+
+    def _unpark(self, host: Host) -> None:
+        """Woken: the body is back in the space where it rested, the stand-in goes."""
+        host.space.remove(self._stand_in)
+        host.space.add(self.body, self._shape, self._groove)
+        self._stand_in = None
 
     def _sense(self, host: Host, s: float) -> None:
         moved = abs(s - self.s) > 1e-9 or self._recheck

@@ -2,9 +2,12 @@
 
 There is no normal force in a top view, so ``surface_velocity`` does nothing; a part on the belt is tied to the
 belt's kinematic body by the top view's friction joints instead (pymunk notes §2a), so it rides at the belt speed and
-a piston can still push it sideways against that friction. The belt area is a sensor zone: a part that has left it
-completely (pushed off the side, carried off the end) is tied to the table instead and slides to a stop. Listed among
-a top-view rig's components, the belt carries the parts placed on it by itself (``carrier_at``).
+a piston can still push it sideways against that friction. A part that has left the belt's area completely (pushed
+off the side, carried off the end) is tied to the table instead and slides to a stop. What tells is not a sensor zone
+over the whole area (the collision detection would test every part on the belt against it in every step) but four
+thin zones just inside its edges: a part crossing an edge touches the strip there, and once it touches none with its
+centre outside the area it has left it, in the same step as it would have left a zone over the whole area. Listed
+among a top-view rig's components, the belt carries the parts placed on it by itself (``carrier_at``).
 The drive is first order (τ), like the side-view belt.
 """
 
@@ -15,10 +18,12 @@ from typing import Any
 
 import pymunk
 
-from plants.components import draw
+from plants.components import chipmunk, draw
 from plants.components.component import Host, zone
 from plants.components.sketch import Sketch
 from plcsim.plant import Drawable, SignalSpec
+
+EDGE_MM = 2.0  # the width of the sensor strips inside the belt's edges (a part moves far less in a step)
 
 
 class TopBelt:
@@ -55,7 +60,11 @@ class TopBelt:
         self.body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
         x0, y0, x1, y1 = self.area
         host.space.add(self.body)
-        zone(host, self, pymunk.Poly(host.space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]))
+        self._touching: dict[str, tuple[Any, set[int]]] = {}  # part id -> (part, the edge strips it touches)
+        e = min(EDGE_MM, (x1 - x0) / 2, (y1 - y0) / 2)
+        strips = ((x0, y0, x1, y0 + e), (x0, y1 - e, x1, y1), (x0, y0, x0 + e, y1), (x1 - e, y0, x1, y1))
+        for k, (a, b, c, d) in enumerate(strips):
+            zone(host, _Edge(self, k), pymunk.Poly(host.space.static_body, [(a, b), (c, b), (c, d), (a, d)]))
         return False
 
     def carrier_at(self, x: float, y: float) -> pymunk.Body | None:
@@ -64,11 +73,31 @@ class TopBelt:
         return self.body if x0 <= x <= x1 and y0 <= y <= y1 else None
 
     def enter(self, host: Any, part: Any) -> None:
-        """A part touches the belt area (it rides on the belt once it is placed there)."""
+        """(The zone protocol: the belt's zones are its edge strips, :class:`_Edge`.)"""
 
     def leave(self, host: Any, pid: str) -> None:
-        """The part has left the belt area: it now lies on the table."""
-        host.support(pid, host.space.static_body)
+        """Part ``pid`` was taken out of the rig: it touches no strip any more."""
+        self._touching.pop(pid, None)
+
+    def touch(self, part: Any, strip: int) -> None:
+        """``part`` touches edge strip ``strip``."""
+        self._touching.setdefault(part.id, (part, set()))[1].add(strip)
+
+    def untouch(self, host: Any, pid: str, strip: int) -> None:
+        """Part ``pid`` no longer touches edge strip ``strip``; touching none with its centre outside the area, it
+        has left the belt: it now lies on the table."""
+        entry = self._touching.get(pid)
+        if entry is None:
+            return
+        part, strips = entry
+        strips.discard(strip)
+        if strips:
+            return
+        del self._touching[pid]
+        p = chipmunk.get_position(part._h)
+        x0, y0, x1, y1 = self.area
+        if not (x0 <= p.x <= x1 and y0 <= p.y <= y1):
+            host.support(pid, host.space.static_body)
 
     def actuate(self, host: Host, signal: str, value: Any) -> bool:
         self.target = self.speed if value else 0.0
@@ -97,3 +126,16 @@ class TopBelt:
         x0, y0, x1, _ = self.area
         xm = 0.5 * (x0 + x1)
         return [draw.arrow(f"belt/{self.name}/direction", xm - 15.0, xm + 15.0, y0 - 6.0, draw.BELT_RUNNING)]
+
+
+class _Edge:
+    """The sensor zone of one edge strip of a belt: the top view's collision callback calls ``enter``/``leave``."""
+
+    def __init__(self, belt: TopBelt, strip: int) -> None:
+        self.belt, self.strip = belt, strip
+
+    def enter(self, host: Host, part: Any) -> None:
+        self.belt.touch(part, self.strip)
+
+    def leave(self, host: Host, pid: str) -> None:
+        self.belt.untouch(host, pid, self.strip)

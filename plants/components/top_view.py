@@ -6,7 +6,7 @@
   a ``GearJoint`` with ``max_force = μ·m·g·r`` (r = (length + depth)/6, about the mean lever arm of a uniformly
   loaded rectangle). A pushed part slides and stops as on a real table.
 * **Parts** are blocks ``length × depth`` (the :class:`~plants.components.workpiece.WorkpieceSpec`, seen from
-  above). Spot sensors (:class:`SpotSensor`, a colour sensor), bins and a belt's area are sensor zones
+  above). Spot sensors (:class:`SpotSensor`, a colour sensor), bins and a belt's edges are sensor zones
   (:func:`~plants.components.component.zone`, the :class:`~plants.components.component.ZoneSensor` protocol):
   pymunk's ``begin``/``separate`` call their owner's ``enter(host, part)`` / ``leave(host, part_id)``, which update
   the sensors (``part entered`` / ``part left`` events); nothing is queried per step.

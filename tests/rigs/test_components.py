@@ -128,17 +128,25 @@ def test_the_colour_sensor_reads_the_part_over_its_spot_with_noise_and_ambient_l
     assert plant.signals["FARBA"].kind == "analog" and plant.sensors["FARBA"] == 26500  # the bare belt
     plant.place("spot", part="red", colour=2)
     readings = []
-    for _ in range(400):
+    for _ in range(2000):
         plant.step(MS)
-        readings.append(plant.sensors["FARBA"])
-    covered = readings[1:]  # the spot sees the part from the step after the placement
-    mean, spread = sum(covered) / len(covered), max(covered) - min(covered)
+        readings.append(plant.sensors["FARBA"])  # readings[i] at (i + 1) ms
+    # a new value once per 5 ms conversion cycle, held in between: the first conversion (5 ms) sees the part
+    assert readings[:4] == [26500] * 4 and readings[4] != 26500
+    assert all((i + 1) % 5 == 0 for i in range(1, 2000) if readings[i] != readings[i - 1])
+    conversions = readings[4::5]
+    mean, spread = sum(conversions) / 400, max(conversions) - min(conversions)
     assert abs(mean - 13000) < 100 and 500 < spread < 8 * 500  # σ 500: the spread of 400 draws is ≈ 6 σ
     sensor.set_ambient(plant, 1500.0)
+    held = plant.sensors["FARBA"]
+    for _ in range(4):
+        plant.step(MS)
+        assert plant.sensors["FARBA"] == held  # 2001 .. 2004 ms: the conversion of 2000 ms holds
     plant.step(MS)
     assert abs(plant.sensors["FARBA"] - 14500) < 2500
     plant.remove("red")
-    plant.step(MS)
+    for _ in range(5):
+        plant.step(MS)
     assert plant.sensors["FARBA"] == 27648  # 26500 + 1500, clipped to the module's range
 
 

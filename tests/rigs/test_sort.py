@@ -4,6 +4,8 @@ Every shipped solution of 4.3.17 is graded on the seeds 1..20 by tests/course/te
 
 from __future__ import annotations
 
+import math
+
 from exercises import get
 from exercises._sort import NO_OBJECT, at_position
 from plants.sort import Sort
@@ -97,3 +99,42 @@ def test_an_object_of_no_colour_is_an_object_of_type_0_and_the_textbooks_belt_ne
     after = trace.times >= t1
     assert trace.column("DATA.POZ5_OBS_Farba3")[after].all() and trace.column("D1_VPRED")[after].all()
     assert (trace.column("DATA.POZ5_FARBA3")[inside] == 0).all()
+
+
+def test_a_retracted_piston_leaves_the_solver_and_comes_back_to_push_again():
+    """At rest retracted, a piston's body is out of the space (a static plate stands in for it); the valve brings it
+    back, and it pushes the next part into its bin as the first."""
+    s = Sort()
+    piston = s.assembly.find("Piest1_Farba1")
+    assert piston.body not in s.space.bodies and piston._stand_in in s.space.shapes  # at rest from the start
+    for k in (1, 2):
+        s.place("OS1", part=f"p{k}", colour=1)
+        s.actuate("D1_VPRED", True)
+        run_until(s, "OS3_Farba1", True)
+        run_until(s, "OS3_Farba1", False)
+        s.actuate("Kompresor", True)
+        s.actuate("Piest1_Farba1", True)
+        s.step(MS)
+        assert piston.body in s.space.bodies and piston._stand_in is None
+        for _ in range(1000):
+            s.step(MS)
+        s.actuate("Piest1_Farba1", False)
+        s.actuate("Kompresor", False)
+        s.actuate("D1_VPRED", False)
+        for _ in range(2000):  # back in 0.25 s; at rest (slower than 1 µm/s against its end stop) about 1 s later
+            s.step(MS)
+        assert piston.body not in s.space.bodies and piston._stand_in in s.space.shapes
+    assert [(e.subject, e.part) for e in s.events if e.kind == "part in bin"] == [("bin1", "p1"), ("bin1", "p2")]
+
+
+def test_the_compressors_closed_form_is_the_stepwise_first_order_lag():
+    """The pressure read at any time equals the first-order lag integrated in 1 ms steps (τ 0.1 s up, 0.5 s down)."""
+    s = Sort()
+    s.actuate("Kompresor", True)
+    p = 0.0
+    for k in range(1, 301):
+        if k == 151:
+            s.actuate("Kompresor", False)
+        s.step(MS)
+        p = 1.0 - (1.0 - p) * math.exp(-0.01) if k <= 150 else p * math.exp(-0.002)
+        assert abs(s.air.fraction() - p) < 1e-12, k
