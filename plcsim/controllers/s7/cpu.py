@@ -380,8 +380,10 @@ class CPU(TaskRunner, HostAccess):
         """Run ``count`` OB1 executions (scans), interrupts included; the clock stops at the last scan's end."""
         if self.mode != RUN:
             return
-        target = self.scan_count + count
         fused = self._fused
+        if count == 1 and fused is not None and not self._stack and fused(NEVER):
+            return  # the common case: one whole scan in one call
+        target = self.scan_count + count
         while fused is not None and not self._stack and fused(NEVER):  # whole scans, one call each
             if self.mode != RUN or self.scan_count >= target:
                 return
