@@ -2,7 +2,8 @@
 
 A task's merged function has its timers, counters and edge contacts written out
 (:mod:`plcsim.frontends.python.inline`). Random programs of the subset (seal-ins, set/reset coils, TON, TOF,
-CTU, -|P|- and -|N|- on memory bits, INT arithmetic that wraps, a division that may fail) run three ways:
+their Q and ET read after the box or after a write of PT, CTU, -|P|- and -|N|- on memory bits, INT
+arithmetic that wraps, a division that may fail) run three ways:
 network by network (no merge, the reference), merged without and merged with the boxes written out. Every
 trace row, the CPU's mode and its diagnostics (a STOP names the network and the line) must agree.
 """
@@ -65,6 +66,7 @@ def _statement() -> st.SearchStrategy[list[str]]:
         ),
         st.builds(lambda tm, x, pt, q: [f"if t.{tm}.TON(IN={x}, PT={pt}):", f"    t.{q} = not t.{q}"], tm, b, ms, q),
         st.builds(lambda w, tm: [f"t.{w} = t.{tm}.ET"], w, tm),
+        st.builds(lambda tm, pt: [f"t.{tm}.PT = {pt}"], tm, ms),  # a read after it refreshes with this PT
         st.builds(
             lambda x, r, pv, q: [f"if t.C0.CTU(CU={x}, R={r}, PV={pv}):", f"    t.{q} = True"],
             b,
@@ -142,3 +144,38 @@ def test_the_workload_has_its_boxes_written_out():
     loaded = {i.argval for i in ops if i.opname in ("LOAD_METHOD", "LOAD_ATTR", "LOAD_GLOBAL")}
     assert not loaded & {"TON", "TOF", "CTU", "P"}
     assert {"_inert", "_running", "CU", "CV"} <= loaded
+
+
+PT_WRITTEN_BETWEEN = """
+T0 = IEC_TIMER()
+T1 = IEC_TIMER()
+
+
+def shorten(t):
+    t.T1.PT = "2ms"
+
+
+def n0(t):
+    t.T0.TON(IN=t.I0, PT="9ms")
+    t.Q0 = t.T0.Q
+    t.T0.PT = "3ms"
+    t.Q1 = t.T0.Q
+
+
+def n1(t):
+    t.T1.TON(IN=t.I1, PT="9ms")
+    shorten(t)
+    t.Q2 = t.T1.Q
+    t.M0 = t.T1.ET
+
+
+OB1 = [n0, n1]
+"""
+
+
+def test_a_timer_read_after_a_write_of_its_pt_refreshes_with_that_pt(three_ways):
+    """A read right after its box takes Q and ET as the box stored them; after a write of PT (in the network or
+    in a function it calls) the read refreshes with the new PT, as the networks one by one do."""
+    by_network, merged, written_out = three_ways(PT_WRITTEN_BETWEEN, [{"I0": True, "I1": True}] * 12)
+    assert merged == by_network
+    assert written_out == by_network

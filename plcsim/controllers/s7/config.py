@@ -54,6 +54,8 @@ class CPUConfig:
             ``error`` (the program is refused).
         mechanism_mode: how a MECHANISM advances: ``plc836`` (the chapter: every state whose condition
             holds passes in the same scan) or ``iec`` (IEC 61131-3 SFC: at most one step per scan).
+        fuse: run a scan that nothing can interrupt in one call (:mod:`plcsim.controllers.s7.fused`);
+            False takes the general scan loop for every scan (the tests compare the two).
     """
 
     cycle: str | int = "1ms"
@@ -75,6 +77,7 @@ class CPUConfig:
     memory: MemoryLayout = field(default_factory=MemoryLayout)
     input_writes: str = "warn"
     mechanism_mode: str = "plc836"
+    fuse: bool = True
 
     def __post_init__(self) -> None:
         try:

@@ -49,6 +49,7 @@ from plcsim.controllers.s7.execution import (
     switched_off,
     tuple_getter,
 )
+from plcsim.controllers.s7.fused import FusedScan
 from plcsim.controllers.s7.instructions import bind_instructions, block_of
 from plcsim.controllers.s7.instructions.timers import IecTimer
 from plcsim.controllers.s7.profile import DEFAULT_INTERRUPT_PERIOD, PROFILE
@@ -129,6 +130,7 @@ class CPU(TaskRunner, HostAccess):
         self._ob1: RunningTask | None = None
         self._cyclic_plan: tuple[int, Any, bool] = (0, None, False)
         self._cyclic: Any = None  # the generator of TaskRunner._cyclic_loop (made at each download)
+        self._fused: FusedScan | None = None  # one whole OB1 scan in one call (made at each download)
         self._interrupts: list[RunningTask] = []
         self._next_irq = NEVER
         self._ob1_next = 0
@@ -376,10 +378,19 @@ class CPU(TaskRunner, HostAccess):
 
     def scan(self, count: int = 1) -> None:
         """Run ``count`` OB1 executions (scans), interrupts included; the clock stops at the last scan's end."""
-        if self.mode == RUN:
-            # a scan that run_until() left unfinished (its networks already ran) is finished, not counted
-            pending = bool(self._stack) and any(ex.task is self._ob1 for ex in self._stack)
-            self._run(NEVER, self.scan_count + count + pending)
+        if self.mode != RUN:
+            return
+        fused = self._fused
+        if count == 1 and fused is not None and not self._stack and fused(NEVER):
+            return  # the common case: one whole scan in one call
+        target = self.scan_count + count
+        while fused is not None and not self._stack and fused(NEVER):  # whole scans, one call each
+            if self.mode != RUN or self.scan_count >= target:
+                return
+            fused = self._fused  # a subscriber may have downloaded another program
+        # a scan that run_until() left unfinished (its networks already ran) is finished, not counted
+        pending = bool(self._stack) and any(ex.task is self._ob1 for ex in self._stack)
+        self._run(NEVER, target + pending)
 
     def next_event_ns(self) -> int:
         """When the CPU next does something (a task start, a network, an output write); far future in STOP."""
@@ -397,14 +408,15 @@ class CPU(TaskRunner, HostAccess):
         scan. So whatever happens at ``until_ns`` itself (an operator's press, an HMI write, a plant's
         new sensor values) is seen by the tasks that start at ``until_ns`` and by no scan before.
         """
-        if self.mode == RUN:  # TaskRunner._run without a call of its own: this is every physics step's
-            if self._interrupts:
+        fused = self._fused if self.mode == RUN else None
+        while fused is not None and not self._stack and fused(until_ns):  # whole scans, one call each
+            fused = self._fused if self.mode == RUN else None  # a subscriber may have downloaded or stopped
+        if self.mode == RUN and (self._stack or self._ob1_next < until_ns or self._next_irq < until_ns):
+            if self._interrupts:  # TaskRunner._run without a call of its own: this is every physics step's
                 self._run_preemptive(until_ns, None)
             else:
                 self._run_cyclic(until_ns, None)
-            if self.mode != RUN:
-                self._refresh_inputs_stopped()
-        else:
+        if self.mode != RUN:
             self._refresh_inputs_stopped()
         if self.clock.now < until_ns:
             self.clock.now = until_ns

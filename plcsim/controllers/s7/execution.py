@@ -15,6 +15,7 @@ from typing import Any
 from plcsim.controllers.loaded import SourceProgram, TaskSpec
 from plcsim.controllers.protocol import RUN
 from plcsim.controllers.s7.config import CLOCK_BITS, CPUConfig
+from plcsim.controllers.s7.fused import FusedScan, fused_scan
 from plcsim.controllers.s7.instructions.system import JumpTo, ReturnFromBlock
 from plcsim.core.clock import NEVER, Clock
 from plcsim.core.errors import PlcError
@@ -135,6 +136,7 @@ class TaskRunner:
     _ticks: list[int]
     _cyclic_plan: tuple[int, Callable[[Any], None] | None, bool]
     _cyclic: Any
+    _fused: FusedScan | None
     _out_getter: Callable[[dict[str, Any]], tuple[Any, ...]]
     _last_out: tuple[Any, ...]
     _aliased_inputs: list[str]
@@ -321,6 +323,7 @@ class TaskRunner:
         whole = task.merged if task.merged is not None else (task.networks[0] if task.n == 1 else None)
         self._cyclic_plan = (fixed, whole, bool(self._aliased_inputs))
         self._new_cyclic_loop()
+        self._fused = fused_scan(self)  # type: ignore[arg-type]
 
     def _preemption_time(self, priority: int) -> int:
         return min((t.next_due for t in self._interrupts if t.priority > priority), default=NEVER)

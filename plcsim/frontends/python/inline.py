@@ -24,7 +24,8 @@ from typing import Any
 from plcsim.controllers.s7.instructions.counters import CTU_WRITTEN_OUT
 from plcsim.controllers.s7.instructions.edges import EDGE_RESULTS, EDGE_WRITTEN_OUT, check_bool
 from plcsim.controllers.s7.instructions.timers import TIMER_READ, TIMER_READS, TOF_WRITTEN_OUT, TON_WRITTEN_OUT
-from plcsim.frontends.python.rewrite import ROOT_DICT
+from plcsim.frontends.python.rewrite import ROOT_DICT, TICK
+from plcsim.frontends.python.safe_math import SAFE_FUNCTIONS
 from plcsim.tags.table import FBType
 from plcsim.tags.types import Bool, StructType
 
@@ -43,7 +44,7 @@ def inline_boxes(func: ast.FunctionDef, root: StructType, aliased: frozenset[str
     if not func.body or not _binds_root_dict(func.body[0]):
         return False  # the code reaches its tags through ``_t_dict``, bound by the first statement
     writer = _Writer(root, aliased, shadowed)
-    func.body = writer.statements(func.body)
+    func.body = writer.top_level(func.body)
     if writer.count:
         ast.fix_missing_locations(func)
     return writer.count > 0
@@ -62,8 +63,50 @@ class _Writer:
     def __init__(self, root: StructType, aliased: frozenset[str], shadowed: set[str]):
         self.root, self.aliased, self.shadowed = root, aliased, shadowed
         self.count = 0
+        self.fresh: dict[str, str] = {}
+        """Timer -> the local holding it, for the timers whose TON or TOF has run at this point of every
+        execution with nothing since that could change them (see :meth:`top_level`)."""
+        self.box: tuple[str, str] | None = None
+        """The timer and its local of the TON or TOF the current statement itself writes out."""
 
     # -- statements -------------------------------------------------------------------------------
+
+    def top_level(self, body: list[ast.stmt]) -> list[ast.stmt]:
+        """:meth:`statements` for the function's own body, which also reads a timer's Q and ET as stored
+        where its box ran before them in the same call: the clock stands still while a merged task runs,
+        so the refresh a read would do computes what the box just stored (unless its PT was written since,
+        which only a call or a member store can do: after either, the reads refresh again)."""
+        out: list[ast.stmt] = []
+        for stmt in body:
+            if not self._keeps_timers(stmt):
+                self.fresh.clear()
+            out.extend(self.statement(stmt))
+            if self.box is not None:
+                key, local = self.box
+                self.fresh[key] = local
+        return out
+
+    def _keeps_timers(self, stmt: ast.stmt) -> bool:
+        """Whether ``stmt`` calls nothing but boxes, edge contacts and the generated conversions, and
+        stores into no member (so it can change a timer only through its boxes)."""
+        for node in ast.walk(stmt):
+            if isinstance(node, ast.Call):
+                func = node.func
+                if isinstance(func, ast.Name):
+                    name = func.id
+                    if name in self.shadowed or not (
+                        name in SAFE_FUNCTIONS or name.startswith("_to_") or name == TICK or name in EDGE_RESULTS
+                    ):
+                        return False
+                elif not (
+                    isinstance(func, ast.Attribute)
+                    and func.attr in ("TON", "TOF", "CTU")
+                    and self.instance(func.value) is not None
+                ):
+                    return False
+            elif isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Store):
+                return False
+        return True
 
     def statements(self, body: list[ast.stmt]) -> list[ast.stmt]:
         out: list[ast.stmt] = []
@@ -77,6 +120,7 @@ class _Writer:
                 setattr(stmt, name, self.statements(getattr(stmt, name)))
         for handler in getattr(stmt, "handlers", []):
             handler.body = self.statements(handler.body)
+        self.box = None
         if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Call):
             written = self.call(stmt.value, stmt)
             if written is not None:
@@ -129,7 +173,9 @@ class _Writer:
             if instance != "IEC_TIMER" or set(words) != {"IN", "PT"}:
                 return None
             template = TON_WRITTEN_OUT if func.attr == "TON" else TOF_WRITTEN_OUT
-            return self.expand(template, where, INSTANCE=func.value, IN=words["IN"], PRESET=preset)
+            written = self.expand(template, where, INSTANCE=func.value, IN=words["IN"], PRESET=preset)
+            self.box = (func.value.slice.value, f"_i_{self.count}")  # type: ignore[attr-defined]
+            return written
         if isinstance(func, ast.Name) and func.id in EDGE_RESULTS and func.id not in self.shadowed:
             if call.keywords or len(call.args) != 2:
                 return None
@@ -227,6 +273,11 @@ class _TimerReads(ast.NodeTransformer):
             and node.attr in TIMER_READS
             and self.writer.instance(node.value) == "IEC_TIMER"
         ):
+            local = self.writer.fresh.get(node.value.slice.value)  # type: ignore[attr-defined]
+            if local is not None:  # its box has just run: the stored value is the refreshed one
+                return ast.copy_location(
+                    ast.Attribute(ast.Name(local, ast.Load()), TIMER_READS[node.attr], ast.Load()), node
+                )
             self.writer.count += 1
             text = TIMER_READ.replace("_q", TIMER_READS[node.attr]).replace(".Q)", f".{node.attr})")
             read = ast.parse(text, mode="eval").body

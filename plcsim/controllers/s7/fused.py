@@ -1,0 +1,95 @@
+"""One OB1 scan in one call: the common case of the scan loop, fused into one function per download.
+
+The general loops of :class:`~plcsim.controllers.s7.execution.TaskRunner` decide at every event what comes
+next (an interrupt, a network, the end of an execution), which costs more than a whole 25-network program
+runs in. Most scans have nothing to decide: no interrupt falls inside them, nothing is forced, the cycle is
+fixed and the task runs in one call (its networks merged). :func:`fused_scan` builds, at each download, one
+function that runs such a scan from its start to its end: clock memory, the input image, the program, the
+output image, the count, the subscriber, the system bits, exactly the statements the general loop runs for
+it in the same order, with what changes only with a download bound once. Before it changes anything it
+checks that the scan is one of those; if not it returns False and the caller takes the general loop, which
+then finds the CPU as it was.
+
+What the general loop does for the rest stays its own: an interrupt due before the scan's end (OB30
+pre-empts between networks and before the output write), a scan a host step ends in the middle of, a
+jitter or a network cost, forces, inputs that alias other tags. An error in the program goes to the same
+handler as in the general loop (a JMP goes on network by network, a fault names its network and line and
+sends the CPU to STOP); the watchdog's count is reset at the scan's start as there.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+from plcsim.controllers.protocol import RUN
+from plcsim.core.clock import NEVER
+
+if TYPE_CHECKING:
+    from plcsim.controllers.s7.cpu import CPU
+
+FusedScan = Callable[[int], bool]
+"""``scan(until_ns)``: run the next OB1 scan whole if it starts before and ends at or before ``until_ns``
+and nothing else can happen in it; whether it ran."""
+
+
+def fused_scan(cpu: CPU) -> FusedScan | None:
+    """The fused scan of ``cpu``'s loaded program, or None where no scan can be fused (a varying cycle, a
+    task that runs network by network, inputs that alias other tags; or ``fuse=False`` in the configuration)."""
+    fixed, whole, aliased_inputs = cpu._cyclic_plan
+    if not cpu.config.fuse or not fixed or whole is None or aliased_inputs:
+        return None
+    clock, ticks, t, inputs = cpu.clock, cpu._ticks, cpu.t, cpu.inputs
+    d = t.__dict__
+    out_getter, output_names = cpu._out_getter, cpu.output_names
+    scan_end = cpu.scan_end
+    latch, after_exception, push_scan = cpu._latch_clock_memory, cpu._after_exception, cpu._push_scan
+    stack = cpu._stack
+
+    def scan(until_ns: int) -> bool:
+        t0 = cpu._ob1_next
+        if t0 >= until_ns:
+            return False
+        now = clock.now
+        if t0 < now:
+            t0 = now
+        end = t0 + fixed
+        if end > until_ns or end > cpu._next_irq or cpu.forces:
+            return False  # ends after the host's step, an interrupt falls inside, or something is forced
+        # -- the start (TaskRunner._begin_scan) --
+        clock.now = t0
+        ticks[0] = 0
+        if t0 >= cpu._clock_next:
+            latch(t0)
+        d.update(inputs)
+        cpu.image_in = inputs.copy()
+        cpu.scan_start_ns = t0
+        # -- the networks --
+        try:
+            whole(t)
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:  # noqa: BLE001 - sorted out by the general handler
+            ex = push_scan(t0, fixed)
+            after_exception(ex, exc, NEVER)  # nothing is due before the end: the same as up to the interrupt
+            if cpu.mode != RUN:
+                return True
+            stack.pop()
+        # -- the end (TaskRunner._end_scan; nothing can force a tag while the program runs) --
+        if end > clock.now:
+            clock.now = end
+        values = out_getter(d)
+        if values != cpu._last_out:
+            cpu._last_out = values
+            cpu.outputs.update(zip(output_names, values))
+            cpu.output_version += 1
+        cpu._ob1_next = cpu.scan_end_ns = end
+        cpu.scan_count += 1
+        if scan_end.call is not None:
+            scan_end.call(cpu)
+        if cpu._first_scan or cpu._diag_changed:
+            cpu._first_scan = cpu._diag_changed = False
+            cpu._set_system_bits()
+        return True
+
+    return scan
