@@ -125,7 +125,7 @@ def _run(source: str, schedule: list[dict[str, bool]], step_ns: int | None, forc
     )
 
 
-@settings(max_examples=80, deadline=None)
+@settings(max_examples=30, deadline=None)  # 3 runs each, about 1 s an example
 @given(
     source=programs(),
     schedule=st.lists(st.fixed_dictionaries({n: st.booleans() for n in INPUTS}), min_size=SCANS, max_size=SCANS),
