@@ -251,7 +251,13 @@ def _add_mutate_parser(sub: Any) -> None:
     )
     mutate.add_argument("exercise", help="textbook number (4.3.6) or slug")
     mutate.add_argument("--seeds", type=int, default=3, metavar="N", help="grade each mutant on seeds 1..N (default 3)")
-    mutate.add_argument("--jobs", type=int, default=1, metavar="J", help="grade J mutants at a time (forked workers)")
+    mutate.add_argument(
+        "--jobs",
+        type=int,
+        default=1,
+        metavar="J",
+        help="grade J mutants at a time (forked workers on Linux; one at a time elsewhere)",
+    )
     mutate.add_argument("--json", metavar="OUT", help="write every mutant and its outcome as JSON")
 
 
