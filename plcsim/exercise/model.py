@@ -246,18 +246,29 @@ class Exercise:
         *,
         seed: int = 0,
         pacing: Pacing | None = None,
+        geometry: bool = True,
         **cpu_options: Any,
     ) -> Simulation:
         """A ready-to-run simulation of ``program`` (any front end's) on this exercise's rig and scenario;
-        ``pacing`` as in :class:`~plcsim.sim.simulation.Simulation` (None: as fast as it goes)."""
+        ``pacing`` as in :class:`~plcsim.sim.simulation.Simulation` (None: as fast as it goes); ``geometry``
+        False samples no shapes for drawing (a run nobody will watch: grading without a recording)."""
         if isinstance(scenario, str):
             scenario = self.scenario(scenario)
         options = {**self.cpu, **self.scenario_cpu.get(scenario.name, {}), **cpu_options}
         cpu = controller_for(program, self.tag_table(), seed=seed, **options)
         plant = self.rig() if self.rig is not None else None
         wires = self.wires() if plant is not None else None
+        drawing = {} if geometry else {"geometry_hz": 0}
         return Simulation(
-            cpu, plant, wires, scenario, dt=self.dt, seed=seed, changes_only=self.record_changes_only, pacing=pacing
+            cpu,
+            plant,
+            wires,
+            scenario,
+            dt=self.dt,
+            seed=seed,
+            changes_only=self.record_changes_only,
+            pacing=pacing,
+            **drawing,
         )
 
     def describe_io(self) -> list[dict[str, str]]:

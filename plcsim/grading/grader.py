@@ -50,7 +50,7 @@ def grade(
     report = Report(exercise.number, exercise.title, label, seed=seed)
     try:
         program = read_program(submission) if from_file else submission
-        runs, analysis = run_scenarios(exercise, program, seed=seed, scenarios=scenarios)
+        runs, analysis = run_scenarios(exercise, program, seed=seed, scenarios=scenarios, geometry=rrd_dir is not None)
     except PlcError as exc:
         failure_report(report, load_error_kind(exc), str(exc), exercise)
     else:

@@ -31,14 +31,20 @@ def chosen_scenarios(exercise: Exercise, scenarios: Sequence[str] | None) -> lis
 
 
 def run_scenarios(
-    exercise: Exercise, program: Program, *, seed: int, scenarios: Sequence[str] | None = None
+    exercise: Exercise,
+    program: Program,
+    *,
+    seed: int,
+    scenarios: Sequence[str] | None = None,
+    geometry: bool = True,
 ) -> tuple[list[RunResult], Any]:
     """Run ``program`` in each chosen scenario: the raw results and the program's static analysis.
+    ``geometry`` False samples no drawing frames (no check reads them; only a recording needs them).
 
     Raises PlcError if the program cannot be loaded on the exercise's CPU."""
     results, analysis = [], None
     for scenario in chosen_scenarios(exercise, scenarios):
-        sim = exercise.simulation(program, scenario, seed=seed)
+        sim = exercise.simulation(program, scenario, seed=seed, geometry=geometry)
         if analysis is None and sim.cpu.compiled is not None:
             analysis = sim.cpu.compiled.analysis
         plant_error = None

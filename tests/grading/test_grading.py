@@ -432,3 +432,16 @@ def test_a_program_replaying_fixed_times_fails_with_another_seed(ex5, tmp_path):
         assert other.score <= 8.0
         reference = grade(ex5, ex5.reference.path, seed=seed)
         assert reference.passed  # the scenario changed, the task did not
+
+
+def test_grading_samples_drawing_frames_only_for_a_recording():
+    """No check reads the plant's drawing frames, so a run nobody will watch samples none; the trace rows and
+    events (what is graded) are the same bit for bit."""
+    from plcsim.grading import run_scenarios
+
+    ex = get("4.3.5")
+    first = [ex.scenarios[0].name]
+    (watched,), _ = run_scenarios(ex, ex.reference.program(), seed=1, scenarios=first)
+    (graded,), _ = run_scenarios(ex, ex.reference.program(), seed=1, scenarios=first, geometry=False)
+    assert watched.trace.frames and not graded.trace.frames
+    assert watched.trace.digest() == graded.trace.digest()

@@ -83,7 +83,9 @@ def grade_request(request: dict[str, Any]) -> bytes:
     lock_down(request)
     try:
         program = read_program(request["path"])
-        runs, _ = run_scenarios(exercise, program, seed=request["seed"], scenarios=request["scenarios"])
+        runs, _ = run_scenarios(
+            exercise, program, seed=request["seed"], scenarios=request["scenarios"], geometry=request["geometry"]
+        )
         return encode_runs(runs, geometry=request["geometry"])
     except ExerciseError as exc:  # a scenario the exercise cannot run: the instructor's mistake, voids the grade
         return encode_failure("grader error", str(exc))
