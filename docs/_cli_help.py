@@ -14,9 +14,9 @@ MARK = "<!-- plcsim --help -->"
 
 def cli_help() -> str:
     """Markdown: the help of ``plcsim`` and of every subcommand, as code blocks 80 columns wide (the page's)."""
-    from plcsim.apps.cli import _parser
+    from plcsim.apps.cli import build_parser
 
-    parser = _parser()
+    parser = build_parser()
     sections = [("plcsim", parser)]
     for action in parser._actions:
         if isinstance(action, argparse._SubParsersAction):

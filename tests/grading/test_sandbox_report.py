@@ -17,7 +17,7 @@ import pytest
 from rich.console import Console
 
 from exercises import get
-from plcsim.apps.cli import EXIT_FAILED, EXIT_GRADER, EXIT_USAGE, _exit_code, main
+from plcsim.apps.cli import EXIT_FAILED, EXIT_GRADER, EXIT_USAGE, exit_code, main
 from plcsim.check.base import Check
 from plcsim.exercise.model import GradedCheck
 from plcsim.grading.grader import grade, grade_sandboxed
@@ -141,9 +141,9 @@ def test_a_check_that_raises_is_a_grader_error_never_the_students_lost_points(ex
     assert (r.error_kind, r.passed, r.grader_failed, r.max_score) == ("grader error", False, True, 4.0)
     assert "the check 'a broken check' of exercise scenario 'presses' raised ZeroDivisionError" in r.error
     assert "not of the submission" in r.error
-    assert _exit_code([r]) == EXIT_GRADER
-    assert _exit_code([grade(ex1, ex1.reference.path)]) == 0
-    assert _exit_code([grade(ex1, ex1.solution("wrong-latch").path)]) == EXIT_FAILED
+    assert exit_code([r]) == EXIT_GRADER
+    assert exit_code([grade(ex1, ex1.reference.path)]) == 0
+    assert exit_code([grade(ex1, ex1.solution("wrong-latch").path)]) == EXIT_FAILED
     root = ET.fromstring(r.to_junit())
     assert root.get("errors") == "1" and root.find("testsuite/testcase/error").get("type") == "grader error"
 
