@@ -15,6 +15,7 @@ from plcsim.check import (
     all_of,
     always,
     any_of,
+    assumes,
     count,
     event,
     falls,
@@ -31,6 +32,14 @@ from plcsim.tags.types import Bool
 NUMBER = "4.3.10"
 FAULT_WORDS = "A broken sensor wire reads FALSE, 'object present': at D2_OS2 it stops D2 at once"
 """The task's words for its fault scenarios (``Scenario(outside=...)``)."""
+PER_CONVEYOR = "Consider one object per conveyor"
+"""The operating condition the task states (the textbook: 'always only one object on one conveyor')."""
+POSITIONS = (
+    "An object occupies position 1 of a conveyor from the scan in which the conveyor's start sensor sees it until "
+    "the scan in which its end sensor sees it, and position 2 from then until D2_OS1 sees it (on D1) or it is "
+    "removed (on D2)"
+)
+"""The task's definition of the positions, which the occupancy states are graded against scan by scan."""
 
 STRAY = ("stray",)  # a part put straight in front of D1_OS2 on the idle model: by design not an object of the line
 D1_POZ1 = Parts("D1_OS1", "D1_OS2", STRAY, "objects at D1 position 1")
@@ -56,15 +65,17 @@ EXERCISE = Exercise(
         "FALSE while an object interrupts it.\n"
         "Task: create occupancy states in the global data block DATA (D1_POZ1_OBS, D1_POZ2_OBS, D2_POZ1_OBS, "
         "D2_POZ2_OBS: position 1 or 2 of conveyor n occupied) that indicate an object even where no sensor sees "
-        "it, and with them carry objects from the start of D1 to the end of D2, onto D2 only if D2 is free. An "
-        "object loaded on D1 and seen by D1_OS1 is carried to the end of D1 if that position is free; from D1_OS2 "
-        "it goes on to D2; when D2_OS1 sees it, D1 stops and the object continues to the end of D2, where it "
-        "stops and waits for removal by hand, which clears the occupancy. Consider one object per conveyor. Do not "
-        "use edge instructions. Each conveyor stops in the scan in which its stop sensor sees the object, and the "
-        "removal at D2_OS2 clears D2_POZ2_OBS in the scan that sees it. An object put straight in front of D1_OS2 "
-        "on the idle model (not loaded at D1_OS1) is not registered and starts nothing. A broken sensor wire reads "
-        "FALSE, 'object present': at D2_OS2 it stops D2 at once. No object falls off, and D2 never runs while its "
-        "end position is occupied."
+        "it, and with them carry objects from the start of D1 to the end of D2, onto D2 only if D2 is free. "
+        + POSITIONS
+        + ". An object loaded on D1 and seen by D1_OS1 is carried to the end of D1 if that position is free; from "
+        "D1_OS2 it goes on to D2; when D2_OS1 sees it, D1 stops and the object continues to the end of D2, where it "
+        "stops and waits for removal by hand, which clears the occupancy. "
+        + PER_CONVEYOR
+        + ". Do not use edge instructions. Each conveyor stops in the scan in which its stop sensor sees the object, "
+        "and the removal at D2_OS2 clears D2_POZ2_OBS in the scan that sees it. An object put straight in front of "
+        "D1_OS2 on the idle model (not loaded at D1_OS1) is not registered and starts nothing. A broken sensor wire "
+        "reads FALSE, 'object present': at D2_OS2 it stops D2 at once. No object falls off, and D2 never runs while "
+        "its end position is occupied."
     ),
     io=[
         IO("D1_OS1", "D1 start sensor", "Bool", "%I0.0", "NC"),
@@ -177,6 +188,7 @@ EXERCISE = Exercise(
         # criterion 6
         program_uses_no("EDGE").named("no edge instructions").points(0.5),
     ],
+    conditions=[assumes(PER_CONVEYOR, always(all_of(ON_D1 <= 1, ON_D2 <= 1)))],
     requirements={
         "both objects end at D2_OS2": "carry objects from the start of D1 to the end of D2",
         "D1 stops within 1 scan when D2_OS1 sees the object": (
@@ -193,10 +205,10 @@ EXERCISE = Exercise(
         "removing the object at D2_OS2 clears D2_POZ2_OBS within 1 scan": (
             "the removal at D2_OS2 clears D2_POZ2_OBS in the scan that sees it"
         ),
-        "D1_POZ1_OBS matches the object at D1 position 1": "that indicate an object even where no sensor sees it",
-        "D1_POZ2_OBS matches the object at D1 position 2": "that indicate an object even where no sensor sees it",
-        "D2_POZ1_OBS matches the object at D2 position 1": "that indicate an object even where no sensor sees it",
-        "D2_POZ2_OBS matches the object at D2 position 2": "that indicate an object even where no sensor sees it",
+        "D1_POZ1_OBS matches the object at D1 position 1": POSITIONS,
+        "D1_POZ2_OBS matches the object at D1 position 2": POSITIONS,
+        "D2_POZ1_OBS matches the object at D2 position 1": POSITIONS,
+        "D2_POZ2_OBS matches the object at D2 position 2": POSITIONS,
         "a broken D2_OS2 wire stops D2 at once (it reads 'object present')": "at D2_OS2 it stops D2 at once",
         "no object falls off": "No object falls off",
         "D2 never runs with its end position occupied": "D2 never runs while its end position is occupied",

@@ -584,11 +584,16 @@ EXERCISE = Exercise(
             "reference waits), of which the task says nothing"
         ),
         "s.AUTO and t.SNIMAC_HORNY and (not s.PLNY) → s.AUTO and (not s.PLNY)": (
-            "N8 without SNIMAC_HORNY sets AUTO_DOLE whenever the skip is empty in AUTO, the textbook's own item 3 "
-            "('travel down in automatic mode if the skip is empty'); at the bottom SNIMAC_DOLNY resets it in the "
-            "same network, so it drives nothing there. It differs when SNIMAC_DOLNY is dead: AUTO selected before "
-            "PLNY comes takes the skip standing at the bottom down into the end buffer, which the task forbids only "
-            "'when nothing is wrong'"
+            "N8 without SNIMAC_HORNY is the textbook's item 3 as worded ('travel down in automatic mode if the skip is "
+            "empty'); the reference is its solution (down from the top). Both set AUTO_DOLE when the dump ends, and "
+            "at the bottom SNIMAC_DOLNY resets it in the same network. They differ only for an empty skip in AUTO "
+            "that SNIMAC_DOLNY does not report: between the sensors it goes down to the bottom where the reference "
+            "waits (the task says nothing of it); at the bottom with SNIMAC_DOLNY dead it runs into the bottom buffer "
+            "and raises ALARM_NEDOSIEL_DOLE 45 s after START_DOLE rose. That is what the reference does on any "
+            "descent once SNIMAC_DOLNY has failed (the sensor failing during the dump: the buffer ≈ 41 s after "
+            "START_DOLE rose, the alarm at 45 s), since N2 stops a descent only at the sensor. The task's answer to a "
+            "failed sensor is the alarm (the textbook: an alarm 'could' block the skip; its solution does not), so it "
+            "asks no program to keep the skip out of the buffer once SNIMAC_DOLNY has failed"
         ),
     },
     notes=(

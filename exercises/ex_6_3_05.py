@@ -20,7 +20,7 @@ from exercises._punch import (
     taken_from_the_press,
 )
 from plants import Punch
-from plcsim.check import all_of, never, value
+from plcsim.check import all_of, assumes, never, parts_at_once, value
 from plcsim.exercise import IO, Exercise
 from plcsim.scenario import FAULTS, Scenario, after_event, free_motor, jam_motor
 
@@ -42,8 +42,8 @@ EXERCISE = Exercise(
         "object leaves OS2. The object is sent back only after the last punching, with the press at the top again, "
         "and then at once (in the same scan that sees the press back at KS1), as in task 4. As in task 4, the object "
         "makes M1_ZIADANY_POCET moves to OS2 and back, and the moves made so far are kept in M1_AKTUALNY_POCET, 0 "
-        "again once the object has been removed. A required count of zero need not be handled. The operator sets "
-        "M1_ZIADANY_POCET and M2_ZIADANY_POCET on the HMI before loading an object."
+        "again once the object has been removed. One object at a time, as in task 4; a required count of zero need "
+        "not be handled. The operator sets M1_ZIADANY_POCET and M2_ZIADANY_POCET on the HMI before loading an object."
         + " "
         + shuttle_words(reverse_at_os2=False)
         + " "
@@ -105,6 +105,7 @@ EXERCISE = Exercise(
             "M2_AKTUALNY_POCET is 0 whenever no object is under the press"
         ),
     ],
+    conditions=[assumes("One object at a time", parts_at_once(1))],
     requirements={
         "every stay under the press gets M2_ZIADANY_POCET strokes": PER_VISIT,
         "every stroke comes down on an object": "The press goes down only for an object at OS2",

@@ -16,7 +16,7 @@ from exercises import all_exercises, get
 from plcsim.check import FAULTS, assumes, fault_problems, parts_at_once, undeclared_breaks
 from plcsim.core.errors import ExerciseError
 from plcsim.exercise import Exercise
-from plcsim.scenario import Scenario, held, place, remove, stuck
+from plcsim.scenario import Scenario, after_event, held, place, remove, stuck
 
 EXERCISES = all_exercises()
 WITH_CONDITIONS = [ex for ex in EXERCISES if ex.conditions]
@@ -40,7 +40,7 @@ def test_every_scenario_stays_inside_the_conditions_the_task_states_or_says_it_l
 def test_the_course_states_its_conditions_where_its_tasks_do():
     """The tasks that say how many objects the operator loads, or how far apart, have the condition."""
     stated = {ex.number: [c.words for c in ex.conditions] for ex in WITH_CONDITIONS}
-    for number in ("4.3.5", "4.3.7", "4.3.8", "4.3.17", "6.3.1", "6.3.2", "6.3.3", "6.3.4"):
+    for number in ("4.3.5", "4.3.7", "4.3.8", "4.3.10", "4.3.17", "6.3.1", "6.3.2", "6.3.3", "6.3.4", "6.3.5"):
         assert stated.get(number), number
 
 
@@ -89,6 +89,20 @@ def test_4_3_5_a_second_object_while_one_waits_at_s2_leaves_the_task_s_one_objec
     assert "Only one object is on the conveyor at a time" in problem and "at most 1" in problem
     declared = Scenario(*[second.name, *second.actions], duration="8s", outside={ex.conditions[0].words: ex.task[:9]})
     assert not undeclared_breaks(ex.conditions, declared, run(ex, declared, 1))
+
+
+def test_4_3_10_a_second_object_loaded_on_d1_leaves_one_object_per_conveyor():
+    """4.3.10's condition counts each conveyor: a second object on D1 while the first is still on it leaves it, and
+    the report names the conveyor."""
+    ex = get("4.3.10")
+    second = Scenario(
+        "second object on D1",
+        place("p1", at="D1_OS1", t="0.3s"),
+        place("p2", at="D1_OS1", when=after_event("part entered", "D1_OS2"), delay="0.2s"),
+        duration="6s",
+    )
+    (problem,) = undeclared_breaks(ex.conditions, second, run(ex, second, 1))
+    assert "Consider one object per conveyor" in problem and "(objects on D1) <= 1" in problem
 
 
 def test_a_declaration_the_run_does_not_need_is_reported():
