@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 from plcsim.core.errors import ProgramError
 from plcsim.frontends.python.analysis import Analysis, analyse
 from plcsim.frontends.python.inline import inline_boxes
+from plcsim.frontends.python.localize import localize_tags
 from plcsim.frontends.python.merge import MERGED_ROOT, merge_networks, read_root_directly
 from plcsim.frontends.python.rewrite import StoreRewriter
 from plcsim.frontends.python.typecheck import Typing
@@ -34,6 +35,9 @@ the merge speeds up scans of ordinary programs and would only slow down loading 
 INLINE_BOXES = True
 """Whether a merged function has its timers, counters and edge contacts written out
 (:func:`~plcsim.frontends.python.inline.inline_boxes`); off only to compare the two in tests."""
+LOCAL_TAGS = True
+"""Whether a merged function reads its tags into locals and stores them back
+(:func:`~plcsim.frontends.python.localize.localize_tags`); off only to compare the two in tests."""
 
 
 @dataclass
@@ -76,11 +80,16 @@ def compile_program(
     rewriter = StoreRewriter(typing)
     tree = ast.fix_missing_locations(rewriter.visit(tree))
     shadowed = set(program.functions) | set(program.constants)
+    body: list[ast.stmt] = []
     for stmt in tree.body:
         if isinstance(stmt, ast.FunctionDef) and stmt.name in merged.values():
             read_root_directly(stmt, typing.root.members)
             if INLINE_BOXES:
                 inline_boxes(stmt, typing.root, typing.aliased, shadowed)
+            if LOCAL_TAGS:
+                body.extend(localize_tags(stmt, typing.root, shadowed))
+        body.append(stmt)
+    tree.body = body
     code = compile(tree, program.filename, "exec")
     warnings = list(analysis.warnings)
     for line, name in _input_stores(program, table, root_params):
