@@ -17,7 +17,6 @@ from plcsim.controllers.loaded import LinkTarget, LoadedNetwork, LoadedProgram, 
 from plcsim.controllers.s7.instructions import CPU_BOUND, PURE_INSTRUCTIONS
 from plcsim.core.errors import ProgramError
 from plcsim.frontends.python.inline import HELPERS
-from plcsim.frontends.python.localize import HELPERS as LOCALIZE_HELPERS
 from plcsim.frontends.python.names import TIME, TYPE_NAMES
 from plcsim.frontends.python.pipeline import CompiledProgram
 from plcsim.frontends.python.rewrite import FB_STORE, ROOT_GUARD, STORE, TICK, coerce_name
@@ -91,7 +90,6 @@ def runtime_namespace(
     namespace.update(compiled.program.constants)
     namespace.update(instructions)
     namespace.update(HELPERS)
-    namespace.update(LOCALIZE_HELPERS)
     namespace[TICK] = hooks.tick
     namespace[ROOT_GUARD] = hooks.tags_of
     namespace[STORE] = hooks.store

@@ -1,33 +1,30 @@
-"""Tags as locals: a task's merged function reads its tags into local variables and stores them back.
+"""Tags as locals: a task's merged function keeps the tags it uses often in local variables.
 
 After :func:`~plcsim.frontends.python.merge.read_root_directly` and
 :func:`~plcsim.frontends.python.inline.inline_boxes` a merged function reaches every tag through the tag
-dict, ``_t_dict["Q0"]``: three operations a read or a store, where a local costs one (the hand-inlined
-Python of the benchmarks does the same). :func:`localize_tags` cuts the function's top-level statements
-into runs that nothing outside the function can look into, and gives each run its tags as locals::
+dict, ``_t_dict["Q0"]``: three operations a read, where a local costs one (the hand-inlined Python of the
+benchmarks keeps its tags in locals). :func:`localize_tags` cuts the function's top-level statements into
+runs that nothing outside the function can look into, and in each run gives a tag read often a local::
 
-    _tag_I0, _tag_Q0 = _get_OB1_0(_t_dict)       # one C call reads them all
-    try:
-        _tag_Q0 = _tag_I0 or _tag_Q0              # the run, on locals
-    finally:
-        _t_dict.update({"Q0": _tag_Q0})           # stored back, also when the run raises
+    _t_dict["Q0"] = _tag_Q0 = _tag_I0 or ...      # a store writes through: the dict, then the local
+    _tag_Level = _t_dict["Level"]                   # or the tag is read once, before its first use
+    _t_dict["Q9"] = _tag_Level >= 70
+    _t_dict["Q10"] = _tag_Level < 20
 
-Only this code reads or writes the tag dict while a run executes, so the dict ends each run as the stores
-into it would have left it: written back on the error path too (a fault, the watchdog, a JMP), the CPU
-finds the tags as the statements before the fault stored them. A statement that lets other code see or
-change the tags (a call of the program's own functions, of an instruction bound to the CPU such as
-``MOVE`` or ``P``, of a store hook for a DB member or an aliased tag; any use of the tag object or of the
-dict other than a constant key; a comprehension, which has a scope of its own) is left as it was, between
-two runs: the run before stores back before it, the run after reads again after it. Typed stores keep
-their conversions; only the place they store into changes.
+Every store still goes into the dict when it runs, so the dict is at every moment what it was before: a fault
+(any exception, the watchdog, a JMP) finds the tags exactly as the statements before it stored them, with
+nothing to write back. The local only saves the reads, and only within a run: only this code changes the
+tag dict while a run executes. A statement that lets other code see or change the tags (a call of the
+program's own functions, of an instruction bound to the CPU such as ``MOVE`` or ``P``, of a store hook for a
+DB member or an aliased tag; any use of the tag object or of the dict other than a constant key; a
+comprehension, which has a scope of its own) is left as it was, between two runs, and the next run reads
+its tags again. Typed stores keep their conversions; the local takes the converted value.
 """
 
 from __future__ import annotations
 
 import ast
 from collections.abc import Collection
-from operator import itemgetter
-from typing import Any
 
 from plcsim.controllers.s7.instructions import PURE_INSTRUCTIONS
 from plcsim.frontends.python.inline import CHECK_EDGE, COERCE_BOOL
@@ -38,45 +35,35 @@ from plcsim.frontends.python.subset import ALLOWED_BUILTINS
 from plcsim.tags.table import FBType
 from plcsim.tags.types import StructType
 
-ITEMGETTER = "_itemgetter"
-HELPERS: dict[str, Any] = {ITEMGETTER: itemgetter}
-"""The names the generated module code calls, for the namespace."""
 _PURE_CALLS = (
     frozenset(SAFE_FUNCTIONS) | frozenset(PURE_INSTRUCTIONS) | ALLOWED_BUILTINS | {TICK, COERCE_BOOL, CHECK_EDGE}
 )
 """Functions that see only their arguments: no tag can change in them but through an argument's object."""
 _SCOPES = (ast.Lambda, ast.ListComp, ast.SetComp, ast.DictComp, ast.GeneratorExp)
-_STORES_AT_ONCE = 15
-"""Tags a store back puts into one dict display: CPython builds a display of up to 15 constant keys in one
-operation, a larger one key by key."""
 _TEMPLATE_INSTANCE = "_i_"
 """The prefix of the locals :mod:`~plcsim.frontends.python.inline` holds a box's instance in."""
 
 
-def localize_tags(func: ast.FunctionDef, root: StructType, shadowed: Collection[str]) -> list[ast.stmt]:
-    """Give the runs of ``func`` (a merged function after :func:`inline_boxes`) their tags as locals, in
-    place; returns the module-level statements the new code needs (one ``itemgetter`` a run), to be run
-    before it.
+def localize_tags(func: ast.FunctionDef, root: StructType, shadowed: Collection[str]) -> None:
+    """Give the runs of ``func`` (a merged function after :func:`inline_boxes`) locals for the tags they
+    read often, in place.
 
     ``root`` is the tag schema, ``shadowed`` the names the program defines itself (its own ``abs`` is no
-    builtin). A run with too few tag accesses to gain is left as it is."""
+    builtin)."""
     if not func.body or not _binds_root_dict(func.body[0]):
-        return []
+        return
     body: list[ast.stmt] = [func.body[0]]
-    module: list[ast.stmt] = []
     run: list[ast.stmt] = []
     for stmt in [*func.body[1:], None]:
         if stmt is not None and _closed(stmt, root, shadowed):
             run.append(stmt)
             continue
-        if run:
-            body.extend(_localized(run, root, f"{func.name}_tags{len(module)}", module))
-            run = []
+        body.extend(_localized(run, root))
+        run = []
         if stmt is not None:
             body.append(stmt)
     func.body = body
     ast.fix_missing_locations(func)
-    return module
 
 
 def _binds_root_dict(stmt: ast.stmt) -> bool:
@@ -129,52 +116,77 @@ def _pure_call(func: ast.expr, root: StructType, shadowed: Collection[str]) -> b
     return key is not None and isinstance(root.members[key].type, FBType)
 
 
-def _localized(run: list[ast.stmt], root: StructType, getter: str, module: list[ast.stmt]) -> list[ast.stmt]:
-    """The run on locals between a read of its tags and a store back of those it writes; the run itself
-    where that would not pay (each access saves two operations, each tag costs one to read and one to
-    store back, the read and the store back a few more)."""
-    reads: dict[str, None] = {}
-    written: dict[str, None] = {}
-    accesses = 0
-    for stmt in run:
+def _localized(run: list[ast.stmt], root: StructType) -> list[ast.stmt]:
+    """The run with locals for the tags where they pay: each read of the local saves two operations, each
+    store costs two more (the local beside the dict), so does a first use that copies the tag into a local
+    (``_i_1 = _t_dict["T1"]``), a read before the first use four."""
+    reads: dict[str, int] = {}
+    stores: dict[str, int] = {}
+    first: dict[str, int] = {}  # tag -> the index of the first statement using it
+    simple: set[int] = set()  # the subscripts that are the one target of an Assign
+    other: set[str] = set()  # tags stored some other way (a tuple, ``+=``): they get no local
+    for index, stmt in enumerate(run):
         for node in ast.walk(stmt):
+            if isinstance(node, ast.Assign) and len(node.targets) == 1:
+                simple.add(id(node.targets[0]))
             key = _tag_key(node, root)
-            if key is not None:
-                accesses += 1
-                reads[key] = None
-                if isinstance(node.ctx, ast.Store):  # type: ignore[attr-defined]
-                    written[key] = None
-    if 2 * accesses <= len(reads) + len(written) + 12:
+            if key is None:
+                continue
+            first.setdefault(key, index)
+            if isinstance(node.ctx, ast.Load):  # type: ignore[attr-defined]
+                reads[key] = reads.get(key, 0) + 1
+            elif id(node) in simple:
+                stores[key] = stores.get(key, 0) + 1
+            else:
+                other.add(key)
+    names: dict[str, str] = {}
+    loads: dict[int, list[str]] = {}
+    copies: dict[int, str] = {}
+    for number, key in enumerate(first):
+        statement = run[first[key]]
+        defined, copied = _defines(statement, key, root), _copies(statement, key, root)
+        cost = 2 * stores.get(key, 0) + (0 if defined else 2 if copied else 4)
+        if 2 * (reads.get(key, 0) - copied) > cost and key not in other:  # a copy keeps its own read
+            names[key] = _local_name(key, number)
+            if copied:
+                copies[first[key]] = key
+            elif not defined:
+                loads.setdefault(first[key], []).append(key)
+    if not names:
         return run
-    names = {key: _local_name(key, k) for k, key in enumerate(reads)}
-    on_locals = [_Locals(root, names).visit(stmt) for stmt in run]
-    first = run[0]
-    if len(reads) == 1:
-        (key,) = reads
-        load: ast.stmt = ast.Assign([ast.Name(names[key], ast.Store())], _subscript(key, ast.Load()))
-    else:
-        getters = ast.Call(ast.Name(ITEMGETTER, ast.Load()), [ast.Constant(key) for key in reads], [])
-        module.append(
-            ast.fix_missing_locations(ast.copy_location(ast.Assign([ast.Name(getter, ast.Store())], getters), first))
-        )
-        targets = ast.Tuple([ast.Name(names[key], ast.Store()) for key in reads], ast.Store())
-        load = ast.Assign([targets], ast.Call(ast.Name(getter, ast.Load()), [ast.Name(ROOT_DICT, ast.Load())], []))
-    out = [ast.copy_location(load, first)]
-    if not written:
-        return out + on_locals
-    stores: list[ast.stmt] = []
-    keys = list(written)
-    for start in range(0, len(keys), _STORES_AT_ONCE):
-        chunk = keys[start : start + _STORES_AT_ONCE]
-        if len(chunk) == 1:
-            store: ast.stmt = ast.Assign([_subscript(chunk[0], ast.Store())], ast.Name(names[chunk[0]], ast.Load()))
+    out: list[ast.stmt] = []
+    locals_ = _Locals(root, names)
+    for index, stmt in enumerate(run):
+        for key in loads.get(index, ()):
+            load = ast.Assign([ast.Name(names[key], ast.Store())], _subscript(key, ast.Load()))
+            out.append(ast.copy_location(load, stmt))
+        if index in copies:  # ``_i_1 = _tag_T1 = _t_dict["T1"]``: the read gives the local its value
+            stmt.targets.append(ast.copy_location(ast.Name(names[copies[index]], ast.Store()), stmt))  # type: ignore[attr-defined]
+            out.append(stmt)
         else:
-            update = ast.Attribute(ast.Name(ROOT_DICT, ast.Load()), "update", ast.Load())
-            values = ast.Dict([ast.Constant(k) for k in chunk], [ast.Name(names[k], ast.Load()) for k in chunk])
-            store = ast.Expr(ast.Call(update, [values], []))
-        stores.append(ast.copy_location(store, first))
-    guarded = ast.Try(body=on_locals, handlers=[], orelse=[], finalbody=stores)
-    return [*out, ast.copy_location(guarded, first)]
+            out.append(locals_.visit(stmt))
+    return out
+
+
+def _copies(stmt: ast.stmt, key: str, root: StructType) -> bool:
+    """Whether ``stmt`` is ``name = _t_dict[key]``, a read that can give the local its first value too."""
+    return (
+        isinstance(stmt, ast.Assign)
+        and len(stmt.targets) == 1
+        and isinstance(stmt.targets[0], ast.Name)
+        and _tag_key(stmt.value, root) == key
+    )
+
+
+def _defines(stmt: ast.stmt, key: str, root: StructType) -> bool:
+    """Whether ``stmt`` is a store into the tag ``key`` whose value does not read it: the store itself then
+    gives the local its first value, on every path."""
+    return (
+        isinstance(stmt, ast.Assign)
+        and len(stmt.targets) == 1
+        and _tag_key(stmt.targets[0], root) == key
+        and not any(_tag_key(node, root) == key for node in ast.walk(stmt.value))
+    )
 
 
 def _local_name(key: str, index: int) -> str:
@@ -186,13 +198,21 @@ def _subscript(key: str, ctx: ast.expr_context) -> ast.Subscript:
 
 
 class _Locals(ast.NodeTransformer):
-    """``_t_dict["NAME"]`` -> the local holding NAME (a load or a store)."""
+    """``_t_dict["NAME"]`` read -> the local holding NAME; a store into it also stores into the local."""
 
     def __init__(self, root: StructType, names: dict[str, str]):
         self.root, self.names = root, names
 
+    def visit_Assign(self, node: ast.Assign) -> ast.AST:
+        self.generic_visit(node)
+        key = _tag_key(node.targets[0], self.root) if len(node.targets) == 1 else None
+        if key in self.names:
+            local = ast.copy_location(ast.Name(self.names[key], ast.Store()), node.targets[0])
+            node.targets.append(local)  # the dict first, then the local, as Python assigns a chain
+        return node
+
     def visit_Subscript(self, node: ast.Subscript) -> ast.AST:
         key = _tag_key(node, self.root)
-        if key is None:
+        if key is None or key not in self.names or not isinstance(node.ctx, ast.Load):
             return self.generic_visit(node)
-        return ast.copy_location(ast.Name(self.names[key], node.ctx), node)
+        return ast.copy_location(ast.Name(self.names[key], ast.Load()), node)

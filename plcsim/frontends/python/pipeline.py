@@ -36,7 +36,7 @@ INLINE_BOXES = True
 """Whether a merged function has its timers, counters and edge contacts written out
 (:func:`~plcsim.frontends.python.inline.inline_boxes`); off only to compare the two in tests."""
 LOCAL_TAGS = True
-"""Whether a merged function reads its tags into locals and stores them back
+"""Whether a merged function keeps the tags it reads often in locals
 (:func:`~plcsim.frontends.python.localize.localize_tags`); off only to compare the two in tests."""
 
 
@@ -80,16 +80,13 @@ def compile_program(
     rewriter = StoreRewriter(typing)
     tree = ast.fix_missing_locations(rewriter.visit(tree))
     shadowed = set(program.functions) | set(program.constants)
-    body: list[ast.stmt] = []
     for stmt in tree.body:
         if isinstance(stmt, ast.FunctionDef) and stmt.name in merged.values():
             read_root_directly(stmt, typing.root.members)
             if INLINE_BOXES:
                 inline_boxes(stmt, typing.root, typing.aliased, shadowed)
             if LOCAL_TAGS:
-                body.extend(localize_tags(stmt, typing.root, shadowed))
-        body.append(stmt)
-    tree.body = body
+                localize_tags(stmt, typing.root, shadowed)
     code = compile(tree, program.filename, "exec")
     warnings = list(analysis.warnings)
     for line, name in _input_stores(program, table, root_params):
