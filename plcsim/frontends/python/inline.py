@@ -160,7 +160,7 @@ class _Writer:
         if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Call):
             written = self.call(stmt.value, stmt)
             if written is not None:
-                return written[0]
+                return _without_result(written[0], written[1].id)  # type: ignore[attr-defined]
         elif isinstance(stmt, ast.If) and isinstance(stmt.test, ast.Call):
             written = self.call(stmt.test, stmt)
             if written is not None:
@@ -303,6 +303,22 @@ class _Fill(ast.NodeTransformer):
             elif isinstance(value, ast.AST):
                 setattr(node, field, self.visit(value))
         return node
+
+
+def _without_result(body: list[ast.stmt], result: str) -> list[ast.stmt]:
+    """A box's statements without their stores into ``result``, for a box whose result nothing reads (a
+    call that is a whole statement): what they store is read from a slot, which cannot fail."""
+    out: list[ast.stmt] = []
+    for stmt in body:
+        if isinstance(stmt, ast.Assign):
+            stmt.targets = [t for t in stmt.targets if not (isinstance(t, ast.Name) and t.id == result)]
+            if not stmt.targets:
+                continue
+        elif isinstance(stmt, ast.If):
+            stmt.body = _without_result(stmt.body, result) or [ast.copy_location(ast.Pass(), stmt)]
+            stmt.orelse = _without_result(stmt.orelse, result)
+        out.append(stmt)
+    return out
 
 
 def _checked_names(test: ast.expr) -> set[str] | None:
