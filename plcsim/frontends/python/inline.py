@@ -64,8 +64,8 @@ class _Writer:
     def __init__(self, root: StructType, aliased: frozenset[str], shadowed: set[str], func: ast.FunctionDef):
         self.root, self.aliased, self.shadowed = root, aliased, shadowed
         self.typing = Typing(root, aliased)
-        self.env: dict[str, Any] = {ROOT_DICT: root}
-        self.env.update(dict.fromkeys(self._bool_locals(func), Bool))
+        self.env: dict[str, Any] = {ROOT_DICT: root, **dict.fromkeys(self._bool_locals(func), Bool)}
+        """What :meth:`is_bool` types names by: the tag dict, and the locals that only ever hold Bools."""
         self.count = 0
         self.fresh: dict[str, str] = {}
         """Timer -> the local holding it, for the timers whose TON or TOF has run at this point of every
@@ -75,13 +75,13 @@ class _Writer:
 
     # -- static Bool --------------------------------------------------------------------------------
 
-    def is_bool(self, node: ast.expr) -> bool:
+    def is_bool(self, node: ast.expr, env: dict[str, Any] | None = None) -> bool:
         """Whether ``node`` always gives True or False, as the rewrite's typing knows it (a Bool tag, ``not``,
         a comparison, ``and``/``or`` of such, an edge contact): a box then needs no check of its operand."""
         for sub in ast.walk(node):
             if isinstance(sub, ast.Call) and isinstance(sub.func, ast.Name) and sub.func.id in self.shadowed:
                 return False  # the program's own function, whatever its name
-        return safe_type(self.typing, node, self.env) is Bool
+        return safe_type(self.typing, node, self.env if env is None else env) is Bool
 
     def _bool_locals(self, func: ast.FunctionDef) -> set[str]:
         """The locals of ``func`` that every assignment gives a Bool (``edge = P(...)``); a name bound any
@@ -99,8 +99,8 @@ class _Writer:
                 values.setdefault(node.arg, []).append(None)
         names = {name for name, vals in values.items() if None not in vals}
         while True:
-            self.env = {ROOT_DICT: self.root, **dict.fromkeys(names, Bool)}
-            keep = {name for name in names if all(self.is_bool(v) for v in values[name])}  # type: ignore[arg-type]
+            env = {ROOT_DICT: self.root, **dict.fromkeys(names, Bool)}
+            keep = {name for name in names if all(self.is_bool(v, env) for v in values[name])}  # type: ignore[arg-type]
             if keep == names:
                 return names
             names = keep
@@ -255,7 +255,7 @@ class _Writer:
         self.count += 1
         suffix = f"_{self.count}"
         body = ast.parse(template.strip()).body
-        body = _Fill(parts, suffix, bools).statements(body)
+        body = _Fill(parts, suffix, frozenset(bools)).statements(body)
         for stmt in body:
             for node in ast.walk(stmt):
                 if hasattr(node, "lineno"):
@@ -267,7 +267,7 @@ class _Fill(ast.NodeTransformer):
     """Put the parts into a template: ``INSTANCE``, ``IN`` ... by their nodes, ``ARGUMENTS`` by statements;
     the template's own names (``_i``, ``_x`` ...) get the call's suffix."""
 
-    def __init__(self, parts: dict[str, Any], suffix: str, bools: set[str] = frozenset()):  # type: ignore[assignment]
+    def __init__(self, parts: dict[str, Any], suffix: str, bools: frozenset[str] = frozenset()):
         self.parts, self.suffix, self.bools = parts, suffix, bools
 
     def statements(self, body: list[ast.stmt]) -> list[ast.stmt]:
