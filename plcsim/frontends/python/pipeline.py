@@ -4,7 +4,8 @@ A :class:`~plcsim.frontends.python.program.Program` holds the checked syntax tre
 types it against the CPU's tag table (:mod:`~plcsim.frontends.python.typecheck`), analyses it
 (:mod:`~plcsim.frontends.python.analysis`), merges each task's networks
 (:mod:`~plcsim.frontends.python.merge`), rewrites the stores (:mod:`~plcsim.frontends.python.rewrite`), writes
-out the boxes of each merged task (:mod:`~plcsim.frontends.python.inline`) and compiles the result, then
+out the boxes of each merged task (:mod:`~plcsim.frontends.python.inline`), keeps the tags it reads often in
+locals (:mod:`~plcsim.frontends.python.localize`) and compiles the result, then
 refuses or warns about what only the table shows: stores into inputs, jumps to missing labels, SCALE and
 UNSCALE on an S7-1200, timers whose Q and ET go unread.
 """
