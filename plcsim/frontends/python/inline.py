@@ -26,6 +26,7 @@ from plcsim.controllers.s7.instructions.edges import EDGE_RESULTS, EDGE_WRITTEN_
 from plcsim.controllers.s7.instructions.timers import TIMER_READ, TIMER_READS, TOF_WRITTEN_OUT, TON_WRITTEN_OUT
 from plcsim.frontends.python.rewrite import ROOT_DICT, TICK
 from plcsim.frontends.python.safe_math import SAFE_FUNCTIONS
+from plcsim.frontends.python.typecheck import Typing, safe_type
 from plcsim.tags.table import FBType
 from plcsim.tags.types import Bool, StructType
 
@@ -43,7 +44,7 @@ def inline_boxes(func: ast.FunctionDef, root: StructType, aliased: frozenset[str
     Returns whether anything was written out."""
     if not func.body or not _binds_root_dict(func.body[0]):
         return False  # the code reaches its tags through ``_t_dict``, bound by the first statement
-    writer = _Writer(root, aliased, shadowed)
+    writer = _Writer(root, aliased, shadowed, func)
     func.body = writer.top_level(func.body)
     if writer.count:
         ast.fix_missing_locations(func)
@@ -60,14 +61,49 @@ def _binds_root_dict(stmt: ast.stmt) -> bool:
 
 
 class _Writer:
-    def __init__(self, root: StructType, aliased: frozenset[str], shadowed: set[str]):
+    def __init__(self, root: StructType, aliased: frozenset[str], shadowed: set[str], func: ast.FunctionDef):
         self.root, self.aliased, self.shadowed = root, aliased, shadowed
+        self.typing = Typing(root, aliased)
+        self.env: dict[str, Any] = {ROOT_DICT: root, **dict.fromkeys(self._bool_locals(func), Bool)}
+        """What :meth:`is_bool` types names by: the tag dict, and the locals that only ever hold Bools."""
         self.count = 0
         self.fresh: dict[str, str] = {}
         """Timer -> the local holding it, for the timers whose TON or TOF has run at this point of every
         execution with nothing since that could change them (see :meth:`top_level`)."""
         self.box: tuple[str, str] | None = None
         """The timer and its local of the TON or TOF the current statement itself writes out."""
+
+    # -- static Bool --------------------------------------------------------------------------------
+
+    def is_bool(self, node: ast.expr, env: dict[str, Any] | None = None) -> bool:
+        """Whether ``node`` always gives True or False, as the rewrite's typing knows it (a Bool tag, ``not``,
+        a comparison, ``and``/``or`` of such, an edge contact): a box then needs no check of its operand."""
+        for sub in ast.walk(node):
+            if isinstance(sub, ast.Call) and isinstance(sub.func, ast.Name) and sub.func.id in self.shadowed:
+                return False  # the program's own function, whatever its name
+        return safe_type(self.typing, node, self.env if env is None else env) is Bool
+
+    def _bool_locals(self, func: ast.FunctionDef) -> set[str]:
+        """The locals of ``func`` that every assignment gives a Bool (``edge = P(...)``); a name bound any
+        other way (a loop, a tuple, ``+=``, ``:=``, a parameter) is none."""
+        values: dict[str, list[ast.expr | None]] = {}
+        simple: set[int] = set()
+        for node in ast.walk(func):  # breadth first: an Assign comes before its target names
+            if isinstance(node, ast.Assign) and all(isinstance(t, ast.Name) for t in node.targets):
+                for target in node.targets:
+                    values.setdefault(target.id, []).append(node.value)  # type: ignore[union-attr]
+                    simple.add(id(target))
+            elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store) and id(node) not in simple:
+                values.setdefault(node.id, []).append(None)
+            elif isinstance(node, ast.arg):
+                values.setdefault(node.arg, []).append(None)
+        names = {name for name, vals in values.items() if None not in vals}
+        while True:
+            env = {ROOT_DICT: self.root, **dict.fromkeys(names, Bool)}
+            keep = {name for name in names if all(self.is_bool(v, env) for v in values[name])}  # type: ignore[arg-type]
+            if keep == names:
+                return names
+            names = keep
 
     # -- statements -------------------------------------------------------------------------------
 
@@ -124,7 +160,7 @@ class _Writer:
         if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Call):
             written = self.call(stmt.value, stmt)
             if written is not None:
-                return written[0]
+                return _without_result(written[0], written[1].id)  # type: ignore[attr-defined]
         elif isinstance(stmt, ast.If) and isinstance(stmt.test, ast.Call):
             written = self.call(stmt.test, stmt)
             if written is not None:
@@ -169,11 +205,15 @@ class _Writer:
                 arguments = [(temps[kw.arg], kw.value) for kw in call.keywords if kw.arg in temps]  # in call order
                 if "R" not in words:
                     arguments.append(("_rs", ast.Constant(False)))
-                return self.expand(CTU_WRITTEN_OUT, where, INSTANCE=func.value, PRESET=preset, ARGUMENTS=arguments)
+                checked = {name for name, value in arguments if self.is_bool(value)}
+                return self.expand(
+                    CTU_WRITTEN_OUT, where, checked, INSTANCE=func.value, PRESET=preset, ARGUMENTS=arguments
+                )
             if instance != "IEC_TIMER" or set(words) != {"IN", "PT"}:
                 return None
             template = TON_WRITTEN_OUT if func.attr == "TON" else TOF_WRITTEN_OUT
-            written = self.expand(template, where, INSTANCE=func.value, IN=words["IN"], PRESET=preset)
+            checked = {"_x"} if self.is_bool(words["IN"]) else set()
+            written = self.expand(template, where, checked, INSTANCE=func.value, IN=words["IN"], PRESET=preset)
             self.box = (func.value.slice.value, f"_i_{self.count}")  # type: ignore[attr-defined]
             return written
         if isinstance(func, ast.Name) and func.id in EDGE_RESULTS and func.id not in self.shadowed:
@@ -185,6 +225,7 @@ class _Writer:
             return self.expand(
                 EDGE_WRITTEN_OUT.replace("RESULT", EDGE_RESULTS[func.id]),
                 where,
+                {"_x"} if self.is_bool(call.args[0]) else set(),
                 OPERAND=call.args[0],
                 NAME=ast.Constant(func.id),
                 BIT=ast.Constant(bit.value),
@@ -208,12 +249,13 @@ class _Writer:
         member = self.root.members.get(name)
         return member is not None and member.type is Bool and name not in self.aliased
 
-    def expand(self, template: str, where: ast.stmt, **parts: Any) -> tuple[list[ast.stmt], ast.expr]:
-        """The template's statements with its parts put in and its temporaries made unique."""
+    def expand(self, template: str, where: ast.stmt, bools: set[str], **parts: Any) -> tuple[list[ast.stmt], ast.expr]:
+        """The template's statements with its parts put in and its temporaries made unique; without the
+        checks of the operands in ``bools`` (the template's names of operands that are Bools already)."""
         self.count += 1
         suffix = f"_{self.count}"
         body = ast.parse(template.strip()).body
-        body = _Fill(parts, suffix).statements(body)
+        body = _Fill(parts, suffix, frozenset(bools)).statements(body)
         for stmt in body:
             for node in ast.walk(stmt):
                 if hasattr(node, "lineno"):
@@ -225,12 +267,15 @@ class _Fill(ast.NodeTransformer):
     """Put the parts into a template: ``INSTANCE``, ``IN`` ... by their nodes, ``ARGUMENTS`` by statements;
     the template's own names (``_i``, ``_x`` ...) get the call's suffix."""
 
-    def __init__(self, parts: dict[str, Any], suffix: str):
-        self.parts, self.suffix = parts, suffix
+    def __init__(self, parts: dict[str, Any], suffix: str, bools: frozenset[str] = frozenset()):
+        self.parts, self.suffix, self.bools = parts, suffix, bools
 
     def statements(self, body: list[ast.stmt]) -> list[ast.stmt]:
         out: list[ast.stmt] = []
         for stmt in body:
+            checked = _checked_names(stmt.test) if isinstance(stmt, ast.If) else None
+            if checked is not None and checked <= self.bools:
+                continue  # the check of operands that are Bools already
             if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Name) and stmt.value.id == "ARGUMENTS":
                 out.extend(
                     ast.Assign([ast.Name(name + self.suffix, ast.Store())], value)
@@ -258,6 +303,45 @@ class _Fill(ast.NodeTransformer):
             elif isinstance(value, ast.AST):
                 setattr(node, field, self.visit(value))
         return node
+
+
+def _without_result(body: list[ast.stmt], result: str) -> list[ast.stmt]:
+    """A box's statements without their stores into ``result``, for a box whose result nothing reads (a
+    call that is a whole statement): what they store is read from a slot, which cannot fail."""
+    out: list[ast.stmt] = []
+    for stmt in body:
+        if isinstance(stmt, ast.Assign):
+            stmt.targets = [t for t in stmt.targets if not (isinstance(t, ast.Name) and t.id == result)]
+            if not stmt.targets:
+                continue
+        elif isinstance(stmt, ast.If):
+            stmt.body = _without_result(stmt.body, result) or [ast.copy_location(ast.Pass(), stmt)]
+            stmt.orelse = _without_result(stmt.orelse, result)
+        out.append(stmt)
+    return out
+
+
+def _checked_names(test: ast.expr) -> set[str] | None:
+    """The names a template's check ``_x is not True and _x is not False`` (or several joined by ``or``)
+    tests; None for any other test."""
+    if isinstance(test, ast.BoolOp) and isinstance(test.op, ast.Or):
+        parts = [_checked_names(v) for v in test.values]
+        return None if None in parts else set().union(*parts)  # type: ignore[arg-type]
+    if not (isinstance(test, ast.BoolOp) and isinstance(test.op, ast.And) and len(test.values) == 2):
+        return None
+    names = set()
+    for compare, constant in zip(test.values, (True, False), strict=True):
+        if not (
+            isinstance(compare, ast.Compare)
+            and isinstance(compare.left, ast.Name)
+            and len(compare.ops) == 1
+            and isinstance(compare.ops[0], ast.IsNot)
+            and isinstance(compare.comparators[0], ast.Constant)
+            and compare.comparators[0].value is constant
+        ):
+            return None
+        names.add(compare.left.id)
+    return names if len(names) == 1 else None
 
 
 class _TimerReads(ast.NodeTransformer):

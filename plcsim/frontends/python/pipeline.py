@@ -4,7 +4,8 @@ A :class:`~plcsim.frontends.python.program.Program` holds the checked syntax tre
 types it against the CPU's tag table (:mod:`~plcsim.frontends.python.typecheck`), analyses it
 (:mod:`~plcsim.frontends.python.analysis`), merges each task's networks
 (:mod:`~plcsim.frontends.python.merge`), rewrites the stores (:mod:`~plcsim.frontends.python.rewrite`), writes
-out the boxes of each merged task (:mod:`~plcsim.frontends.python.inline`) and compiles the result, then
+out the boxes of each merged task (:mod:`~plcsim.frontends.python.inline`), keeps the tags it reads often in
+locals (:mod:`~plcsim.frontends.python.localize`) and compiles the result, then
 refuses or warns about what only the table shows: stores into inputs, jumps to missing labels, SCALE and
 UNSCALE on an S7-1200, timers whose Q and ET go unread.
 """
@@ -19,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 from plcsim.core.errors import ProgramError
 from plcsim.frontends.python.analysis import Analysis, analyse
 from plcsim.frontends.python.inline import inline_boxes
+from plcsim.frontends.python.localize import localize_tags
 from plcsim.frontends.python.merge import MERGED_ROOT, merge_networks, read_root_directly
 from plcsim.frontends.python.rewrite import StoreRewriter
 from plcsim.frontends.python.typecheck import Typing
@@ -34,6 +36,9 @@ the merge speeds up scans of ordinary programs and would only slow down loading 
 INLINE_BOXES = True
 """Whether a merged function has its timers, counters and edge contacts written out
 (:func:`~plcsim.frontends.python.inline.inline_boxes`); off only to compare the two in tests."""
+LOCAL_TAGS = True
+"""Whether a merged function keeps the tags it reads often in locals
+(:func:`~plcsim.frontends.python.localize.localize_tags`); off only to compare the two in tests."""
 
 
 @dataclass
@@ -81,6 +86,8 @@ def compile_program(
             read_root_directly(stmt, typing.root.members)
             if INLINE_BOXES:
                 inline_boxes(stmt, typing.root, typing.aliased, shadowed)
+            if LOCAL_TAGS:
+                localize_tags(stmt, typing.root, shadowed)
     code = compile(tree, program.filename, "exec")
     warnings = list(analysis.warnings)
     for line, name in _input_stores(program, table, root_params):
