@@ -53,6 +53,7 @@ from plants.components import draw
 from plants.components.bucket import Bucket
 from plants.components.component import Assembly
 from plants.components.limit_switch import LimitSwitch
+from plants.components.sketch import Sketch
 from plants.components.winch import Winch
 from plcsim.plant import MOTOR_JAM, OBSERVABLES, QUIESCENCE, SENSOR_SHIFT, Drawable, PlantEvent, RigVerb, SignalSpec
 
@@ -107,6 +108,15 @@ def _turned(s: float, tilt: float, x: float, y: float) -> tuple[float, float]:
     return (px + x * c - y * sn, py + x * sn + y * c)
 
 
+def _lamps(name: str, c: float) -> tuple[Drawable, Drawable]:
+    """Sensor ``name``'s cam at ``c`` mm along the track: (free, actuated)."""
+    corners = [at(c - CAM_HALF, -10.0), at(c + CAM_HALF, -10.0), at(c + CAM_HALF, -18.0), at(c - CAM_HALF, -18.0)]
+    return (
+        draw.polygon(f"sensors/{name}", corners, draw.BEAM_FREE),
+        draw.polygon(f"sensors/{name}", corners, draw.BEAM_CUT),
+    )
+
+
 class Skip:
     """The skip hoist (see the module docstring)."""
 
@@ -141,6 +151,12 @@ class Skip:
         self.skips = {"skip": self.bucket}
         self.mixers = {"mixer": self.bucket}
         self.assembly = Assembly([self.winch, self.bucket])
+        self._cam_lamps = {n: _lamps(n, c) for n, c in SENSORS.items()}
+        """Each sensor's cam (free, actuated), built once: a frame only picks one of the two."""
+        self._skip_sketch, self._mixer_sketch = Sketch(self._skip_drawn), Sketch(lambda: self._mixer(self.bucket))
+        """The skip and the mixer's load, rebuilt only when they changed (a standing skip is drawn once)."""
+        self._labels: dict[str, Drawable] = {}
+        """The state labels last drawn, by path: one is built again only when its text changed."""
         specs = {s.name: s for s in self.assembly.specs()}
         order = ("SNIMAC_DOLNY", "SNIMAC_HORNY", "SNIMAC_SPOMAL", "START_HORE", "START_DOLE")
         self.signals: dict[str, SignalSpec] = {n: specs[n] for n in (*order, "RYCHLOST_POMALY", "RYCHLOST_RYCHLO")}
@@ -290,29 +306,31 @@ class Skip:
 
     def dynamic_drawables(self) -> list[Drawable]:
         w, b = self.winch, self.bucket
-        s = w.s
-        out = []
-        for n, c in SENSORS.items():
-            cam = draw.polygon(
-                f"sensors/{n}",
-                [at(c - CAM_HALF, -10.0), at(c + CAM_HALF, -10.0), at(c + CAM_HALF, -18.0), at(c - CAM_HALF, -18.0)],
-                draw.BEAM_CUT if self.sensors[n] else draw.BEAM_FREE,
-            )
-            out.append(cam)
-        out.append(
-            draw.line("winch/rope", [at(s + 30.0, 10.0), at(BUFFERS[1] + 30.0, 18.0), (170.0, 1070.0)], (90, 90, 90))
-        )
-        out += self._bucket(s, b)
-        out += self._mixer(b)
+        out = [self._cam_lamps[n][bool(self.sensors[n])] for n in SENSORS]
+        phase = (self.now_ns / 1e9 * 4.0) % 1.0 if b.flow_g_s > 0.0 else None  # the pouring stream flows on
+        out += self._skip_sketch((w.s, b.position, b.load_g, b.flow_g_s, phase))
+        out += self._mixer_sketch(b.bin_g)
         state = "fault" if w.fault else "jammed" if w.jammed else "brake" if w.braked else f"{abs(w.f):.1f} Hz"
         arrow = " up" if w.f > 0 else " down" if w.f < 0 else ""
         # the state in the empty room left of the rail, centred (a recording centres a text on its point), 70 mm
         # apart: at the scale a recording draws this tall rig, a line of text is 60 mm high
-        x = STATE_X
-        out.append(draw.label("VFD/state", x, 880.0, f"VFD: {state}{arrow}, {abs(w.v):.1f} mm/s"))
-        out.append(draw.label("skip/state", x, 810.0, f"skip: {b.load_g:.0f} g at {s:.0f} mm"))
-        out.append(draw.label("mixer/mass", x, 740.0, f"mixer: {b.bin_g:.0f} g"))
+        out.append(self._label("VFD/state", 880.0, f"VFD: {state}{arrow}, {abs(w.v):.1f} mm/s"))
+        out.append(self._label("skip/state", 810.0, f"skip: {b.load_g:.0f} g at {w.s:.0f} mm"))
+        out.append(self._label("mixer/mass", 740.0, f"mixer: {b.bin_g:.0f} g"))
         return out
+
+    def _label(self, path: str, y: float, text: str) -> Drawable:
+        """The state label ``path`` at height ``y`` saying ``text`` (the one drawn last if it said the same)."""
+        d = self._labels.get(path)
+        if d is None or d.text != text:
+            d = self._labels[path] = draw.label(path, STATE_X, y, text)
+        return d
+
+    def _skip_drawn(self) -> list[Drawable]:
+        """The rope and the skip where they are now."""
+        s = self.winch.s
+        rope = draw.line("winch/rope", [at(s + 30.0, 10.0), at(BUFFERS[1] + 30.0, 18.0), (170.0, 1070.0)], (90, 90, 90))
+        return [rope, *self._bucket(s, self.bucket)]
 
     def _bucket(self, s: float, b: Bucket) -> list[Drawable]:
         """The car on the rails and the bucket on it, turned about its front bottom corner by the tilt, with its
