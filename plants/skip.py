@@ -99,13 +99,24 @@ def at(s: float, across: float = 0.0) -> tuple[float, float]:
     return (ORIGIN[0] + s * U[0] + across * N[0], ORIGIN[1] + s * U[1] + across * N[1])
 
 
-def _turned(s: float, tilt: float, x: float, y: float) -> tuple[float, float]:
-    """The drawing point ``(x, y)`` of the bucket's own frame (origin: its front bottom corner, level when
-    untilted) with the skip at ``s`` and the bucket turned forward by ``tilt`` degrees about that corner."""
+def _bucket_frame(s: float, tilt: float) -> tuple[float, float, float, float]:
+    """The bucket's own frame (origin: its front bottom corner, level when untilted) with the skip at ``s`` and the
+    bucket turned forward by ``tilt`` degrees about that corner: the origin's drawing point, cos and sin of the turn."""
     px, py = at(s + 30.0, 6.0)
     a = math.radians(-tilt)
-    c, sn = math.cos(a), math.sin(a)
+    return (px, py, math.cos(a), math.sin(a))
+
+
+def _in_frame(frame: tuple[float, float, float, float], x: float, y: float) -> tuple[float, float]:
+    """The drawing point of ``(x, y)`` in the bucket's frame (:func:`_bucket_frame`)."""
+    px, py, c, sn = frame
     return (px + x * c - y * sn, py + x * sn + y * c)
+
+
+def _turned(s: float, tilt: float, x: float, y: float) -> tuple[float, float]:
+    """The drawing point ``(x, y)`` of the bucket's own frame with the skip at ``s`` and the bucket turned by
+    ``tilt`` degrees (:func:`_bucket_frame`)."""
+    return _in_frame(_bucket_frame(s, tilt), x, y)
 
 
 def _lamps(name: str, c: float) -> tuple[Drawable, Drawable]:
@@ -336,17 +347,17 @@ class Skip:
         """The car on the rails and the bucket on it, turned about its front bottom corner by the tilt, with its
         load and the pouring stream."""
         base = _turned(s, 0.0, 0.0, 0.0)
-        tilt = b.tilt
+        frame = _bucket_frame(s, b.tilt)
         car = [base, at(s - 70.0, 6.0), (base[0] - WIDTH, base[1])]
-        body = [_turned(s, tilt, x, y) for x, y in ((0.0, 0.0), (0.0, DEPTH), (-WIDTH, DEPTH), (-WIDTH, 0.0))]
+        body = [_in_frame(frame, x, y) for x, y in ((0.0, 0.0), (0.0, DEPTH), (-WIDTH, DEPTH), (-WIDTH, 0.0))]
         out = [draw.polygon("skip/car", car, draw.BELT), draw.polygon("skip/bucket", body, (110, 110, 125))]
         share = b.load_g / b.capacity
         if share > 0.0:
             top = 4.0 + (DEPTH - 8.0) * min(1.0, share)
             corners = ((-4.0, 4.0), (-4.0, top), (4.0 - WIDTH, top), (4.0 - WIDTH, 4.0))
-            out.append(draw.polygon("skip/load", [_turned(s, tilt, x, y) for x, y in corners], draw.PART))
+            out.append(draw.polygon("skip/load", [_in_frame(frame, x, y) for x, y in corners], draw.PART))
         if b.flow_g_s > 0.0:
-            x0, y0 = _turned(s, tilt, 0.0, DEPTH)
+            x0, y0 = _in_frame(frame, 0.0, DEPTH)
             tx, ty = (MIXER[0] + MIXER[1]) / 2, MIXER[3] - 10.0
             phase = (self.now_ns / 1e9 * 4.0) % 1.0
             n = max(2, round(12 * b.flow_g_s / b.rate))

@@ -178,12 +178,6 @@ class Winch:
         self.f_set = direction * hz
         self.braked = self.f_set == 0.0
 
-    def speed_of(self, f: float) -> float:
-        """The carriage's speed (mm/s) at the frequency ``f`` with the present load."""
-        if f == 0.0:
-            return 0.0
-        return f / self.f_fast * self.v_fast * (1.0 - self.slip * self.load * math.copysign(1.0, f))
-
     def advance(self, host: Host, dt: float) -> bool:
         if self.pending:
             self.pending = False
@@ -199,7 +193,12 @@ class Winch:
                 df = self.f_set - f
                 step = self.ramp * dt
                 self.f = f = self.f_set if abs(df) <= step else f + math.copysign(step, df)
-            v = self.speed_of(f)
+            # the carriage's speed at f with the present load
+            v = (
+                0.0
+                if f == 0.0
+                else f / self.f_fast * self.v_fast * (1.0 - self.slip * self.load * math.copysign(1.0, f))
+            )
         s = self.s + v * dt
         if s >= self.hi or s <= self.lo:
             end = "top buffer" if s >= self.hi else "bottom buffer"
