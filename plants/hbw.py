@@ -60,6 +60,7 @@ from plants.components.axis import Axis
 from plants.components.component import Assembly
 from plants.components.limit_switch import LimitSwitch
 from plants.components.rack import TINE, Rack
+from plants.components.sketch import Sketch
 from plcsim.plant import (
     MOTOR_JAM,
     OBSERVABLES,
@@ -155,6 +156,8 @@ class HBW:
             (self.z, lambda c: draw.rect(SIDE_X0 + c - 3.0, -12.0, SIDE_X0 + c + 3.0, -6.0)),
         ) for cam in axis.cams]  # fmt: skip
         """Each cam's lamp (off, on) under its axis, built once: a frame only picks one of the two."""
+        self._crane_sketch, self._stored_sketch = Sketch(self._crane_drawn), Sketch(self._stored_drawn)
+        """The crane (with the part it carries) and the stored parts, rebuilt only when they changed."""
         self.space: Any = None
         self.sensors: dict[str, Any] = {}
         self.events: list[PlantEvent] = []
@@ -296,6 +299,16 @@ class HBW:
         return out
 
     def dynamic_drawables(self) -> list[Drawable]:
+        x, y, z, rack = self.x, self.y, self.z, self.rack
+        crane = self._crane_sketch((x.s, y.s, z.s, bool(x.v), bool(y.v), bool(z.v), rack.on_fork))
+        out = crane[:4]
+        out += [lamps[cam.actuated] for cam, lamps in self._cam_lamps]
+        out += self._stored_sketch((tuple(rack.stored.items()), rack.column_at()))
+        out += crane[4:]
+        return out
+
+    def _crane_drawn(self) -> list[Drawable]:
+        """The mast, the fork (front and side view) and the part on the fork: four shapes, then the part's two."""
         x, y, z = self.x.s, self.y.s, self.z.s
         w, d, h = PART
         moving = draw.BELT_RUNNING
@@ -308,7 +321,18 @@ class HBW:
             ),
             draw.line("side/arm", [(SIDE_X0 - 112.0, y - 3.0), (SIDE_X0 + z - d / 2 - 5.0, y - 3.0)], draw.BELT),
         ]  # fmt: skip
-        out += [lamps[cam.actuated] for cam, lamps in self._cam_lamps]
+        if self.rack.on_fork is not None:  # named in the side view: in the front view it passes over stored parts
+            part = self.rack.on_fork
+            out.append(draw.polygon(f"parts/{part}", draw.rect(x - w / 2, y, x + w / 2, y + h), draw.PART_HELD))
+            zc = SIDE_X0 + z
+            side = draw.rect(zc - d / 2, y, zc + d / 2, y + h)
+            out.append(draw.polygon(f"side/parts/{part}", side, draw.PART_HELD, part))
+        return out
+
+    def _stored_drawn(self) -> list[Drawable]:
+        """The parts on the rack's places, and in the side view those of the column the crane stands at."""
+        w, d, h = PART
+        out = []
         col = self.rack.column_at()
         for (i, j), part in sorted(self.rack.stored.items()):
             cx, top = X_CAMS[f"x{i}"], SHELVES[j - 1]
@@ -317,10 +341,4 @@ class HBW:
                 zc = SIDE_X0 + RACK_FRONT + RACK_DEPTH / 2
                 side = draw.rect(zc - d / 2, top, zc + d / 2, top + h)
                 out.append(draw.polygon(f"side/parts/{part}", side, draw.PART))
-        if self.rack.on_fork is not None:  # named in the side view: in the front view it passes over stored parts
-            part = self.rack.on_fork
-            out.append(draw.polygon(f"parts/{part}", draw.rect(x - w / 2, y, x + w / 2, y + h), draw.PART_HELD))
-            zc = SIDE_X0 + z
-            side = draw.rect(zc - d / 2, y, zc + d / 2, y + h)
-            out.append(draw.polygon(f"side/parts/{part}", side, draw.PART_HELD, part))
         return out

@@ -53,6 +53,7 @@ from plants.components import draw
 from plants.components.bucket import Bucket
 from plants.components.component import Assembly
 from plants.components.limit_switch import LimitSwitch
+from plants.components.sketch import Sketch
 from plants.components.winch import Winch
 from plcsim.plant import MOTOR_JAM, OBSERVABLES, QUIESCENCE, SENSOR_SHIFT, Drawable, PlantEvent, RigVerb, SignalSpec
 
@@ -98,13 +99,33 @@ def at(s: float, across: float = 0.0) -> tuple[float, float]:
     return (ORIGIN[0] + s * U[0] + across * N[0], ORIGIN[1] + s * U[1] + across * N[1])
 
 
-def _turned(s: float, tilt: float, x: float, y: float) -> tuple[float, float]:
-    """The drawing point ``(x, y)`` of the bucket's own frame (origin: its front bottom corner, level when
-    untilted) with the skip at ``s`` and the bucket turned forward by ``tilt`` degrees about that corner."""
+def _bucket_frame(s: float, tilt: float) -> tuple[float, float, float, float]:
+    """The bucket's own frame (origin: its front bottom corner, level when untilted) with the skip at ``s`` and the
+    bucket turned forward by ``tilt`` degrees about that corner: the origin's drawing point, cos and sin of the turn."""
     px, py = at(s + 30.0, 6.0)
     a = math.radians(-tilt)
-    c, sn = math.cos(a), math.sin(a)
+    return (px, py, math.cos(a), math.sin(a))
+
+
+def _in_frame(frame: tuple[float, float, float, float], x: float, y: float) -> tuple[float, float]:
+    """The drawing point of ``(x, y)`` in the bucket's frame (:func:`_bucket_frame`)."""
+    px, py, c, sn = frame
     return (px + x * c - y * sn, py + x * sn + y * c)
+
+
+def _turned(s: float, tilt: float, x: float, y: float) -> tuple[float, float]:
+    """The drawing point ``(x, y)`` of the bucket's own frame with the skip at ``s`` and the bucket turned by
+    ``tilt`` degrees (:func:`_bucket_frame`)."""
+    return _in_frame(_bucket_frame(s, tilt), x, y)
+
+
+def _lamps(name: str, c: float) -> tuple[Drawable, Drawable]:
+    """Sensor ``name``'s cam at ``c`` mm along the track: (free, actuated)."""
+    corners = [at(c - CAM_HALF, -10.0), at(c + CAM_HALF, -10.0), at(c + CAM_HALF, -18.0), at(c - CAM_HALF, -18.0)]
+    return (
+        draw.polygon(f"sensors/{name}", corners, draw.BEAM_FREE),
+        draw.polygon(f"sensors/{name}", corners, draw.BEAM_CUT),
+    )
 
 
 class Skip:
@@ -141,6 +162,12 @@ class Skip:
         self.skips = {"skip": self.bucket}
         self.mixers = {"mixer": self.bucket}
         self.assembly = Assembly([self.winch, self.bucket])
+        self._cam_lamps = {n: _lamps(n, c) for n, c in SENSORS.items()}
+        """Each sensor's cam (free, actuated), built once: a frame only picks one of the two."""
+        self._skip_sketch, self._mixer_sketch = Sketch(self._skip_drawn), Sketch(lambda: self._mixer(self.bucket))
+        """The skip and the mixer's load, rebuilt only when they changed (a standing skip is drawn once)."""
+        self._labels: dict[str, Drawable] = {}
+        """The state labels last drawn, by path: one is built again only when its text changed."""
         specs = {s.name: s for s in self.assembly.specs()}
         order = ("SNIMAC_DOLNY", "SNIMAC_HORNY", "SNIMAC_SPOMAL", "START_HORE", "START_DOLE")
         self.signals: dict[str, SignalSpec] = {n: specs[n] for n in (*order, "RYCHLOST_POMALY", "RYCHLOST_RYCHLO")}
@@ -290,45 +317,47 @@ class Skip:
 
     def dynamic_drawables(self) -> list[Drawable]:
         w, b = self.winch, self.bucket
-        s = w.s
-        out = []
-        for n, c in SENSORS.items():
-            cam = draw.polygon(
-                f"sensors/{n}",
-                [at(c - CAM_HALF, -10.0), at(c + CAM_HALF, -10.0), at(c + CAM_HALF, -18.0), at(c - CAM_HALF, -18.0)],
-                draw.BEAM_CUT if self.sensors[n] else draw.BEAM_FREE,
-            )
-            out.append(cam)
-        out.append(
-            draw.line("winch/rope", [at(s + 30.0, 10.0), at(BUFFERS[1] + 30.0, 18.0), (170.0, 1070.0)], (90, 90, 90))
-        )
-        out += self._bucket(s, b)
-        out += self._mixer(b)
+        out = [self._cam_lamps[n][bool(self.sensors[n])] for n in SENSORS]
+        phase = (self.now_ns / 1e9 * 4.0) % 1.0 if b.flow_g_s > 0.0 else None  # the pouring stream flows on
+        out += self._skip_sketch((w.s, b.position, b.load_g, b.flow_g_s, phase))
+        out += self._mixer_sketch(b.bin_g)
         state = "fault" if w.fault else "jammed" if w.jammed else "brake" if w.braked else f"{abs(w.f):.1f} Hz"
         arrow = " up" if w.f > 0 else " down" if w.f < 0 else ""
         # the state in the empty room left of the rail, centred (a recording centres a text on its point), 70 mm
         # apart: at the scale a recording draws this tall rig, a line of text is 60 mm high
-        x = STATE_X
-        out.append(draw.label("VFD/state", x, 880.0, f"VFD: {state}{arrow}, {abs(w.v):.1f} mm/s"))
-        out.append(draw.label("skip/state", x, 810.0, f"skip: {b.load_g:.0f} g at {s:.0f} mm"))
-        out.append(draw.label("mixer/mass", x, 740.0, f"mixer: {b.bin_g:.0f} g"))
+        out.append(self._label("VFD/state", 880.0, f"VFD: {state}{arrow}, {abs(w.v):.1f} mm/s"))
+        out.append(self._label("skip/state", 810.0, f"skip: {b.load_g:.0f} g at {w.s:.0f} mm"))
+        out.append(self._label("mixer/mass", 740.0, f"mixer: {b.bin_g:.0f} g"))
         return out
+
+    def _label(self, path: str, y: float, text: str) -> Drawable:
+        """The state label ``path`` at height ``y`` saying ``text`` (the one drawn last if it said the same)."""
+        d = self._labels.get(path)
+        if d is None or d.text != text:
+            d = self._labels[path] = draw.label(path, STATE_X, y, text)
+        return d
+
+    def _skip_drawn(self) -> list[Drawable]:
+        """The rope and the skip where they are now."""
+        s = self.winch.s
+        rope = draw.line("winch/rope", [at(s + 30.0, 10.0), at(BUFFERS[1] + 30.0, 18.0), (170.0, 1070.0)], (90, 90, 90))
+        return [rope, *self._bucket(s, self.bucket)]
 
     def _bucket(self, s: float, b: Bucket) -> list[Drawable]:
         """The car on the rails and the bucket on it, turned about its front bottom corner by the tilt, with its
         load and the pouring stream."""
         base = _turned(s, 0.0, 0.0, 0.0)
-        tilt = b.tilt
+        frame = _bucket_frame(s, b.tilt)
         car = [base, at(s - 70.0, 6.0), (base[0] - WIDTH, base[1])]
-        body = [_turned(s, tilt, x, y) for x, y in ((0.0, 0.0), (0.0, DEPTH), (-WIDTH, DEPTH), (-WIDTH, 0.0))]
+        body = [_in_frame(frame, x, y) for x, y in ((0.0, 0.0), (0.0, DEPTH), (-WIDTH, DEPTH), (-WIDTH, 0.0))]
         out = [draw.polygon("skip/car", car, draw.BELT), draw.polygon("skip/bucket", body, (110, 110, 125))]
         share = b.load_g / b.capacity
         if share > 0.0:
             top = 4.0 + (DEPTH - 8.0) * min(1.0, share)
             corners = ((-4.0, 4.0), (-4.0, top), (4.0 - WIDTH, top), (4.0 - WIDTH, 4.0))
-            out.append(draw.polygon("skip/load", [_turned(s, tilt, x, y) for x, y in corners], draw.PART))
+            out.append(draw.polygon("skip/load", [_in_frame(frame, x, y) for x, y in corners], draw.PART))
         if b.flow_g_s > 0.0:
-            x0, y0 = _turned(s, tilt, 0.0, DEPTH)
+            x0, y0 = _in_frame(frame, 0.0, DEPTH)
             tx, ty = (MIXER[0] + MIXER[1]) / 2, MIXER[3] - 10.0
             phase = (self.now_ns / 1e9 * 4.0) % 1.0
             n = max(2, round(12 * b.flow_g_s / b.rate))

@@ -35,7 +35,7 @@ from typing import Any
 
 from plants.components import draw
 from plants.components.component import Host
-from plants.components.limit_switch import LimitSwitch
+from plants.components.limit_switch import LimitSwitch, quiet_range
 from plcsim.plant import Drawable, SignalSpec
 
 
@@ -118,23 +118,8 @@ class Axis:
             cam.reset()
             cam.update(self.s)
             host.sensors[cam.name] = cam.actuated
-        self._quiet = self._quiet_range()
+        self._quiet = quiet_range(self.cams, self.s)
         return False
-
-    def _quiet_range(self) -> tuple[float, float]:
-        """The positions ``[lo, hi]`` around ``s`` at which no cam changes state (as
-        :meth:`~plants.components.limit_switch.LimitSwitch.update` decides it): a moving axis updates its cams only
-        when it leaves this range, so a stroke costs two cam updates per switch instead of two per step."""
-        lo, hi = -math.inf, math.inf
-        for cam in self.cams:
-            a, b = cam.lo + cam.dx, cam.hi + cam.dx
-            if cam.actuated:  # stays on while a - h <= s <= b + h
-                lo, hi = max(lo, a - cam.hysteresis), min(hi, b + cam.hysteresis)
-            elif self.s < a:  # stays off while s < a
-                hi = min(hi, math.nextafter(a, -math.inf))
-            else:  # s > b: stays off while s > b
-                lo = max(lo, math.nextafter(b, math.inf))
-        return lo, hi
 
     def actuate(self, host: Host, signal: str, value: Any) -> bool:
         value = bool(value)
@@ -193,7 +178,7 @@ class Axis:
                     if cam.update(s):
                         host.sensors[cam.name] = cam.actuated
                 self.s = s
-                self._quiet = self._quiet_range()
+                self._quiet = quiet_range(self.cams, self.s)
             self.s, self._recheck = s, False
         return v != 0.0 or target != 0.0
 

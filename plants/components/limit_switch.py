@@ -14,6 +14,9 @@ False
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
+
 
 class LimitSwitch:
     """Zone ``[lo, hi]`` (mm, along whatever axis the rig uses) with ``hysteresis`` mm on both sides.
@@ -53,3 +56,26 @@ class LimitSwitch:
             self.actuated = new
             return True
         return False
+
+
+def quiet_range(switches: Sequence[LimitSwitch], pos: float) -> tuple[float, float]:
+    """The positions ``[lo, hi]`` around ``pos`` at which none of ``switches`` changes state (as :meth:`update`
+    decides it, each switch's state being the one it took at ``pos``): a carriage that moves updates its switches
+    only when it leaves this range, so a stroke costs two updates per switch instead of one per step.
+
+    >>> sw = [LimitSwitch("A", 10.0, 12.0), LimitSwitch("B", 20.0, 22.0)]
+    >>> [s.update(11.0) for s in sw], quiet_range(sw, 11.0)
+    ([True, False], (9.5, 12.5))
+    >>> [s.update(15.0) for s in sw], quiet_range(sw, 15.0)
+    ([True, False], (12.000000000000002, 19.999999999999996))
+    """
+    lo, hi = -math.inf, math.inf
+    for sw in switches:
+        a, b = sw.lo + sw.dx, sw.hi + sw.dx
+        if sw.actuated:  # stays on while a - h <= pos <= b + h
+            lo, hi = max(lo, a - sw.hysteresis), min(hi, b + sw.hysteresis)
+        elif pos < a:  # stays off while pos < a
+            hi = min(hi, math.nextafter(a, -math.inf))
+        else:  # pos > b: stays off while pos > b
+            lo = max(lo, math.nextafter(b, math.inf))
+    return lo, hi

@@ -179,7 +179,8 @@ class Rack:
         if col is None:
             now.add("the fork hit a post of the rack")
         else:
-            self._shelves_passed(host, col, y0, y, z)
+            if y != y0:  # (a shelf's top is passed only by a fork that moved up or down)
+                self._shelves_passed(host, col, y0, y, z)
             now |= self._touching(col, y)
         for what in sorted(now - self.contacts):
             host.emit("collision", self.name, self.on_fork, what=what, x=self.x.s, y=y, z=z)

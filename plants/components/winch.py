@@ -23,7 +23,7 @@ The cam switches are :class:`~plants.components.limit_switch.LimitSwitch` zones 
 speed at a sensor (the skip's arrival at the top at the slow speed). The winch is kinematic (no pymunk body).
 
 >>> from plants.components.component import Bench
->>> from plants.components.limit_switch import LimitSwitch
+>>> from plants.components.limit_switch import LimitSwitch, quiet_range
 >>> w = Winch("SKIP", -25.0, 1030.0, start=8.0, cams=[LimitSwitch("TOP", 990.0, 1010.0)])
 >>> host = Bench(); _ = w.reset(host)
 >>> for sig in ("UP", "FAST"): _ = w.actuate(host, sig, True)
@@ -42,7 +42,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from plants.components.component import Host
-from plants.components.limit_switch import LimitSwitch
+from plants.components.limit_switch import LimitSwitch, quiet_range
 from plcsim.plant import Drawable, SignalSpec
 
 
@@ -135,6 +135,7 @@ class Winch:
             cam.reset()
             cam.update(self.s)
             host.sensors[cam.name] = cam.actuated
+        self._quiet = quiet_range(self.cams, self.s)  # where no cam changes: the cams are read only outside it
         return False
 
     def actuate(self, host: Host, signal: str, value: Any) -> bool:
@@ -177,12 +178,6 @@ class Winch:
         self.f_set = direction * hz
         self.braked = self.f_set == 0.0
 
-    def speed_of(self, f: float) -> float:
-        """The carriage's speed (mm/s) at the frequency ``f`` with the present load."""
-        if f == 0.0:
-            return 0.0
-        return f / self.f_fast * self.v_fast * (1.0 - self.slip * self.load * math.copysign(1.0, f))
-
     def advance(self, host: Host, dt: float) -> bool:
         if self.pending:
             self.pending = False
@@ -193,10 +188,17 @@ class Winch:
             v = self.v - math.copysign(min(abs(self.v), self.brake_rate * dt), self.v)
             self.f = v / self.v_fast * self.f_fast
         else:
-            df = self.f_set - self.f
-            step = self.ramp * dt
-            self.f = self.f_set if abs(df) <= step else self.f + math.copysign(step, df)
-            v = self.speed_of(self.f)
+            f = self.f
+            if f != self.f_set:
+                df = self.f_set - f
+                step = self.ramp * dt
+                self.f = f = self.f_set if abs(df) <= step else f + math.copysign(step, df)
+            # the carriage's speed at f with the present load
+            v = (
+                0.0
+                if f == 0.0
+                else f / self.f_fast * self.v_fast * (1.0 - self.slip * self.load * math.copysign(1.0, f))
+            )
         s = self.s + v * dt
         if s >= self.hi or s <= self.lo:
             end = "top buffer" if s >= self.hi else "bottom buffer"
@@ -208,12 +210,16 @@ class Winch:
         elif self.at_end is not None:
             self.at_end = None
         if s != self.s or self.recheck:
+            lo, hi = self._quiet
+            if self.recheck or not lo <= s <= hi:
+                self.s = s
+                for cam in self.cams:
+                    if cam.update(s):
+                        host.sensors[cam.name] = cam.actuated
+                        if cam.actuated:
+                            host.emit("speed measured", cam.name, speed_mm_s=round(v, 3), position=round(s, 3))
+                self._quiet = quiet_range(self.cams, s)
             self.s, self.recheck = s, False
-            for cam in self.cams:
-                if cam.update(s):
-                    host.sensors[cam.name] = cam.actuated
-                    if cam.actuated:
-                        host.emit("speed measured", cam.name, speed_mm_s=round(v, 3), position=round(s, 3))
         self.v = v
         return v != 0.0 or not (self.braked or self.jammed)
 

@@ -305,3 +305,47 @@ def test_a_component_woken_after_it_settled_in_the_same_step_advances_again_in_t
     first = _Stepper("B", 1)  # settles in its first advance, then C (after it in the list) wakes it in that step
     _run([first, _Stepper("C", 3, first, at=1)], 4)
     assert first.advanced == [1, 2]
+
+
+def _shadowed(cams: list[LimitSwitch]) -> list[LimitSwitch]:
+    """Copies of ``cams`` (same zones, same shift), to be read at every step."""
+    out = []
+    for c in cams:
+        twin = LimitSwitch(c.name, c.lo, c.hi, hysteresis=c.hysteresis)
+        twin.shift(c.dx)
+        out.append(twin)
+    return out
+
+
+@pytest.mark.parametrize("kind", ["axis", "winch"])
+def test_cams_read_only_outside_their_quiet_range_switch_as_cams_read_every_step(kind):
+    """A carriage reads its cams only when it leaves the range where none can change (quiet_range): the sensors
+    must be, step by step, those of the same cams read at every step: overlapping zones, a hysteresis, a reversal
+    and a cam shifted mid-run."""
+    from plants.components.component import Bench
+    from plants.components.winch import Winch
+
+    cams = [LimitSwitch("A", 10.0, 12.0), LimitSwitch("B", 30.0, 34.0, hysteresis=1.0), LimitSwitch("C", 33.0, 40.0)]
+    if kind == "axis":
+        carriage = Axis("X", 0.0, 50.0, start=1.0, speed=20.0, tau_s=0.02, plus="UP", minus="DOWN", cams=cams)
+        drive = [("UP", True)], [("UP", False), ("DOWN", True)]
+    else:
+        carriage = Winch("X", -5.0, 50.0, start=1.0, v_fast=20.0, v_slow=10.0, cams=cams)
+        drive = [("UP", True), ("FAST", True)], [("UP", False), ("DOWN", True), ("FAST", False), ("SLOW", True)]
+    host = Bench()
+    carriage.reset(host)
+    shadow = _shadowed(cams)
+    for sw in shadow:
+        sw.update(carriage.s)
+    changes = 0
+    for k in range(6000):
+        if k in (0, 2600):  # up, then down from near the top end
+            for signal, value in drive[k > 0]:
+                carriage.actuate(host, signal, value)
+        if k == 1200:
+            carriage.shift_cam("B", -3.0)
+            shadow[1].shift(-3.0)
+        host.step(carriage)
+        changes += sum(sw.update(carriage.s) for sw in shadow)
+        assert host.sensors == {sw.name: sw.actuated for sw in shadow}, f"step {k}, s = {carriage.s}"
+    assert changes >= 8  # every cam made and broke on the way up and down
