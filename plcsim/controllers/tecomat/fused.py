@@ -28,6 +28,7 @@ ways, and compare the two on random programs).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple
@@ -53,6 +54,7 @@ AREAS = "XYSRDU"
 _OPS = {"AND": "&", "OR": "|", "XOR": "^"}
 _RELATIONS = {"EQ": "==", "LT": "<", "GT": ">"}
 _NEGATED = {"ANC": "AND", "ORC": "OR", "XOC": "XOR"}
+_REGISTER = re.compile(r"\ba([XYRDU])\[(\d+)\]")
 
 
 class Level(NamedTuple):
@@ -74,6 +76,8 @@ class Cycle:
 
     before: list[str]
     after: list[str]
+    """(A register read ``aY[3]`` in these lines becomes the run's local ``mY3`` where the run holds it: at the
+    run's end the locals it holds are what memory holds.)"""
     names: dict[str, object]
     head: Callable[..., int] | None = None
 
@@ -108,7 +112,7 @@ def fuse(m: Machine, closures: list[Code], cycle: Cycle | None = None) -> list[C
         if whole:
             assert cycle is not None
             lines = ["if start is not None:", *(f"    {line}" for line in cycle.before), "s = m.st", *run.lines]
-            lines += [f"if start is None: return {end}", *cycle.after]
+            lines += [f"if start is None: return {end}", *(run.as_held(line) for line in cycle.after)]
             names |= cycle.names
             signature = "run(start=None)"
         else:
@@ -171,6 +175,11 @@ class _Run:
             name = self.held_registers[key] = f"m{area}{index}"
             self.lines.append(f"{name} = a{area}[{index}]")
         return name
+
+    def as_held(self, line: str) -> str:
+        """``line`` with each register ``aR[5]`` it reads the run holds as that local (at the run's end, after
+        :meth:`finish`, the locals are what memory holds: this saves a line after the run reading them again)."""
+        return _REGISTER.sub(lambda m: self.held_registers.get((m[1], int(m[2])), m[0]), line)
 
     def wrote(self, area: str, index: int) -> None:
         if area != "S":
