@@ -46,7 +46,7 @@ from plcsim.controllers.tecomat.linker import link
 from plcsim.controllers.tecomat.machine import END_CYCLE, ZEROS, Machine, TecomatRuntimeError
 from plcsim.controllers.tecomat.memory import Operand, OperandError, Scratchpad, parse_address, read, write
 from plcsim.controllers.tecomat.settings import TecomatConfig
-from plcsim.controllers.tecomat.symbols import function, overlapping, publisher, reader, sampler, snapshot
+from plcsim.controllers.tecomat.symbols import copies, function, overlapping, publisher, reader, sampler, snapshot
 from plcsim.core.clock import NEVER, Clock
 from plcsim.core.errors import ConfigurationError, UnknownTagError, did_you_mean
 from plcsim.core.literals import to_ns
@@ -247,6 +247,8 @@ class TecomatCPU:
         traced = [n for n in self.symbols if n not in self.inputs]
         self._take_traced, decode = snapshot(pad, [self.symbols[n] for n in traced])
         self._decode_traced = decode(traced)
+        self._copied = copies([self.symbols[n] for n in traced])
+        """``_take_traced()`` as an expression (the generated cycle copies the registers itself)."""
         lines, names, units = publisher([(n, self.symbols[n]) for n in self.output_names])
         self._publish = (lines, names) if units else None
         """The lines bringing Y into :attr:`outputs` at a cycle's end, and their names (None: no outputs)."""
@@ -410,6 +412,18 @@ class TecomatCPU:
 
     def scan(self, count: int = 1) -> None:
         """Run ``count`` whole cycles; the clock stops at the last one's end."""
+        head, m = self._head, self.machine
+        if (  # one cycle of a program of P0 alone: the loop below would make one call of the head
+            count == 1
+            and head is not None
+            and self._pending is None
+            and self.mode == RUN
+            and m.code[self._p0] is head  # type: ignore[union-attr]
+            and m.pass_no  # type: ignore[union-attr]
+            and not self.events_raised
+        ):
+            head(self._next_start)
+            return
         target = self.scan_count + count
         while self.mode == RUN and self.scan_count < target:
             if self._pending is None:
@@ -553,7 +567,7 @@ class TecomatCPU:
             "end = start + c._cycle_ns",
             "c.scan_start_ns = start",
             "if clock.now < end: clock.now = end",
-            "copies = take()",
+            f"copies = {self._copied}",
             "subscriber = c.scan_end.call",
             "if subscriber is None: c._copies = copies",
             "else: c._copies = None; decode(values, *copies)",
@@ -575,7 +589,6 @@ class TecomatCPU:
             **self._sample[1],
             "tX": self.terminals.areas["X"],
             "system": self._system_registers,
-            "take": self._take_traced,
             "decode": self._decode_traced,
             "values": self._t.__dict__,
             **(self._publish[1] if self._publish is not None else {}),

@@ -162,6 +162,8 @@ class _Run:
         self.held_registers: dict[tuple[str, int], str] = {}
         self.changed: dict[tuple[str, int], str] = {}
         """The held registers written since they were read (to write back), in the order first written."""
+        self.words: dict[tuple[str, int], str] = {}
+        """The local holding each word read as a number since neither of its registers changed (read once)."""
 
     # -- registers ------------------------------------------------------------------------------------
 
@@ -182,6 +184,8 @@ class _Run:
         return _REGISTER.sub(lambda m: self.held_registers.get((m[1], int(m[2])), m[0]), line)
 
     def wrote(self, area: str, index: int) -> None:
+        self.words.pop((area, index), None)
+        self.words.pop((area, index - 1), None)
         if area != "S":
             self.changed[(area, index)] = self.held_registers[(area, index)]
 
@@ -190,6 +194,7 @@ class _Run:
         for key in list(self.changed) if keys is None else [k for k in keys if k in self.changed]:
             self.lines.append(f"a{key[0]}[{key[1]}] = {self.changed.pop(key)}")
         if forget:
+            self.words.clear()
             for key in list(self.held_registers) if keys is None else keys:
                 self.held_registers.pop(key, None)
 
@@ -204,7 +209,12 @@ class _Run:
         low = self.reg(op.area, op.index)
         if op.width == "byte":
             return f"({low} ^ 255)" if negate else low
-        word = f"({low} | {self.reg(op.area, op.index + 1)} << 8)"
+        key = (op.area, op.index)
+        word = self.words.get(key)
+        if op.area == "S":  # (S changes behind the run's back: flags, closures)
+            word = f"({low} | {self.reg(op.area, op.index + 1)} << 8)"
+        elif word is None:
+            word = self.words[key] = self.local(f"{low} | {self.reg(op.area, op.index + 1)} << 8").expr
         return f"({word} ^ 65535)" if negate else word
 
     # -- levels ---------------------------------------------------------------------------------------
@@ -267,10 +277,8 @@ class _Run:
             negate = m == "LDC"
             if op.width == "bit":
                 self.push(self.local(f"{'not ' if negate else ''}{self.bit(op)}", True))
-            elif op.is_immediate:
-                self.push(Level(self.number(op, negate)))
-            else:
-                self.push(self.local(self.number(op, negate)))
+            else:  # (a number, a local holding the word, or an expression to hold)
+                self.push(Level(self.held(self.number(op, negate))))
         elif m in ("WR", "WRC", "PUT") and _plain(op) and not op.is_immediate:
             self._write(op, m == "WRC", m == "PUT", top)
         elif m in ("AND", "OR", "XOR", "ANC", "ORC", "XOC"):
@@ -383,6 +391,8 @@ class _Run:
             inputs[-1] = self.held(self.num(self.levels[0]))
         write = _Block(self, state, lo, hi, instr)
         outputs = getattr(write, _WRITERS[mnemonic])(*inputs)
+        if mnemonic not in _TIMERS:  # a counter's or shift register's first output is its word's new value
+            self.words[("R", word)] = outputs[0].expr
         if shape.push:
             self.push(outputs[0])
         else:
@@ -414,6 +424,7 @@ _WRITERS = {"CTU": "counter", "CTD": "counter", "CNT": "cnt", "SFL": "shift", "S
     m: m.lower() for m in ("TON", "TOF", "IMP", "RTO")
 }
 """Which method of :class:`_Block` writes each block out."""
+_TIMERS = frozenset({"TON", "TOF", "IMP", "RTO"})
 
 
 class _Block:

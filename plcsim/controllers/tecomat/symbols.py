@@ -48,16 +48,22 @@ def snapshot(pad: Scratchpad, operands: Sequence[Operand]) -> tuple[Callable[[],
     and ``decode(names)`` making ``f(d, *copies)`` that stores the copied values into a dict by name (only
     when someone reads them: most cycles nobody does)."""
     areas = sorted({op.area for op in operands})
-    ends = {a: max(op.index + SIZE[op.width] for op in operands if op.area == a) for a in areas}
     params = ", ".join(f"a{area}" for area in areas)
-    copies = "".join(f"a{area}[:{ends[area]}], " for area in areas)
-    take = eval(f"lambda {params}: lambda: ({copies})", {"__builtins__": {}})  # generated from numbers only
+    take = eval(f"lambda {params}: lambda: {copies(operands)}", {"__builtins__": {}})  # generated from numbers only
 
     def decode(names: Sequence[str]) -> Callable[..., None]:
         lines = [f"d[{name!r}] = {_expr(op)}" for name, op in zip(names, operands, strict=True)]
         return _compile(_function(f"d, {params}" if params else "d", lines))
 
     return take(*(pad.areas[area] for area in areas)), decode
+
+
+def copies(operands: Sequence[Operand]) -> str:
+    """What ``take()`` of :func:`snapshot` returns, as an expression over the areas ``aR``, ``aY`` ... (a
+    generated cycle copies them itself)."""
+    areas = sorted({op.area for op in operands})
+    ends = {a: max(op.index + SIZE[op.width] for op in operands if op.area == a) for a in areas}
+    return "(" + "".join(f"a{area}[:{ends[area]}], " for area in areas) + ")"
 
 
 def sampler(operands: Sequence[Operand], area: str) -> tuple[list[str], dict[str, Any]]:
