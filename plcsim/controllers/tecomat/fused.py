@@ -159,6 +159,12 @@ class _Run:
         """The S0 write of the last comparison, not emitted yet (a later one may make it dead)."""
         self.ci_zero = False
         """S0.3 (the carry-in) is known to be 0: a counter or timer cleared it, and nothing set it since."""
+        self.high_zero = False
+        """S0.3..S0.7 are known to be 0: a counter wrote S0, and nothing but comparisons and ADD (which keep
+        them) wrote it since; a comparison's flags then need not read S0."""
+        self.flag_writes: list[int] = []
+        """The lines where blocks write S0 that nothing may have read yet: a counter or timer that writes all
+        of S0 makes them dead, and they are dropped (read S0 first: :meth:`flags_read`)."""
         self.held_registers: dict[tuple[str, int], str] = {}
         self.changed: dict[tuple[str, int], str] = {}
         """The held registers written since they were read (to write back), in the order first written."""
@@ -253,6 +259,7 @@ class _Run:
     def flush(self) -> None:
         """Emit the pending S0 write (something may read S0 next)."""
         if self.pending_flags is not None:
+            self.flags_read()  # (it keeps S0.3..S0.7 as the blocks wrote them)
             self.lines.append(self.pending_flags)
             self.pending_flags = None
 
@@ -260,6 +267,23 @@ class _Run:
         self.flush()
         self.sync()
         self.write_back()
+        self.lines = _without_dead(self.lines)
+
+    def flags_read(self) -> None:
+        """Something may read S0 here: the blocks' writes so far are live."""
+        self.flag_writes.clear()
+
+    def flag_write(self, line: str) -> None:
+        """A block's line writing S0 (and nothing else)."""
+        self.flag_writes.append(len(self.lines))
+        self.lines.append(line)
+
+    def overwrite_flags(self) -> None:
+        """A block writes all of S0 next, reading none of it: the blocks' writes nothing read are dead."""
+        for k in self.flag_writes:
+            line = self.lines[k]
+            self.lines[k] = line[: len(line) - len(line.lstrip())] + "pass"  # dropped by finish()
+        self.flag_writes.clear()
 
     # -- instructions ---------------------------------------------------------------------------------
 
@@ -269,7 +293,8 @@ class _Run:
             return
         if _reads_s(op):
             self.flush()
-            self.ci_zero = False
+            self.flags_read()
+            self.ci_zero = self.high_zero = False
         top = self.levels[0]
         if m == "NEG":
             self.levels[0] = self.local(f"not {top.expr}", True) if top.boolean else self.local(f"{top.expr} ^ 65535")
@@ -368,8 +393,10 @@ class _Run:
         else:
             a, b = self.held(self.num(self.levels[0])), self.held(self.number(op, False))
         if self.ci and not self.ci_zero:
+            self.flags_read()
             b = self.local(f"{b} + (aS[0] >> 3 & 1)").expr
-        self.pending_flags = f"aS[0] = aS[0] & 248 | ({a} == {b}) | ({a} < {b}) << 1 | ({a} <= {b}) << 2"
+        kept = "" if self.high_zero else "aS[0] & 248 | "
+        self.pending_flags = f"aS[0] = {kept}{_relation_flags(a, b)}"
         self.levels[0] = self.local(f"{a} {relation} {b}", True)
 
     def _block(self, mnemonic: str, index: int, instr: Instruction) -> None:
@@ -377,6 +404,7 @@ class _Run:
         shape = BLOCKS[mnemonic][1]
         if mnemonic in SETS_S0:
             self.pending_flags = None
+            self.overwrite_flags()
             self.ci_zero = True
         else:  # TOF, IMP write S0.3 = 0 or leave S0 alone, the shift registers leave it
             self.flush()
@@ -393,6 +421,8 @@ class _Run:
         outputs = getattr(write, _WRITERS[mnemonic])(*inputs)
         if mnemonic not in _TIMERS:  # a counter's or shift register's first output is its word's new value
             self.words[("R", word)] = outputs[0].expr
+        if mnemonic in SETS_S0 or mnemonic in _TIMERS:  # a counter leaves S0.3..S0.7 at 0, a timer may not
+            self.high_zero = mnemonic not in _TIMERS
         if shape.push:
             self.push(outputs[0])
         else:
@@ -405,7 +435,8 @@ class _Run:
             self.pending_flags = None  # ADD writes S0.0..S0.2 and reads only S0.3, which a comparison keeps
         else:
             self.flush()
-            self.ci_zero = False
+            self.ci_zero = self.high_zero = False
+        self.flags_read()  # (ADD reads S0.3)
         self.sync()
         self.write_back(forget=True)  # the closure may read or write any register
         name = f"c{index}"
@@ -413,6 +444,25 @@ class _Run:
         self.lines.append(f"{name}()")
         if mnemonic in SWITCHES:
             self.lines.append("s = m.st")
+
+
+def _relation_flags(a: str, b: str) -> str:
+    """S0.0 (a = b), S0.1 (a < b), S0.2 (a <= b) as one number: 5, 6 or 0."""
+    return f"(5 if {a} == {b} else 6 if {a} < {b} else 0)"
+
+
+def _without_dead(lines: list[str]) -> list[str]:
+    """``lines`` without the ``pass`` lines dead S0 writes left, but where a block would be empty without one."""
+    out: list[str] = []
+    for k, line in enumerate(lines):
+        if line.strip() == "pass":
+            indent = len(line) - len(line.lstrip())
+            following = lines[k + 1] if k + 1 < len(lines) else ""
+            alone = bool(out) and out[-1].endswith(":") and len(following) - len(following.lstrip()) < indent
+            if not alone:
+                continue
+        out.append(line)
+    return out
 
 
 def _plain(op: object) -> bool:
@@ -463,8 +513,8 @@ class _Block:
             f"    {v} {'+' if up else '-'}= 1",
             f"    if {v} {'> 65535' if up else '< 0'}: {v} &= 65535; {carry} = True",
             f"{lo} = {v} & 255; {hi} = {v} >> 8",
-            f"aS[0] = (5 if {v} == 0 else 0) | (6 if {carry} else 0)",
         )
+        self.run.flag_write(f"aS[0] = (5 if {v} == 0 else 0) | (6 if {carry} else 0)")
         return [Level(v), Level(carry, True)]
 
     def cnt(self, up: str, down: str, clear: str) -> list[Level]:
@@ -484,8 +534,8 @@ class _Block:
             f"    {v} -= 1",
             f"    if {v} < 0: {v} = 65535; {downc} = True",
             f"{lo} = {v} & 255; {hi} = {v} >> 8",
-            f"aS[0] = (5 if {v} == 0 else 0) | (6 if {upc} or {downc} else 0)",
         )
+        self.run.flag_write(f"aS[0] = (5 if {v} == 0 else 0) | (6 if {upc} or {downc} else 0)")
         return [Level(v), Level(upc, True), Level(downc, True)]
 
     def shift(self, clock: str, serial: str) -> list[Level]:
@@ -532,7 +582,8 @@ class _Block:
         return passed
 
     def clear(self, indent: str) -> None:
-        self.emit(f"{indent}{self.lo} = {self.hi} = 0; {self.b}.acc = 0; {self.b}.overflow = False; aS[0] = 0")
+        self.emit(f"{indent}{self.lo} = {self.hi} = 0; {self.b}.acc = 0; {self.b}.overflow = False")
+        self.run.flag_write(f"{indent}aS[0] = 0")
 
     def advance(self, indent: str, passed: str, value: str, over: str) -> None:
         b, lo, hi = self.b, self.lo, self.hi
@@ -547,9 +598,7 @@ class _Block:
 
     def flags(self, indent: str, preset: str, value: str, over: str) -> None:
         p, v, b = preset, value, self.b
-        self.emit(
-            f"{indent}aS[0] = ({p} == {v}) | ({p} < {v}) << 1 | ({p} <= {v}) << 2 | {b}.overflow << 4 | {over} << 5"
-        )
+        self.run.flag_write(f"{indent}aS[0] = {_relation_flags(p, v)} | {b}.overflow << 4 | {over} << 5")
 
     def ton(self, xt: str, preset: str) -> list[Level]:
         b, v, over, out = self.b, self.name(), self.name(), self.name()
