@@ -196,9 +196,27 @@ class _Run:
             self.changed[(area, index)] = self.held_registers[(area, index)]
 
     def write_back(self, keys: list[tuple[str, int]] | None = None, forget: bool = False) -> None:
-        """Store the changed held registers (only ``keys`` if given) into memory; ``forget``: stop holding them."""
-        for key in list(self.changed) if keys is None else [k for k in keys if k in self.changed]:
-            self.lines.append(f"a{key[0]}[{key[1]}] = {self.changed.pop(key)}")
+        """Store the changed held registers (only ``keys`` if given) into memory; ``forget``: stop holding them.
+
+        Three or more neighbours the run holds are stored as one slice (one held but unchanged among them
+        stores what memory already has)."""
+        stored = list(self.changed) if keys is None else [k for k in keys if k in self.changed]
+        for area in sorted({key[0] for key in stored}):
+            groups: list[list[int]] = []
+            for index in sorted(key[1] for key in stored if key[0] == area):
+                last = groups[-1][-1] if groups else None
+                if last is not None and all((area, i) in self.held_registers for i in range(last + 1, index)):
+                    groups[-1] += range(last + 1, index + 1)
+                else:
+                    groups.append([index])
+            for group in groups:
+                if len(group) >= 3:
+                    held = ", ".join(self.held_registers[(area, i)] for i in group)
+                    self.lines.append(f"a{area}[{group[0]}:{group[-1] + 1}] = ({held})")
+                else:
+                    self.lines += [f"a{area}[{i}] = {self.held_registers[(area, i)]}" for i in group]
+                for i in group:
+                    self.changed.pop((area, i), None)
         if forget:
             self.words.clear()
             for key in list(self.held_registers) if keys is None else keys:
