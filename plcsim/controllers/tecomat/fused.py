@@ -29,6 +29,7 @@ ways, and compare the two on random programs).
 from __future__ import annotations
 
 import re
+from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple
@@ -55,6 +56,10 @@ _OPS = {"AND": "&", "OR": "|", "XOR": "^"}
 _RELATIONS = {"EQ": "==", "LT": "<", "GT": ">"}
 _NEGATED = {"ANC": "AND", "ORC": "OR", "XOC": "XOR"}
 _REGISTER = re.compile(r"\ba([XYRDU])\[(\d+)\]")
+_LOCAL = re.compile(r"(?<![.\w])t\d+\b")
+"""A local of the run (not ``m.t0``)."""
+_DEFINITION = re.compile(r"(t\d+) = (.*)")
+_READ = re.compile(r"m[XYRDU]\d+ = a[XYRDU]\[\d+\]")
 
 
 class Level(NamedTuple):
@@ -285,7 +290,7 @@ class _Run:
         self.flush()
         self.sync()
         self.write_back()
-        self.lines = _without_dead(self.lines)
+        self.lines = _inlined(_without_dead(self.lines))
 
     def flags_read(self) -> None:
         """Something may read S0 here: the blocks' writes so far are live."""
@@ -481,6 +486,42 @@ def _without_dead(lines: list[str]) -> list[str]:
                 continue
         out.append(line)
     return out
+
+
+def _inlined(lines: list[str]) -> list[str]:
+    """``lines`` with each local ``tN = expr`` that one line uses, the line right after it (register reads
+    aside), written into that use as ``(expr)``: where the use is what the line evaluates first (an ``if``'s
+    condition, an assignment's value). The expressions are pure and nothing runs between the two places, so the
+    value is the same; a local stored and loaded again costs two operations of every cycle."""
+    uses = Counter(_LOCAL.findall("\n".join(lines)))
+    out: list[str] = []
+    for line in lines:
+        spot = _first_evaluated(line)
+        if spot is not None:
+            names = {n for n in _LOCAL.findall(line[spot[0] : spot[1]]) if uses[n] == 2}
+            k = len(out) - 1
+            while k >= 0 and _READ.fullmatch(out[k]):
+                k -= 1
+            found = _DEFINITION.fullmatch(out[k]) if k >= 0 and ";" not in out[k] else None
+            if found and found[1] in names and not any(read.split(" ")[0] in found[2] for read in out[k + 1 :]):
+                hit = re.compile(rf"(?<![.\w]){found[1]}\b").search(line, *spot)
+                assert hit is not None
+                line = f"{line[: hit.start()]}({found[2]}){line[hit.end() :]}"
+                del out[k]
+        out.append(line)
+    return out
+
+
+def _first_evaluated(line: str) -> tuple[int, int] | None:
+    """Where in a line of the run's top level is what it evaluates before it changes anything: an ``if``'s
+    condition or the value of a plain assignment (None for other lines)."""
+    if line[:1] == " " or ";" in line.split(":")[0]:
+        return None
+    if line.startswith("if "):
+        return 3, line.index(":")
+    if line.startswith(("else", "elif")) or ";" in line or " = " not in line:
+        return None
+    return line.rindex(" = ") + 3, len(line)
 
 
 def _plain(op: object) -> bool:
