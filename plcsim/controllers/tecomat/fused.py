@@ -55,6 +55,11 @@ AREAS = "XYSRDU"
 _OPS = {"AND": "&", "OR": "|", "XOR": "^"}
 _RELATIONS = {"EQ": "==", "LT": "<", "GT": ">"}
 _NEGATED = {"ANC": "AND", "ORC": "OR", "XOC": "XOR"}
+BIT_OF = tuple(tuple(value >> bit & 1 == 1 for value in range(256)) for bit in range(8))
+"""``BIT_OF[k][v]``: bit k of the byte v, as a bool."""
+SET_OF = tuple(tuple(value | 1 << bit for value in range(256)) for bit in range(8))
+CLEAR_OF = tuple(tuple(value & ~(1 << bit) for value in range(256)) for bit in range(8))
+"""``SET_OF[k][v]``, ``CLEAR_OF[k][v]``: the byte v with bit k set, cleared."""
 _REGISTER = re.compile(r"\ba([XYRDU])\[(\d+)\]")
 _LOCAL = re.compile(r"(?<![.\w])t\d+\b")
 """A local of the run (not ``m.t0``)."""
@@ -228,8 +233,20 @@ class _Run:
                 self.held_registers.pop(key, None)
 
     def bit(self, op: Operand) -> str:
-        """An expression true iff the bit operand is 1."""
-        return f"{self.reg(op.area, op.index)} & {1 << op.bit}"
+        """An expression true iff the bit operand is 1: a table of the bit in every byte value, a subscript
+        Python runs faster than ``&`` (which it does not specialise) and a bool ``if`` tests at once."""
+        return self.test(self.reg(op.area, op.index), op.bit)
+
+    def test(self, register: str, bit: int) -> str:
+        """Bit ``bit`` of the register as a bool (see :meth:`bit`)."""
+        self.bound[f"bit{bit}"] = BIT_OF[bit]
+        return f"bit{bit}[{register}]"
+
+    def setting(self, register: str, bit: int, on: bool) -> str:
+        """The statement setting (``on``) or clearing bit ``bit`` of the register, by a table as :meth:`bit`."""
+        name = f"{'set' if on else 'clear'}{bit}"
+        self.bound[name] = (SET_OF if on else CLEAR_OF)[bit]
+        return f"{register} = {name}[{register}]"
 
     def number(self, op: Operand, negate: bool) -> str:
         """A byte, word or immediate operand as a number (a byte negated in 8 bits, the rest in 16)."""
@@ -334,12 +351,12 @@ class _Run:
         elif m in ("SET", "RES"):
             self._set_res(op, m == "SET", top)
         elif m == "LET" and op.width == "bit":
-            a, mask = self.reg(op.area, op.index), 1 << op.bit
+            a = self.reg(op.area, op.index)
             edge = f"t{self.count}"
             self.count += 1
             self.lines += [
-                f"if {top.expr}: {edge} = not {a} & {mask}; {a} |= {mask}",
-                f"else: {edge} = False; {a} &= {~mask & 0xFF}",
+                f"if {top.expr}: {edge} = not {self.test(a, op.bit)}; {self.setting(a, op.bit, True)}",
+                f"else: {edge} = False; {self.setting(a, op.bit, False)}",
             ]
             self.wrote(op.area, op.index)
             self.levels[0] = Level(edge, True)
@@ -353,8 +370,7 @@ class _Run:
     def _write(self, op: Operand, negate: bool, conditional: bool, top: Level) -> None:
         a = self.reg(op.area, op.index)
         if op.width == "bit":
-            mask = 1 << op.bit
-            on, off = f"{a} |= {mask}", f"{a} &= {~mask & 0xFF}"
+            on, off = self.setting(a, op.bit, True), self.setting(a, op.bit, False)
             if negate:
                 on, off = off, on
             lines = [f"if {top.expr}: {on}", f"else: {off}"]
@@ -403,7 +419,7 @@ class _Run:
     def _set_res(self, op: Operand, setting: bool, top: Level) -> None:
         a = self.reg(op.area, op.index)
         if op.width == "bit":
-            change = f"{a} |= {1 << op.bit}" if setting else f"{a} &= {~(1 << op.bit) & 0xFF}"
+            change = self.setting(a, op.bit, setting)
             self.lines.append(f"if {top.expr}: {change}")
         else:
             value = self.num(top)
