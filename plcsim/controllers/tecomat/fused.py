@@ -11,13 +11,16 @@ of the stack as the run found it (``s[k]``), a local computed by an earlier inst
 pop brings in; the real stack is written once, as a whole, before a closure that reads it and at the
 run's end. A level that holds a boolean (a bit LD, a comparison, LET, logic between booleans) is kept as
 a Python truth value and turned into the machine's mask 0000H/FFFFH only where a number is needed. The
-registers of X, Y, R, D and U the run touches are read into locals once and written back once.
+registers of X, Y, R, D and U the run touches are read into locals once and written back once (three or
+more neighbours as one slice), a word read as a number once while its registers keep, and bits are tested,
+set and cleared by tables of the 256 byte values. A local that only the next line uses is written into it.
 Function blocks are written out in place, statement for statement as their cores in
 :mod:`plcsim.controllers.tecomat.blocks` (the levels as inputs, the word in the held registers, the hidden
 state an object the code is given); the rest (tables, CHG ...) call their closures. The S0 flags a
 comparison sets are written only if something can read them before the next instruction that sets all
-three again. Pushes past A7 drop it and pops fill A7 exactly as the machine does, so the stack after a
-run is the same level for level.
+three again, and a block's S0 write only if something can read it before the next counter or timer.
+Pushes past A7 drop it and pops fill A7 exactly as the machine does, so the stack after a run is the same
+level for level.
 
 Instructions that can fail at run time (a table in R reaching past its end) stay out of the runs, so an
 error still names its own line. A program whose only process is P0 and whose P0 is one run may have its
