@@ -46,7 +46,7 @@ from plcsim.controllers.tecomat.linker import link
 from plcsim.controllers.tecomat.machine import END_CYCLE, ZEROS, Machine, TecomatRuntimeError
 from plcsim.controllers.tecomat.memory import Operand, OperandError, Scratchpad, parse_address, read, write
 from plcsim.controllers.tecomat.settings import TecomatConfig
-from plcsim.controllers.tecomat.symbols import loader, overlapping, reader, snapshot
+from plcsim.controllers.tecomat.symbols import copies, function, overlapping, publisher, reader, sampler, snapshot
 from plcsim.core.clock import NEVER, Clock
 from plcsim.core.errors import ConfigurationError, UnknownTagError, did_you_mean
 from plcsim.core.literals import to_ns
@@ -128,6 +128,7 @@ class TecomatCPU:
         self.output_version = 0
         self.inputs: dict[str, Any] = {}
         self.outputs: dict[str, Any] = {}
+        self._y_keys: list[int] = []
         self._image_in: dict[str, Any] = {}
         self._sampled: tuple[Any, ...] | None = None
         """The input levels the last turnaround sampled, not yet in :attr:`image_in` (brought there when read)."""
@@ -246,16 +247,20 @@ class TecomatCPU:
         traced = [n for n in self.symbols if n not in self.inputs]
         self._take_traced, decode = snapshot(pad, [self.symbols[n] for n in traced])
         self._decode_traced = decode(traced)
-        self._y_copy = sorted({self.symbols[n].area for n in traced}).index("Y") if self.output_names else None
-        """Which of the cycle end's copies holds Y (the outputs change only when it does)."""
-        self._last_y = None
-        self._read_outputs = reader(pad, [self.symbols[n] for n in self.output_names])
-        self._outputs_of: dict[bytes, tuple[tuple[Any, ...], dict[str, Any]]] = {}
-        """The outputs (as a tuple and by name) of each state of Y seen, decoded once."""
+        self._copied = copies([self.symbols[n] for n in traced])
+        """``_take_traced()`` as an expression (the generated cycle copies the registers itself)."""
+        lines, names, units = publisher([(n, self.symbols[n]) for n in self.output_names])
+        self._publish = (lines, names) if units else None
+        """The lines bringing Y into :attr:`outputs` at a cycle's end, and their names (None: no outputs)."""
+        self._y_keys = [0] * units
+        """Each unit of outputs' registers as the outputs hold them (see :func:`.symbols.publisher`)."""
+        self._publish_outputs = function("c", lines, {**names, "aY": pad.areas["Y"]}) if units else None
         inputs = [self.symbols[n] for n in self.input_names]
         self._read_terminals = reader(self.terminals, inputs)
-        self._load_terminals = loader(self.terminals, "X", inputs)
         self._aliased_inputs = overlapping(inputs)
+        self._sample = sampler(inputs, "tX") if not self._aliased_inputs else ([], {})
+        """The lines storing the input levels into the terminals, and their names (none if two inputs overlap)."""
+        self._load_terminals = function("levels", self._sample[0], {**self._sample[1], "tX": self.terminals.areas["X"]})
         self._writes_x = any(
             i.mnemonic in ("WR", "WRC", "PUT", "SET", "RES", "LET") and getattr(i.arg, "area", "") == "X"
             for i in self.machine.asm.code  # type: ignore[union-attr]
@@ -265,7 +270,6 @@ class TecomatCPU:
         """Two input names share a terminal: only the one the wiring changed may write it."""
         self._input_levels = _tuple_getter(self.input_names)
         self._last_inputs = self._input_levels(self.inputs)
-        self._last_outputs = tuple(self._off(n) for n in self.output_names)
 
     def _off(self, name: str) -> Any:
         return False if self.symbols[name].width == "bit" else 0
@@ -304,7 +308,7 @@ class TecomatCPU:
         self.mode = STOP
         self._pending = None
         self.outputs = {n: self._off(n) for n in self.output_names}
-        self._last_outputs, self._last_y = tuple(self.outputs.values()), None
+        self._y_keys[:] = [0] * len(self._y_keys)  # every output off
         self.output_version += 1
         if was == RUN:
             self._diag("RUN->STOP", f"the CPU switched to STOP ({reason})")
@@ -408,6 +412,18 @@ class TecomatCPU:
 
     def scan(self, count: int = 1) -> None:
         """Run ``count`` whole cycles; the clock stops at the last one's end."""
+        head, m = self._head, self.machine
+        if (  # one cycle of a program of P0 alone: the loop below would make one call of the head
+            count == 1
+            and head is not None
+            and self._pending is None
+            and self.mode == RUN
+            and m.code[self._p0] is head  # type: ignore[union-attr]
+            and m.pass_no  # type: ignore[union-attr]
+            and not self.events_raised
+        ):
+            head(self._next_start)
+            return
         target = self.scan_count + count
         while self.mode == RUN and self.scan_count < target:
             if self._pending is None:
@@ -481,27 +497,13 @@ class TecomatCPU:
         else:  # a subscriber (the recorder) reads them now, maybe from a dict it holds
             self._copies = None
             self._decode_traced(self._t.__dict__, *copies)
-        if self._y_copy is not None and copies[self._y_copy] != self._last_y:
-            self._new_y(copies[self._y_copy])
+        if self._publish_outputs is not None:
+            self._publish_outputs(self)
         self.scan_end_ns = end
         self.scan_count += 1
         self._next_start = end
         if subscriber is not None:
             subscriber(self)
-
-    def _new_y(self, copy: bytearray) -> None:
-        """Y changed in the cycle that ended: the outputs as it holds them (each state decoded once)."""
-        self._last_y = y = bytes(copy)
-        decoded = self._outputs_of.get(y)
-        if decoded is None:
-            if len(self._outputs_of) >= 4096:
-                self._outputs_of.clear()
-            outputs = self._read_outputs()
-            decoded = self._outputs_of[y] = (outputs, dict(zip(self.output_names, outputs, strict=True)))
-        if decoded[0] != self._last_outputs:
-            self._last_outputs = decoded[0]
-            self.outputs.update(decoded[1])
-            self.output_version += 1
 
     # -- the turnaround and the processes -------------------------------------------------------
 
@@ -545,7 +547,8 @@ class TecomatCPU:
         m = self.machine
         assert m is not None
         stacks = "for k in stacks: k[:] = ZEROS" if self.config.clear_all_stacks else "sA[:] = ZEROS"
-        sample = "sample()" if self._aliased_inputs else "load(levels); c._sampled = c._last_inputs = levels"
+        loads = [*self._sample[0], "c._sampled = c._last_inputs = levels"]  # the terminals written here
+        sample = ["sample()"] if self._aliased_inputs else loads
         before = [
             "if clock.now < start: clock.now = start",
             "m.prev_t0 = m.t0; m.t0 = start; m.pass_no += 1; m.jumps = 0",  # (m.calls: P0 alone calls nothing)
@@ -553,7 +556,7 @@ class TecomatCPU:
             "m.active = 0; m.st = sA",
             "levels = levels_of(c.inputs)",
             "if levels != c._last_inputs:",
-            f"    {sample}",
+            *(f"    {line}" for line in sample),
             "    c._fresh_terminals = False; aX[:] = aU[:] = tX",
             f"elif {self._writes_x} or c._fresh_terminals:",
             "    c._fresh_terminals = False; aX[:] = aU[:] = tX",
@@ -564,13 +567,13 @@ class TecomatCPU:
             "end = start + c._cycle_ns",
             "c.scan_start_ns = start",
             "if clock.now < end: clock.now = end",
-            "copies = take()",
+            f"copies = {self._copied}",
             "subscriber = c.scan_end.call",
             "if subscriber is None: c._copies = copies",
             "else: c._copies = None; decode(values, *copies)",
         ]
-        if self._y_copy is not None:
-            after.append(f"if copies[{self._y_copy}] != c._last_y: new_y(copies[{self._y_copy}])")
+        if self._publish is not None:
+            after += self._publish[0]  # its aY[i] are the run's locals where it holds them
         after += [
             "c.scan_end_ns = end; c.scan_count += 1; c._next_start = end",
             "if subscriber is not None: subscriber(c)",
@@ -583,13 +586,12 @@ class TecomatCPU:
             "ZEROS": ZEROS,
             "levels_of": self._input_levels,
             "sample": self._sample_aliased,
-            "load": self._load_terminals,
+            **self._sample[1],
             "tX": self.terminals.areas["X"],
             "system": self._system_registers,
-            "take": self._take_traced,
             "decode": self._decode_traced,
             "values": self._t.__dict__,
-            "new_y": self._new_y,
+            **(self._publish[1] if self._publish is not None else {}),
         }
         return Cycle(before, after, names)
 

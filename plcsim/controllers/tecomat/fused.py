@@ -11,13 +11,16 @@ of the stack as the run found it (``s[k]``), a local computed by an earlier inst
 pop brings in; the real stack is written once, as a whole, before a closure that reads it and at the
 run's end. A level that holds a boolean (a bit LD, a comparison, LET, logic between booleans) is kept as
 a Python truth value and turned into the machine's mask 0000H/FFFFH only where a number is needed. The
-registers of X, Y, R, D and U the run touches are read into locals once and written back once.
+registers of X, Y, R, D and U the run touches are read into locals once and written back once (three or
+more neighbours as one slice), a word read as a number once while its registers keep, and bits are tested,
+set and cleared by tables of the 256 byte values. A local that only the next line uses is written into it.
 Function blocks are written out in place, statement for statement as their cores in
 :mod:`plcsim.controllers.tecomat.blocks` (the levels as inputs, the word in the held registers, the hidden
 state an object the code is given); the rest (tables, CHG ...) call their closures. The S0 flags a
 comparison sets are written only if something can read them before the next instruction that sets all
-three again. Pushes past A7 drop it and pops fill A7 exactly as the machine does, so the stack after a
-run is the same level for level.
+three again, and a block's S0 write only if something can read it before the next counter or timer.
+Pushes past A7 drop it and pops fill A7 exactly as the machine does, so the stack after a run is the same
+level for level.
 
 Instructions that can fail at run time (a table in R reaching past its end) stay out of the runs, so an
 error still names its own line. A program whose only process is P0 and whose P0 is one run may have its
@@ -28,6 +31,8 @@ ways, and compare the two on random programs).
 
 from __future__ import annotations
 
+import re
+from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple
@@ -53,6 +58,16 @@ AREAS = "XYSRDU"
 _OPS = {"AND": "&", "OR": "|", "XOR": "^"}
 _RELATIONS = {"EQ": "==", "LT": "<", "GT": ">"}
 _NEGATED = {"ANC": "AND", "ORC": "OR", "XOC": "XOR"}
+BIT_OF = tuple(tuple(value >> bit & 1 == 1 for value in range(256)) for bit in range(8))
+"""``BIT_OF[k][v]``: bit k of the byte v, as a bool."""
+SET_OF = tuple(tuple(value | 1 << bit for value in range(256)) for bit in range(8))
+CLEAR_OF = tuple(tuple(value & ~(1 << bit) for value in range(256)) for bit in range(8))
+"""``SET_OF[k][v]``, ``CLEAR_OF[k][v]``: the byte v with bit k set, cleared."""
+_REGISTER = re.compile(r"\ba([XYRDU])\[(\d+)\]")
+_LOCAL = re.compile(r"(?<![.\w])t\d+\b")
+"""A local of the run (not ``m.t0``)."""
+_DEFINITION = re.compile(r"(t\d+) = (.*)")
+_READ = re.compile(r"m[XYRDU]\d+ = a[XYRDU]\[\d+\]")
 
 
 class Level(NamedTuple):
@@ -74,6 +89,8 @@ class Cycle:
 
     before: list[str]
     after: list[str]
+    """(A register read ``aY[3]`` in these lines becomes the run's local ``mY3`` where the run holds it: at the
+    run's end the locals it holds are what memory holds.)"""
     names: dict[str, object]
     head: Callable[..., int] | None = None
 
@@ -108,7 +125,7 @@ def fuse(m: Machine, closures: list[Code], cycle: Cycle | None = None) -> list[C
         if whole:
             assert cycle is not None
             lines = ["if start is not None:", *(f"    {line}" for line in cycle.before), "s = m.st", *run.lines]
-            lines += [f"if start is None: return {end}", *cycle.after]
+            lines += [f"if start is None: return {end}", *(run.as_held(line) for line in cycle.after)]
             names |= cycle.names
             signature = "run(start=None)"
         else:
@@ -155,9 +172,17 @@ class _Run:
         """The S0 write of the last comparison, not emitted yet (a later one may make it dead)."""
         self.ci_zero = False
         """S0.3 (the carry-in) is known to be 0: a counter or timer cleared it, and nothing set it since."""
+        self.high_zero = False
+        """S0.3..S0.7 are known to be 0: a counter wrote S0, and nothing but comparisons and ADD (which keep
+        them) wrote it since; a comparison's flags then need not read S0."""
+        self.flag_writes: list[int] = []
+        """The lines where blocks write S0 that nothing may have read yet: a counter or timer that writes all
+        of S0 makes them dead, and they are dropped (read S0 first: :meth:`flags_read`)."""
         self.held_registers: dict[tuple[str, int], str] = {}
         self.changed: dict[tuple[str, int], str] = {}
         """The held registers written since they were read (to write back), in the order first written."""
+        self.words: dict[tuple[str, int], str] = {}
+        """The local holding each word read as a number since neither of its registers changed (read once)."""
 
     # -- registers ------------------------------------------------------------------------------------
 
@@ -172,21 +197,59 @@ class _Run:
             self.lines.append(f"{name} = a{area}[{index}]")
         return name
 
+    def as_held(self, line: str) -> str:
+        """``line`` with each register ``aR[5]`` it reads the run holds as that local (at the run's end, after
+        :meth:`finish`, the locals are what memory holds: this saves a line after the run reading them again)."""
+        return _REGISTER.sub(lambda m: self.held_registers.get((m[1], int(m[2])), m[0]), line)
+
     def wrote(self, area: str, index: int) -> None:
+        self.words.pop((area, index), None)
+        self.words.pop((area, index - 1), None)
         if area != "S":
             self.changed[(area, index)] = self.held_registers[(area, index)]
 
     def write_back(self, keys: list[tuple[str, int]] | None = None, forget: bool = False) -> None:
-        """Store the changed held registers (only ``keys`` if given) into memory; ``forget``: stop holding them."""
-        for key in list(self.changed) if keys is None else [k for k in keys if k in self.changed]:
-            self.lines.append(f"a{key[0]}[{key[1]}] = {self.changed.pop(key)}")
+        """Store the changed held registers (only ``keys`` if given) into memory; ``forget``: stop holding them.
+
+        Three or more neighbours the run holds are stored as one slice (one held but unchanged among them
+        stores what memory already has)."""
+        stored = list(self.changed) if keys is None else [k for k in keys if k in self.changed]
+        for area in sorted({key[0] for key in stored}):
+            groups: list[list[int]] = []
+            for index in sorted(key[1] for key in stored if key[0] == area):
+                last = groups[-1][-1] if groups else None
+                if last is not None and all((area, i) in self.held_registers for i in range(last + 1, index)):
+                    groups[-1] += range(last + 1, index + 1)
+                else:
+                    groups.append([index])
+            for group in groups:
+                if len(group) >= 3:
+                    held = ", ".join(self.held_registers[(area, i)] for i in group)
+                    self.lines.append(f"a{area}[{group[0]}:{group[-1] + 1}] = ({held})")
+                else:
+                    self.lines += [f"a{area}[{i}] = {self.held_registers[(area, i)]}" for i in group]
+                for i in group:
+                    self.changed.pop((area, i), None)
         if forget:
+            self.words.clear()
             for key in list(self.held_registers) if keys is None else keys:
                 self.held_registers.pop(key, None)
 
     def bit(self, op: Operand) -> str:
-        """An expression true iff the bit operand is 1."""
-        return f"{self.reg(op.area, op.index)} & {1 << op.bit}"
+        """An expression true iff the bit operand is 1: a table of the bit in every byte value, a subscript
+        Python runs faster than ``&`` (which it does not specialise) and a bool ``if`` tests at once."""
+        return self.test(self.reg(op.area, op.index), op.bit)
+
+    def test(self, register: str, bit: int) -> str:
+        """Bit ``bit`` of the register as a bool (see :meth:`bit`)."""
+        self.bound[f"bit{bit}"] = BIT_OF[bit]
+        return f"bit{bit}[{register}]"
+
+    def setting(self, register: str, bit: int, on: bool) -> str:
+        """The statement setting (``on``) or clearing bit ``bit`` of the register, by a table as :meth:`bit`."""
+        name = f"{'set' if on else 'clear'}{bit}"
+        self.bound[name] = (SET_OF if on else CLEAR_OF)[bit]
+        return f"{register} = {name}[{register}]"
 
     def number(self, op: Operand, negate: bool) -> str:
         """A byte, word or immediate operand as a number (a byte negated in 8 bits, the rest in 16)."""
@@ -195,7 +258,12 @@ class _Run:
         low = self.reg(op.area, op.index)
         if op.width == "byte":
             return f"({low} ^ 255)" if negate else low
-        word = f"({low} | {self.reg(op.area, op.index + 1)} << 8)"
+        key = (op.area, op.index)
+        word = self.words.get(key)
+        if op.area == "S":  # (S changes behind the run's back: flags, closures)
+            word = f"({low} | {self.reg(op.area, op.index + 1)} << 8)"
+        elif word is None:
+            word = self.words[key] = self.local(f"{low} | {self.reg(op.area, op.index + 1)} << 8").expr
         return f"({word} ^ 65535)" if negate else word
 
     # -- levels ---------------------------------------------------------------------------------------
@@ -234,6 +302,7 @@ class _Run:
     def flush(self) -> None:
         """Emit the pending S0 write (something may read S0 next)."""
         if self.pending_flags is not None:
+            self.flags_read()  # (it keeps S0.3..S0.7 as the blocks wrote them)
             self.lines.append(self.pending_flags)
             self.pending_flags = None
 
@@ -241,6 +310,23 @@ class _Run:
         self.flush()
         self.sync()
         self.write_back()
+        self.lines = _inlined(_without_dead(self.lines))
+
+    def flags_read(self) -> None:
+        """Something may read S0 here: the blocks' writes so far are live."""
+        self.flag_writes.clear()
+
+    def flag_write(self, line: str) -> None:
+        """A block's line writing S0 (and nothing else)."""
+        self.flag_writes.append(len(self.lines))
+        self.lines.append(line)
+
+    def overwrite_flags(self) -> None:
+        """A block writes all of S0 next, reading none of it: the blocks' writes nothing read are dead."""
+        for k in self.flag_writes:
+            line = self.lines[k]
+            self.lines[k] = line[: len(line) - len(line.lstrip())] + "pass"  # dropped by finish()
+        self.flag_writes.clear()
 
     # -- instructions ---------------------------------------------------------------------------------
 
@@ -250,7 +336,8 @@ class _Run:
             return
         if _reads_s(op):
             self.flush()
-            self.ci_zero = False
+            self.flags_read()
+            self.ci_zero = self.high_zero = False
         top = self.levels[0]
         if m == "NEG":
             self.levels[0] = self.local(f"not {top.expr}", True) if top.boolean else self.local(f"{top.expr} ^ 65535")
@@ -258,10 +345,8 @@ class _Run:
             negate = m == "LDC"
             if op.width == "bit":
                 self.push(self.local(f"{'not ' if negate else ''}{self.bit(op)}", True))
-            elif op.is_immediate:
-                self.push(Level(self.number(op, negate)))
-            else:
-                self.push(self.local(self.number(op, negate)))
+            else:  # (a number, a local holding the word, or an expression to hold)
+                self.push(Level(self.held(self.number(op, negate))))
         elif m in ("WR", "WRC", "PUT") and _plain(op) and not op.is_immediate:
             self._write(op, m == "WRC", m == "PUT", top)
         elif m in ("AND", "OR", "XOR", "ANC", "ORC", "XOC"):
@@ -269,12 +354,12 @@ class _Run:
         elif m in ("SET", "RES"):
             self._set_res(op, m == "SET", top)
         elif m == "LET" and op.width == "bit":
-            a, mask = self.reg(op.area, op.index), 1 << op.bit
+            a = self.reg(op.area, op.index)
             edge = f"t{self.count}"
             self.count += 1
             self.lines += [
-                f"if {top.expr}: {edge} = not {a} & {mask}; {a} |= {mask}",
-                f"else: {edge} = False; {a} &= {~mask & 0xFF}",
+                f"if {top.expr}: {edge} = not {self.test(a, op.bit)}; {self.setting(a, op.bit, True)}",
+                f"else: {edge} = False; {self.setting(a, op.bit, False)}",
             ]
             self.wrote(op.area, op.index)
             self.levels[0] = Level(edge, True)
@@ -288,8 +373,7 @@ class _Run:
     def _write(self, op: Operand, negate: bool, conditional: bool, top: Level) -> None:
         a = self.reg(op.area, op.index)
         if op.width == "bit":
-            mask = 1 << op.bit
-            on, off = f"{a} |= {mask}", f"{a} &= {~mask & 0xFF}"
+            on, off = self.setting(a, op.bit, True), self.setting(a, op.bit, False)
             if negate:
                 on, off = off, on
             lines = [f"if {top.expr}: {on}", f"else: {off}"]
@@ -338,7 +422,7 @@ class _Run:
     def _set_res(self, op: Operand, setting: bool, top: Level) -> None:
         a = self.reg(op.area, op.index)
         if op.width == "bit":
-            change = f"{a} |= {1 << op.bit}" if setting else f"{a} &= {~(1 << op.bit) & 0xFF}"
+            change = self.setting(a, op.bit, setting)
             self.lines.append(f"if {top.expr}: {change}")
         else:
             value = self.num(top)
@@ -351,8 +435,10 @@ class _Run:
         else:
             a, b = self.held(self.num(self.levels[0])), self.held(self.number(op, False))
         if self.ci and not self.ci_zero:
+            self.flags_read()
             b = self.local(f"{b} + (aS[0] >> 3 & 1)").expr
-        self.pending_flags = f"aS[0] = aS[0] & 248 | ({a} == {b}) | ({a} < {b}) << 1 | ({a} <= {b}) << 2"
+        kept = "" if self.high_zero else "aS[0] & 248 | "
+        self.pending_flags = f"aS[0] = {kept}{_relation_flags(a, b)}"
         self.levels[0] = self.local(f"{a} {relation} {b}", True)
 
     def _block(self, mnemonic: str, index: int, instr: Instruction) -> None:
@@ -360,6 +446,7 @@ class _Run:
         shape = BLOCKS[mnemonic][1]
         if mnemonic in SETS_S0:
             self.pending_flags = None
+            self.overwrite_flags()
             self.ci_zero = True
         else:  # TOF, IMP write S0.3 = 0 or leave S0 alone, the shift registers leave it
             self.flush()
@@ -374,6 +461,10 @@ class _Run:
             inputs[-1] = self.held(self.num(self.levels[0]))
         write = _Block(self, state, lo, hi, instr)
         outputs = getattr(write, _WRITERS[mnemonic])(*inputs)
+        if mnemonic not in _TIMERS:  # a counter's or shift register's first output is its word's new value
+            self.words[("R", word)] = outputs[0].expr
+        if mnemonic in SETS_S0 or mnemonic in _TIMERS:  # a counter leaves S0.3..S0.7 at 0, a timer may not
+            self.high_zero = mnemonic not in _TIMERS
         if shape.push:
             self.push(outputs[0])
         else:
@@ -386,7 +477,8 @@ class _Run:
             self.pending_flags = None  # ADD writes S0.0..S0.2 and reads only S0.3, which a comparison keeps
         else:
             self.flush()
-            self.ci_zero = False
+            self.ci_zero = self.high_zero = False
+        self.flags_read()  # (ADD reads S0.3)
         self.sync()
         self.write_back(forget=True)  # the closure may read or write any register
         name = f"c{index}"
@@ -394,6 +486,61 @@ class _Run:
         self.lines.append(f"{name}()")
         if mnemonic in SWITCHES:
             self.lines.append("s = m.st")
+
+
+def _relation_flags(a: str, b: str) -> str:
+    """S0.0 (a = b), S0.1 (a < b), S0.2 (a <= b) as one number: 5, 6 or 0."""
+    return f"(5 if {a} == {b} else 6 if {a} < {b} else 0)"
+
+
+def _without_dead(lines: list[str]) -> list[str]:
+    """``lines`` without the ``pass`` lines dead S0 writes left, but where a block would be empty without one."""
+    out: list[str] = []
+    for k, line in enumerate(lines):
+        if line.strip() == "pass":
+            indent = len(line) - len(line.lstrip())
+            following = lines[k + 1] if k + 1 < len(lines) else ""
+            alone = bool(out) and out[-1].endswith(":") and len(following) - len(following.lstrip()) < indent
+            if not alone:
+                continue
+        out.append(line)
+    return out
+
+
+def _inlined(lines: list[str]) -> list[str]:
+    """``lines`` with each local ``tN = expr`` that one line uses, the line right after it (register reads
+    aside), written into that use as ``(expr)``: where the use is what the line evaluates first (an ``if``'s
+    condition, an assignment's value). The expressions are pure and nothing runs between the two places, so the
+    value is the same; a local stored and loaded again costs two operations of every cycle."""
+    uses = Counter(_LOCAL.findall("\n".join(lines)))
+    out: list[str] = []
+    for line in lines:
+        spot = _first_evaluated(line)
+        if spot is not None:
+            names = {n for n in _LOCAL.findall(line[spot[0] : spot[1]]) if uses[n] == 2}
+            k = len(out) - 1
+            while k >= 0 and _READ.fullmatch(out[k]):
+                k -= 1
+            found = _DEFINITION.fullmatch(out[k]) if k >= 0 and ";" not in out[k] else None
+            if found and found[1] in names and not any(read.split(" ")[0] in found[2] for read in out[k + 1 :]):
+                hit = re.compile(rf"(?<![.\w]){found[1]}\b").search(line, *spot)
+                assert hit is not None
+                line = f"{line[: hit.start()]}({found[2]}){line[hit.end() :]}"
+                del out[k]
+        out.append(line)
+    return out
+
+
+def _first_evaluated(line: str) -> tuple[int, int] | None:
+    """Where in a line of the run's top level is what it evaluates before it changes anything: an ``if``'s
+    condition or the value of a plain assignment (None for other lines)."""
+    if line[:1] == " " or ";" in line.split(":")[0]:
+        return None
+    if line.startswith("if "):
+        return 3, line.index(":")
+    if line.startswith(("else", "elif")) or ";" in line or " = " not in line:
+        return None
+    return line.rindex(" = ") + 3, len(line)
 
 
 def _plain(op: object) -> bool:
@@ -405,6 +552,7 @@ _WRITERS = {"CTU": "counter", "CTD": "counter", "CNT": "cnt", "SFL": "shift", "S
     m: m.lower() for m in ("TON", "TOF", "IMP", "RTO")
 }
 """Which method of :class:`_Block` writes each block out."""
+_TIMERS = frozenset({"TON", "TOF", "IMP", "RTO"})
 
 
 class _Block:
@@ -443,8 +591,8 @@ class _Block:
             f"    {v} {'+' if up else '-'}= 1",
             f"    if {v} {'> 65535' if up else '< 0'}: {v} &= 65535; {carry} = True",
             f"{lo} = {v} & 255; {hi} = {v} >> 8",
-            f"aS[0] = (5 if {v} == 0 else 0) | (6 if {carry} else 0)",
         )
+        self.run.flag_write(f"aS[0] = (5 if {v} == 0 else 0) | (6 if {carry} else 0)")
         return [Level(v), Level(carry, True)]
 
     def cnt(self, up: str, down: str, clear: str) -> list[Level]:
@@ -464,8 +612,8 @@ class _Block:
             f"    {v} -= 1",
             f"    if {v} < 0: {v} = 65535; {downc} = True",
             f"{lo} = {v} & 255; {hi} = {v} >> 8",
-            f"aS[0] = (5 if {v} == 0 else 0) | (6 if {upc} or {downc} else 0)",
         )
+        self.run.flag_write(f"aS[0] = (5 if {v} == 0 else 0) | (6 if {upc} or {downc} else 0)")
         return [Level(v), Level(upc, True), Level(downc, True)]
 
     def shift(self, clock: str, serial: str) -> list[Level]:
@@ -512,7 +660,8 @@ class _Block:
         return passed
 
     def clear(self, indent: str) -> None:
-        self.emit(f"{indent}{self.lo} = {self.hi} = 0; {self.b}.acc = 0; {self.b}.overflow = False; aS[0] = 0")
+        self.emit(f"{indent}{self.lo} = {self.hi} = 0; {self.b}.acc = 0; {self.b}.overflow = False")
+        self.run.flag_write(f"{indent}aS[0] = 0")
 
     def advance(self, indent: str, passed: str, value: str, over: str) -> None:
         b, lo, hi = self.b, self.lo, self.hi
@@ -527,9 +676,7 @@ class _Block:
 
     def flags(self, indent: str, preset: str, value: str, over: str) -> None:
         p, v, b = preset, value, self.b
-        self.emit(
-            f"{indent}aS[0] = ({p} == {v}) | ({p} < {v}) << 1 | ({p} <= {v}) << 2 | {b}.overflow << 4 | {over} << 5"
-        )
+        self.run.flag_write(f"{indent}aS[0] = {_relation_flags(p, v)} | {b}.overflow << 4 | {over} << 5")
 
     def ton(self, xt: str, preset: str) -> list[Level]:
         b, v, over, out = self.b, self.name(), self.name(), self.name()
