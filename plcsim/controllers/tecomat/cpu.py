@@ -370,6 +370,8 @@ class TecomatCPU:
         except OperandError as exc:
             raise ConfigurationError(f"cannot write {name}: {exc}") from None
         write(self.machine.pad, op, int(value))  # type: ignore[union-attr]
+        if getattr(op, "area", "") in ("X", "U"):  # the input image: the next turnaround samples it again (tecomat.md)
+            self._fresh_terminals = True
 
     def peek(self, name: str) -> int:
         """A symbol's or an address's value in the scratchpad now (a bit as 0/1)."""

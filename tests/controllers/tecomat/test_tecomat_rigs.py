@@ -128,6 +128,20 @@ def test_markers_of_the_io_table_live_in_r_and_an_hmi_write_reaches_them():
         cpu.write("R9000", 1)
 
 
+def test_an_hmi_write_to_the_input_image_lasts_until_the_next_turnaround_samples_the_terminals():
+    """The turnaround samples X from the terminals every cycle (tecomat.md: a write to X is overwritten at the next
+    turnaround), so a write into X holds for the rest of the cycle alone, even when no input changed."""
+    tags = {"S1": Tag("%I0.0"), "S2": Tag("%I0.1"), "LED": Tag("%Q0.0")}
+    cpu = controller_for(program_text("LD S1\nWR LED\n"), tags)
+    cpu.scan()
+    cpu.write("S1", 1)
+    assert cpu.peek("S1") == 1
+    cpu.scan()
+    assert cpu.peek("S1") == 0 and cpu.outputs["LED"] is False
+    cpu.scan()
+    assert cpu.outputs["LED"] is False
+
+
 def test_the_manual_s_pulse_filter_on_the_panel_rig_wired_by_its_own_names():
     program = read_program(Path(__file__).resolve().parents[3] / "examples" / "tecomat" / "ex18_pulse_filter.il")
     plant = Panel(buttons=("signal",), switches=(), lamps=("vystup",))
