@@ -108,6 +108,8 @@ class Recorder:
         self.packed_row = _compile_getter(sources, sample=sample, into=(self.trace.row_sink().pack_values, len(extra)))
         """:attr:`row` packed for the trace's rows (raises one of :data:`~plcsim.trace.rows.UNPACKABLE` for a value its
         column cannot hold): what every-row recording writes."""
+        self._tags: dict[str, Any] = cpu.t.__dict__
+        """The tags the rows of :attr:`scan_hook` read: the CPU's when :meth:`attach` was called."""
         self.scan_hook: Callable[[Controller], None] | None = None
         """What :meth:`attach` subscribed to the CPU's scan end (None while detached)."""
 
@@ -145,6 +147,7 @@ class Recorder:
         """Start recording: every OB1 scan, every interrupt execution and every execution a power cut
         interrupts writes a row."""
         cpu = self.cpu
+        self._tags = cpu.t.__dict__
         self.scan_hook = self.on_scan if self.changes_only else self._fast_on_scan()
         self._subscriptions = [
             (cpu.scan_end, self.scan_hook),
@@ -176,7 +179,7 @@ class Recorder:
         rows = self.trace.row_sink()
         heads, values_at, changes, last, pack = rows.heads, rows.values, rows.changes, rows.last, rows.pack
         packed_row = self.packed_row
-        pack_head, row, add, d = rows.pack_head, self.row, rows.add, self.cpu.t.__dict__
+        pack_head, row, add, d = rows.pack_head, self.row, rows.add, self._tags
 
         def on_scan(cpu: Controller) -> None:
             try:
@@ -193,6 +196,31 @@ class Recorder:
                 pack()
 
         return on_scan
+
+    def regular_row(self, duration_ns: int, task: int) -> Callable[[int, int], None]:
+        """:attr:`scan_hook` as ``row(start, end)`` for scans that all last ``duration_ns`` and belong to ``task``
+        (a co-simulation's fused step, :mod:`plcsim.sim.stepping`): each row's head is its start time alone (a
+        regular row of :class:`~plcsim.trace.rows.RunLengthRows`), so no head is packed."""
+        rows = self.trace.row_sink()
+        rows.set_regular(duration_ns, task)
+        heads, values_at, changes, last, pack = rows.heads, rows.values, rows.changes, rows.last, rows.pack
+        packed_row, row, add, cpu, d = self.packed_row, self.row, rows.add, self.cpu, self._tags
+
+        def regular(start: int, end: int) -> None:
+            try:
+                values = packed_row(d, cpu.image_in)
+            except UNPACKABLE:  # a value its column cannot hold: the general path keeps the row as it is
+                add(start, end, task, row(d, cpu.image_in))
+                return
+            heads.append(start)
+            if values != last[0]:
+                last[0] = values
+                changes.append(len(heads) - 1)
+                values_at.append(values)
+            if len(heads) >= BLOCK:
+                pack()
+
+        return regular
 
     def on_task(self, cpu: Controller, task: str, start_ns: int, end_ns: int) -> None:
         values = self.row(cpu.t.__dict__, cpu.image_in)

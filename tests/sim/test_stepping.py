@@ -1,8 +1,8 @@
 """The fused step (plcsim.sim.stepping): wiring in, the scan and its trace row in one call gives the trace the
 general path gives, bit for bit, and declines every step that holds more than one plain scan.
 
-Each run is compared with the same run on the general path: a second subscriber of the CPU's scan end (a
-live panel, a test) makes the fused step decline, so the CPU's own loop and the recorder's hook do the work.
+Each run is compared with the same run on the general path: a CPU configured with ``fuse=False`` has no fused
+scan, so its scan loop (``TaskRunner``) and the recorder's hook do every step.
 """
 
 from __future__ import annotations
@@ -23,31 +23,31 @@ MS = 1_000_000
 
 
 def both_paths(
-    build: Callable[[], Simulation], monkeypatch: pytest.MonkeyPatch
+    build: Callable[..., Simulation], monkeypatch: pytest.MonkeyPatch
 ) -> tuple[Simulation, Simulation, list[int]]:
-    """The run on the fused path and on the general path, and the steps the fused step did."""
+    """The run on the fused path, the same run on the general path (``CPUConfig(fuse=False)``: the CPU's scan
+    loop and the recorder's hook do every step), and the steps the fused step did."""
     fused_steps: list[int] = []
-    make = simulation_module.fused_scan
+    make = simulation_module.fused_step
 
     def counted(*args):
-        scan = make(*args)
-        if scan is None:
+        step = make(*args)
+        if step is None:
             return None
 
-        def counting(t: int) -> bool:
-            done = scan(t)
+        def counting(until: int) -> bool:
+            done = step(until)
             if done:
-                fused_steps.append(t)
+                fused_steps.append(until - MS)
             return done
 
         return counting
 
-    monkeypatch.setattr(simulation_module, "fused_scan", counted)
+    monkeypatch.setattr(simulation_module, "fused_step", counted)
     fused = build()
     fused.run()
     steps = list(fused_steps)
-    general = build()
-    general.cpu.scan_end.add(lambda cpu: None)
+    general = build(fuse=False)
     general.run()
     assert fused_steps == steps  # the general run never took the fused step
     return fused, general, steps
@@ -60,9 +60,9 @@ def same_run(fused: Simulation, general: Simulation) -> None:
     assert (fused.now, fused.cpu.scan_count, fused.cpu.mode) == (general.now, general.cpu.scan_count, general.cpu.mode)
 
 
-def panel(program: str, scenario: Scenario) -> Callable[[], Simulation]:
-    def build() -> Simulation:
-        cpu = CPU(tags={"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")}, program=program)
+def panel(program: str, scenario: Scenario) -> Callable[..., Simulation]:
+    def build(**options: bool) -> Simulation:
+        cpu = CPU(tags={"TL": Tag("%I0.0"), "LED": Tag("%Q0.0")}, program=program, **options)
         plant = Panel(buttons=("TL",), switches=(), lamps=("LED",))
         return Simulation(cpu, plant, [NO("TL"), NO("LED")], scenario, fast_forward=False)
 
@@ -76,9 +76,8 @@ def test_an_error_in_a_fused_scan_stops_the_cpu_as_the_general_path_does(monkeyp
     same_run(fused, general)
     assert fused.cpu.read("N") == 20 and fused.cpu.scan_count == 30  # stopped at 10 ms, N from 0 again at 30 ms
     assert "ZeroDivisionError" in fused.trace.events_of("error in the program")[0].detail
-    assert steps[:10] == [k * MS for k in range(1, 11)]  # the scan that raised at 10 ms among them (the first
-    # scan latches the clock memory: the general path)
-    assert len(steps) > 10 + 15 and steps[10] >= 30 * MS  # the scans after the restart
+    assert steps[:11] == [k * MS for k in range(11)]  # the scan that raised at 10 ms among them
+    assert len(steps) > 11 + 15 and steps[11] >= 30 * MS  # the scans after the restart
 
 
 def test_stop_and_start_by_the_scenario_on_the_fused_path(monkeypatch):
@@ -104,8 +103,8 @@ def test_a_shipped_solution_gives_the_same_trace_fused_or_not(number, scenario, 
     shares = []
     for name in names:
 
-        def build(name=name) -> Simulation:
-            sim = exercise.simulation(exercise.reference.program(), exercise.scenario(name), seed=2)
+        def build(name=name, **options: bool) -> Simulation:
+            sim = exercise.simulation(exercise.reference.program(), exercise.scenario(name), seed=2, **options)
             sim.fast_forward = False
             return sim
 
