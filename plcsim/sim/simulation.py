@@ -27,8 +27,8 @@ from __future__ import annotations
 
 import random
 import time
-from operator import itemgetter
 from collections.abc import Callable, Sequence
+from operator import itemgetter
 from pathlib import PurePath
 from typing import Any, Protocol
 
@@ -291,7 +291,7 @@ class Simulation:
                 if t >= next_frame:
                     self._sample_frame(t, quiet)
                     next_frame = self._next_frame
-                if actions.polled and (t >= poll_due or watch(sensors) != seen):  # (a poll would do nothing: see _watch)
+                if actions.polled and (t >= poll_due or watch(sensors) != seen):  # (else a poll does nothing: _watch)
                     actions.poll(t, sensors)
                     watch, seen, poll_due = self._watch(sensors, t)
                     fused = fused_step(cpu, wiring, self.recorder)  # (an action may have come)
