@@ -292,8 +292,7 @@ class Simulation:
                     self._sample_frame(t, quiet)
                     next_frame = self._next_frame
                 if actions.polled and (t >= poll_due or watch(sensors) != seen):  # (else a poll does nothing: _watch)
-                    actions.poll(t, sensors)
-                    watch, seen, poll_due = self._watch(sensors, t)
+                    watch, seen, poll_due = self._poll(t, sensors)
                     fused = fused_step(cpu, wiring, self.recorder)  # (an action may have come)
                 if quiet is not None and cpu.mode == RUN and quiet():
                     t = self._skip_quiet(t, end_ns)
@@ -307,18 +306,22 @@ class Simulation:
         finally:
             self.now = t
 
-    def _watch(self, sensors: dict[str, Any], t: int) -> tuple[Callable[[Any], Any], Any, int]:
-        """After a poll of the scenario's sensor triggers at ``t``: a getter of the sensors they watch, what it
-        reads now, and when the next poll is due whatever the sensors do (an armed trigger's time, the next
-        timed action's). Until then a poll would change nothing while the getter reads the same: each trigger is
-        armed or not as its sensor was, none is due to fire, no action is due. Only actions and plant events
-        change the triggers or the timed actions, and the loop polls after each; with a sensor the plant lacks,
-        every step polls."""
-        names = [item.action.when.signal for item in self.actions.polled]  # type: ignore[union-attr]
-        if not names or any(name not in sensors for name in names):
-            return len, None, t
-        watch = itemgetter(*names)
-        return watch, watch(sensors), self.actions.next_time()
+    def _poll(self, t: int, sensors: dict[str, Any]) -> tuple[Callable[[Any], Any], Any, int]:
+        """Poll the scenario's sensor triggers at ``t``; returns a getter of the sensors they watch, what it read
+        as the poll compared them, and when the next poll is due whatever the sensors do (an armed trigger's
+        time, the next timed action's). Until then a poll would change nothing while the getter reads the same:
+        each trigger is armed or not as its sensor was, none is due to fire, no action is due. The loop polls
+        after each action and plant event (they may change the triggers or the timed actions), and in the next
+        step when this poll changed the triggers or when a trigger watches a sensor the plant lacks."""
+        actions = self.actions
+        polled = actions.polled
+        names = [item.action.when.signal for item in polled]  # type: ignore[union-attr]
+        watch: Callable[[Any], Any] = itemgetter(*names)
+        seen = watch(sensors) if all(name in sensors for name in names) else None
+        actions.poll(t, sensors)
+        if seen is None or actions.polled is not polled:
+            return watch, seen, t
+        return watch, seen, actions.next_time()
 
     def _sample_frame(self, t: int, quiet: Callable[[], bool] | None) -> None:
         """Record the plant's shapes; a quiescent plant looks the same as at its last frame, so one is enough

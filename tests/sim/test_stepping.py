@@ -15,7 +15,7 @@ from exercises import get
 from plants import Panel
 from plcsim import CPU, STOP, Simulation, Tag
 from plcsim.scenario.planning import Scenario
-from plcsim.scenario.verbs import press, release, start_cpu, stop_cpu
+from plcsim.scenario.verbs import clear, download, held, press, release, start_cpu, stop_cpu, stuck
 from plcsim.sim import simulation as simulation_module
 from plcsim.sim.wiring import NO
 
@@ -85,6 +85,33 @@ def test_stop_and_start_by_the_scenario_on_the_fused_path(monkeypatch):
     fused, general, steps = both_paths(panel("def OB1(t):\n    t.LED = t.TL\n", scenario), monkeypatch)
     same_run(fused, general)
     assert fused.cpu.mode != STOP and 25 > len(steps) > 15 and 15 * MS not in steps  # the steps in STOP declined
+
+
+def test_a_fault_a_download_and_a_wiring_fault_from_a_trigger_give_the_general_paths_trace(monkeypatch):
+    """A fault in the middle of a scan (STOP, then RUN again), a download into the running CPU (the step builds
+    its scan again: new tags, a new plan), and a stuck input that a sensor trigger brings (polled at the step's
+    end, so the step that follows runs the faulted wiring through the general path) until a timed clear."""
+    first = "N = Int(0)\n\ndef OB1(t):\n    t.N = t.N + 1\n    t.LED = t.TL\n    if t.TL and t.N > 12:\n        x = 1 // 0\n"
+    second = "N = Int(0)\nM = Int(0)\n\ndef OB1(t):\n    t.N = t.N + 2\n    t.M = t.M + t.TL\n    t.LED = not t.TL\n"
+    scenario = Scenario(
+        "s",
+        press("TL", t="10ms"),
+        release("TL", t="14ms"),
+        start_cpu(t="16ms"),
+        download(second, t="20ms"),
+        press("TL", t="30ms"),
+        release("TL", t="38ms"),
+        stuck("TL", True, when=held("TL", "5ms")),
+        clear("TL", t="40ms"),
+        duration="50ms",
+    )
+    fused, general, steps = both_paths(panel(first, scenario), monkeypatch)
+    same_run(fused, general)
+    assert fused.trace.events_of("error in the program")[0].t_ns == 12 * MS and fused.cpu.downloads == 1
+    assert fused.trace.events_of("stick")[0].t_ns == 36 * MS  # TL held since the end of the step at 30 ms
+    assert fused.cpu.read("M") == 40 - 30  # TL read TRUE from its press at 30 ms until the clear at 40 ms
+    assert 12 * MS in steps and 14 * MS not in steps  # the scan that raised was fused; the CPU then in STOP
+    assert {25 * MS, 35 * MS, 45 * MS} <= set(steps) and 37 * MS not in steps  # the new program; the stuck wire
 
 
 @pytest.mark.parametrize(
