@@ -91,7 +91,8 @@ def test_a_fault_a_download_and_a_wiring_fault_from_a_trigger_give_the_general_p
     """A fault in the middle of a scan (STOP, then RUN again), a download into the running CPU (the step builds
     its scan again: new tags, a new plan), and a stuck input that a sensor trigger brings (polled at the step's
     end, so the step that follows runs the faulted wiring through the general path) until a timed clear."""
-    first = "N = Int(0)\n\ndef OB1(t):\n    t.N = t.N + 1\n    t.LED = t.TL\n    if t.TL and t.N > 12:\n        x = 1 // 0\n"
+    first = "N = Int(0)\n\ndef OB1(t):\n    t.N = t.N + 1\n    t.LED = t.TL\n"
+    first += "    if t.TL and t.N > 12:\n        x = 1 // 0\n"
     second = "N = Int(0)\nM = Int(0)\n\ndef OB1(t):\n    t.N = t.N + 2\n    t.M = t.M + t.TL\n    t.LED = not t.TL\n"
     scenario = Scenario(
         "s",
@@ -142,3 +143,32 @@ def test_a_shipped_solution_gives_the_same_trace_fused_or_not(number, scenario, 
         assert max(shares) == 0
     else:  # (a wire chattering from the start takes every step of its run to the general path)
         assert max(shares) > 0.9
+
+
+@pytest.mark.parametrize(("number", "scenario"), [("4.3.5", "three objects"), ("4.3.6", "five objects")])
+def test_polling_the_triggers_only_on_a_change_gives_the_trace_of_polling_every_step(number, scenario, monkeypatch):
+    """The loop polls the scenario's sensor triggers only when a watched sensor changed or something is due; a
+    getter that never reads the same (every step polls, as before that) must give the same run."""
+    exercise = get(number)
+    polls: list[int] = []
+    poll = simulation_module.ActionRunner.poll
+
+    def counted(self, t: int, sensors: dict) -> None:
+        polls.append(t)
+        poll(self, t, sensors)
+
+    monkeypatch.setattr(simulation_module.ActionRunner, "poll", counted)
+
+    def run() -> Simulation:
+        sim = exercise.simulation(exercise.reference.program(), exercise.scenario(scenario), seed=3)
+        sim.fast_forward = False
+        sim.run()
+        return sim
+
+    watched = run()
+    some = len(polls)
+    monkeypatch.setattr(simulation_module, "itemgetter", lambda *names: lambda sensors: object())
+    every = run()
+    same_run(watched, every)
+    assert 0 < 100 * some < len(polls) - some  # a few polls, at the changes and the triggers' times; the other
+    # run polled in every step while a trigger could fire
