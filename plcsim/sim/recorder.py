@@ -111,6 +111,8 @@ class Recorder:
         column cannot hold): what every-row recording writes."""
         self._tags: dict[str, Any] = cpu.t.__dict__
         """The tags the rows of :attr:`scan_hook` read: the CPU's when :meth:`attach` was called."""
+        self._regular: tuple[tuple[int, int], Callable[[int, int], None]] | None = None
+        """The last :meth:`regular_row` with its step and task."""
         self.scan_hook: Callable[[Controller], None] | None = None
         """What :meth:`attach` subscribed to the CPU's scan end (None while detached)."""
 
@@ -149,6 +151,7 @@ class Recorder:
         interrupts writes a row."""
         cpu = self.cpu
         self._tags = cpu.t.__dict__
+        self._regular = None
         self.scan_hook = self.on_scan if self.changes_only else self._fast_on_scan()
         self._subscriptions = [
             (cpu.scan_end, self.scan_hook),
@@ -205,11 +208,15 @@ class Recorder:
         in the same generated function (:attr:`packed_row`'s code), one call per row instead of two."""
         rows = self.trace.row_sink()
         rows.set_regular(duration_ns, task)
+        if self._regular is not None and self._regular[0] == (duration_ns, task):
+            return self._regular[1]  # (generated once per attachment and step: a run builds its step again often)
         store = {"cpu": self.cpu, "d": self._tags, "task": task, "general": self.row, "UNPACKABLE": UNPACKABLE}
         store.update(heads=rows.heads, values_at=rows.values, changes=rows.changes, last=rows.last, add=rows.add)
         store.update(pack=rows.pack, BLOCK=BLOCK, len=len)
         into = (rows.pack_values, self._sampled)
-        return _compile_getter(self._sources, sample=self._sample, into=into, store=store)
+        regular = _compile_getter(self._sources, sample=self._sample, into=into, store=store)
+        self._regular = ((duration_ns, task), regular)
+        return regular
 
     def on_task(self, cpu: Controller, task: str, start_ns: int, end_ns: int) -> None:
         values = self.row(cpu.t.__dict__, cpu.image_in)

@@ -261,8 +261,8 @@ class Simulation:
                     if wiring is not None:
                         wiring.step_inputs(inputs, t)
                     run_cpu(until)
-                elif cpu.scan_end_ns != until or cpu.mode != RUN:  # a STOP, or a scan that did not fill the step:
-                    run_cpu(until)  # the rest of the step as the CPU's run_until goes on after its fused scan
+                elif cpu.mode != RUN:  # the scan stopped the CPU: the rest of the step as the CPU's run_until goes
+                    run_cpu(until)  # on after its fused scan
                 if cpu.mode != RUN:
                     self.recorder.on_stopped(t, until)
                 if diagnostics and diagnostics[-1] is not diag_last:  # (a length stops growing at the buffer's cap)
@@ -286,7 +286,7 @@ class Simulation:
                     out_version = self._out_version = cpu.output_version
                     if wiring is not None:
                         wiring.write_outputs(cpu.outputs)
-                t += dt
+                t = until
                 self.now = t
                 if t >= next_frame:
                     self._sample_frame(t, quiet)

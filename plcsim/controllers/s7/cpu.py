@@ -393,13 +393,14 @@ class CPU(TaskRunner, HostAccess):
         self._run(NEVER, target + pending)
 
     def fused_scan(
-        self, before: InputsIn | None = None, after: ScanRow | None = None, replaces: Any = None
+        self, before: InputsIn | None = None, after: ScanRow | None = None, replaces: Any = None, fills: bool = False
     ) -> FusedScan | None:
         """One whole OB1 scan per call (``scan(until_ns)``, whether it ran) with a host's work at its two ends:
         ``before(inputs, t0)`` once the scan is sure to run, before it reads the inputs; ``after(t0, end)`` at
-        its end in place of the :attr:`scan_end` subscriber ``replaces``. None where this program's scans cannot
-        be fused (:func:`plcsim.controllers.s7.fused.fused_scan`); build it again after a download."""
-        return fused_scan(self, before, after, replaces)
+        its end in place of the :attr:`scan_end` subscriber ``replaces``; with ``fills``, only a scan that ends
+        at ``until_ns``. None where this program's scans cannot be fused
+        (:func:`plcsim.controllers.s7.fused.fused_scan`); build it again after a download."""
+        return fused_scan(self, before, after, replaces, fills)
 
     @property
     def fixed_cycle_ns(self) -> int:

@@ -44,7 +44,7 @@ ScanRow = Callable[[int, int], None]
 
 
 def fused_scan(
-    cpu: CPU, before: InputsIn | None = None, after: ScanRow | None = None, replaces: Any = None
+    cpu: CPU, before: InputsIn | None = None, after: ScanRow | None = None, replaces: Any = None, fills: bool = False
 ) -> FusedScan | None:
     """The fused scan of ``cpu``'s loaded program, or None where no scan can be fused (a varying cycle, a
     task that runs network by network, inputs that alias other tags; or ``fuse=False`` in the configuration).
@@ -53,7 +53,9 @@ def fused_scan(
     once the scan is sure to run, before the input image is read (the wiring's copy of the sensors); ``after``
     is called at the scan's end in place of the :attr:`~plcsim.controllers.s7.cpu.CPU.scan_end` subscriber
     ``replaces`` while that is the one subscribed (the recorder's row, written without a call through the CPU).
-    A scan built before the last download declines (its program is gone)."""
+    With ``fills`` the scan runs only when it ends exactly at ``until_ns`` (a host's step it fills, so that nothing
+    else is due in the step unless the scan stopped the CPU). A scan built before the last download declines (its
+    program is gone)."""
     plan = cpu._cyclic_plan
     fixed, whole, aliased_inputs = plan
     if not cpu.config.fuse or not fixed or whole is None or aliased_inputs:
@@ -64,20 +66,19 @@ def fused_scan(
     scan_end = cpu.scan_end
     latch, after_exception, push_scan = cpu._latch_clock_memory, cpu._after_exception, cpu._push_scan
     stack = cpu._stack
+    interrupts = bool(cpu._interrupts)  # (the program's: the same until the next download)
 
     def scan(until_ns: int) -> bool:
         t0 = cpu._ob1_next
-        if t0 >= until_ns:
-            return False
         now = clock.now
         if t0 < now:
             t0 = now
         end = t0 + fixed
-        if end > until_ns or end > cpu._next_irq or cpu.forces or stack or cpu.mode != RUN:
-            return False  # ends after the host's step, an interrupt falls inside, something is forced, a scan
-            # is unfinished or the CPU in STOP
-        if cpu._cyclic_plan is not plan:
-            return False  # another program was downloaded since this function was built
+        if (end != until_ns if fills else end > until_ns) or cpu.forces or stack or cpu.mode != RUN:
+            return False  # ends after the host's step (or not at it), something is forced, a scan is unfinished
+            # or the CPU in STOP
+        if (interrupts and end > cpu._next_irq) or cpu._cyclic_plan is not plan:
+            return False  # an interrupt falls inside; another program was downloaded since this was built
         if before is not None:
             before(inputs, t0)
         # -- the start (TaskRunner._begin_scan) --
