@@ -291,7 +291,7 @@ class Simulation:
                 if t >= next_frame:
                     self._sample_frame(t, quiet)
                     next_frame = self._next_frame
-                if actions.polled and (t >= poll_due or watch(sensors) != seen):  # (else a poll does nothing: _watch)
+                if actions.polled and (t >= poll_due or watch(sensors) != seen):  # (else a poll does nothing: _poll)
                     watch, seen, poll_due = self._poll(t, sensors)
                     fused = fused_step(cpu, wiring, self.recorder)  # (an action may have come)
                 if quiet is not None and cpu.mode == RUN and quiet():
