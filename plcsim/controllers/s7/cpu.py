@@ -378,11 +378,11 @@ class CPU(TaskRunner, HostAccess):
 
     def scan(self, count: int = 1) -> None:
         """Run ``count`` OB1 executions (scans), interrupts included; the clock stops at the last scan's end."""
-        if self.mode != RUN:
-            return
         fused = self._fused
         if count == 1 and fused is not None and fused(NEVER):
             return  # the common case: one whole scan in one call
+        if self.mode != RUN:
+            return
         target = self.scan_count + count
         while fused is not None and fused(NEVER):  # whole scans, one call each
             if self.mode != RUN or self.scan_count >= target:

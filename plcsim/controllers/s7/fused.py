@@ -54,8 +54,8 @@ def fused_scan(
     is called at the scan's end in place of the :attr:`~plcsim.controllers.s7.cpu.CPU.scan_end` subscriber
     ``replaces`` while that is the one subscribed (the recorder's row, written without a call through the CPU).
     With ``fills`` the scan runs only when it ends exactly at ``until_ns`` (a host's step it fills, so that nothing
-    else is due in the step unless the scan stopped the CPU). A scan built before the last download declines (its
-    program is gone)."""
+    else is due in the step unless the scan stopped the CPU); a host holds it from step to step, so it declines
+    once another program was downloaded (the CPU's own is built again with each download)."""
     plan = cpu._cyclic_plan
     fixed, whole, aliased_inputs = plan
     if not cpu.config.fuse or not fixed or whole is None or aliased_inputs:
@@ -77,8 +77,8 @@ def fused_scan(
         if (end != until_ns if fills else end > until_ns) or cpu.forces or stack or cpu.mode != RUN:
             return False  # ends after the host's step (or not at it), something is forced, a scan is unfinished
             # or the CPU in STOP
-        if (interrupts and end > cpu._next_irq) or cpu._cyclic_plan is not plan:
-            return False  # an interrupt falls inside; another program was downloaded since this was built
+        if (interrupts and end > cpu._next_irq) or (fills and cpu._cyclic_plan is not plan):
+            return False  # an interrupt falls inside; another program was downloaded since the host built this
         if before is not None:
             before(inputs, t0)
         # -- the start (TaskRunner._begin_scan) --
