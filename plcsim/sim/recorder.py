@@ -105,9 +105,14 @@ class Recorder:
         self.changes_only = changes_only
         self._last: tuple[Any, ...] | None = None
         self._subscriptions: list[tuple[Subscribers, Callable[..., None]]] = []
+        self._sources, self._sample, self._sampled = sources, sample, len(extra)
         self.packed_row = _compile_getter(sources, sample=sample, into=(self.trace.row_sink().pack_values, len(extra)))
         """:attr:`row` packed for the trace's rows (raises one of :data:`~plcsim.trace.rows.UNPACKABLE` for a value its
         column cannot hold): what every-row recording writes."""
+        self._tags: dict[str, Any] = cpu.t.__dict__
+        """The tags the rows of :attr:`scan_hook` read: the CPU's when :meth:`attach` was called."""
+        self._regular: tuple[tuple[int, int], Callable[[int, int], None]] | None = None
+        """The last :meth:`regular_row` with its step and task."""
         self.scan_hook: Callable[[Controller], None] | None = None
         """What :meth:`attach` subscribed to the CPU's scan end (None while detached)."""
 
@@ -145,6 +150,8 @@ class Recorder:
         """Start recording: every OB1 scan, every interrupt execution and every execution a power cut
         interrupts writes a row."""
         cpu = self.cpu
+        self._tags = cpu.t.__dict__
+        self._regular = None
         self.scan_hook = self.on_scan if self.changes_only else self._fast_on_scan()
         self._subscriptions = [
             (cpu.scan_end, self.scan_hook),
@@ -176,7 +183,7 @@ class Recorder:
         rows = self.trace.row_sink()
         heads, values_at, changes, last, pack = rows.heads, rows.values, rows.changes, rows.last, rows.pack
         packed_row = self.packed_row
-        pack_head, row, add, d = rows.pack_head, self.row, rows.add, self.cpu.t.__dict__
+        pack_head, row, add, d = rows.pack_head, self.row, rows.add, self._tags
 
         def on_scan(cpu: Controller) -> None:
             try:
@@ -193,6 +200,23 @@ class Recorder:
                 pack()
 
         return on_scan
+
+    def regular_row(self, duration_ns: int, task: int) -> Callable[[int, int], None]:
+        """:attr:`scan_hook` as ``row(start, end)`` for scans that all last ``duration_ns`` and belong to ``task``
+        (a co-simulation's fused step, :mod:`plcsim.sim.stepping`): each row's head is its start time alone (a
+        regular row of :class:`~plcsim.trace.rows.RunLengthRows`), so no head is packed; its values are packed
+        in the same generated function (:attr:`packed_row`'s code), one call per row instead of two."""
+        rows = self.trace.row_sink()
+        rows.set_regular(duration_ns, task)
+        if self._regular is not None and self._regular[0] == (duration_ns, task):
+            return self._regular[1]  # (generated once per attachment and step: a run builds its step again often)
+        store = {"cpu": self.cpu, "d": self._tags, "task": task, "general": self.row, "UNPACKABLE": UNPACKABLE}
+        store.update(heads=rows.heads, values_at=rows.values, changes=rows.changes, last=rows.last, add=rows.add)
+        store.update(pack=rows.pack, BLOCK=BLOCK, len=len)
+        into = (rows.pack_values, self._sampled)
+        regular = _compile_getter(self._sources, sample=self._sample, into=into, store=store)
+        self._regular = ((duration_ns, task), regular)
+        return regular
 
     def on_task(self, cpu: Controller, task: str, start_ns: int, end_ns: int) -> None:
         values = self.row(cpu.t.__dict__, cpu.image_in)
@@ -232,12 +256,15 @@ def _compile_getter(
     outputs: bool = False,
     sample: Callable[[], tuple[float, ...]] | None = None,
     into: tuple[Callable[..., Any], int] | None = None,
+    store: dict[str, Any] | None = None,
 ) -> Callable[..., Any]:
     """A function returning the row as a tuple, generated once from the access paths (our code, not a
     program's): ``d`` is the CPU's tags, ``i`` the inputs as delivered (:attr:`CPU.image_in`). With ``outputs``
     it takes the output modules' values ``o`` (the sources name them); ``sample()``'s values end the row.
     With ``into`` (a function and how many values ``sample()`` returns) it returns ``function(*row)`` instead
     (the row packed: :mod:`plcsim.trace.rows`), ``sample()`` unpacked into names (a call with ``*`` costs more).
+    With ``store`` too (the names :data:`_STORE` uses), it is ``regular(start, end)`` that stores the packed row
+    as :meth:`Recorder.regular_row` says, reading ``cpu.image_in`` and the tags ``d``.
 
     >>> row = _compile_getter(["i['S1']", "d['M']"], sample=lambda: (1.5, 2.5), into=(lambda *v: v, 2))
     >>> row({"M": 7}, {"S1": True})
@@ -261,8 +288,32 @@ def _compile_getter(
         if names:  # a sample of another length raises ValueError: the row then takes the general path
             lines.append(f"    {''.join(f'{name}, ' for name in names)}= s()\n")
         row = f"p({body}{''.join(f'{name}, ' for name in names)})"
+    if store is not None:  # the same lines inside the writer's try (what raises there takes the general path)
+        scope.update(store)
+        inner = "".join(f"    {line}" for line in lines)
+        exec(
+            f"def regular(start, end):\n    i = cpu.image_in\n    try:\n{inner}        values = {row}\n{_STORE}", scope
+        )
+        return scope["regular"]
     exec(f"def row({args}):\n{''.join(lines)}    return {row}\n", scope)  # built from tag names, not program text
     return scope["row"]
+
+
+_STORE = """\
+    except UNPACKABLE:
+        add(start, end, task, general(d, i))
+        return
+    heads.append(start)
+    if values != last[0]:
+        last[0] = values
+        changes.append(len(heads) - 1)
+        values_at.append(values)
+    if len(heads) >= BLOCK:
+        pack()
+"""
+"""The end of a generated regular row (:meth:`Recorder.regular_row`): a row its columns cannot hold is added
+as it is (a tuple), else its start alone is appended, its values only when they changed (``RunLengthRows.add``
+written out)."""
 
 
 _BASE = re.compile(r"""(d\[(?:'[^'\\]*'|"[^"\\]*")\](?:\.__dict__)?)(\[.+|\..+)""")

@@ -28,6 +28,7 @@ from __future__ import annotations
 import random
 import time
 from collections.abc import Callable, Sequence
+from operator import itemgetter
 from pathlib import PurePath
 from typing import Any, Protocol
 
@@ -41,7 +42,7 @@ from plcsim.scenario.planning import Scenario
 from plcsim.scenario.runner import ActionRunner
 from plcsim.scenario.verbs import ScenarioError
 from plcsim.sim.recorder import Recorder
-from plcsim.sim.stepping import fused_scan
+from plcsim.sim.stepping import fused_step
 from plcsim.sim.wiring import Wire, Wiring
 from plcsim.trace.facade import Trace, TraceEvent
 
@@ -242,23 +243,28 @@ class Simulation:
         out_version, diag_last = self._out_version, self._diag_last
         next_frame = self._next_frame if frame_ns else NEVER  # (one comparison per step instead of two)
         diagnostics = cpu.diagnostics
-        fused = fused_scan(cpu, wiring, self.recorder, dt)
+        fused = fused_step(cpu, wiring, self.recorder)
+        watch, seen, poll_due = len, None, t  # (the first step polls)
         try:
             while t < end_ns and not self.paused:
                 if t >= actions.next_due:
                     actions.apply_due(t)
+                    poll_due = t  # (an action may have changed the triggers or the next action's time: poll)
                     self._frame_still = False  # an operator's action may change the picture of a still machine
                     if getattr(cpu, "downloads", 0) != self._downloads:  # a scenario's download: read the new tags
                         self._downloads = cpu.downloads
                         self.recorder.detach()
                         self.recorder.attach()
-                        fused = fused_scan(cpu, wiring, self.recorder, dt)
-                if fused is None or not fused(t):  # (the fused step: wiring in, the scan and its row in one call)
+                    fused = fused_step(cpu, wiring, self.recorder)  # (a fault or a download may have come)
+                until = t + dt
+                if fused is None or not fused(until):  # (the fused step: wiring in, the scan and its row in one call)
                     if wiring is not None:
                         wiring.step_inputs(inputs, t)
-                    run_cpu(t + dt)
+                    run_cpu(until)
+                elif cpu.mode != RUN:  # the scan stopped the CPU: the rest of the step as the CPU's run_until goes
+                    run_cpu(until)  # on after its fused scan
                 if cpu.mode != RUN:
-                    self.recorder.on_stopped(t, t + dt)
+                    self.recorder.on_stopped(t, until)
                 if diagnostics and diagnostics[-1] is not diag_last:  # (a length stops growing at the buffer's cap)
                     diag_last = self._cpu_events()
                 if plant_step is not None:
@@ -273,19 +279,21 @@ class Simulation:
                     if events:
                         trace.add_plant_events(events)
                         actions.on_events(events)
+                        poll_due = t  # (an event trigger may have scheduled an action)
                         events.clear()
                         self._frame_still = False  # something happened on a still machine: draw it
                 if cpu.output_version != out_version:
                     out_version = self._out_version = cpu.output_version
                     if wiring is not None:
                         wiring.write_outputs(cpu.outputs)
-                t += dt
+                t = until
                 self.now = t
                 if t >= next_frame:
                     self._sample_frame(t, quiet)
                     next_frame = self._next_frame
-                if actions.polled:
-                    actions.poll(t, sensors)
+                if actions.polled and (t >= poll_due or watch(sensors) != seen):  # (else a poll does nothing: _poll)
+                    watch, seen, poll_due = self._poll(t, sensors)
+                    fused = fused_step(cpu, wiring, self.recorder)  # (an action may have come)
                 if quiet is not None and cpu.mode == RUN and quiet():
                     t = self._skip_quiet(t, end_ns)
                     if frame_ns:
@@ -297,6 +305,23 @@ class Simulation:
                     break
         finally:
             self.now = t
+
+    def _poll(self, t: int, sensors: dict[str, Any]) -> tuple[Callable[[Any], Any], Any, int]:
+        """Poll the scenario's sensor triggers at ``t``; returns a getter of the sensors they watch, what it read
+        as the poll compared them, and when the next poll is due whatever the sensors do (an armed trigger's
+        time, the next timed action's). Until then a poll would change nothing while the getter reads the same:
+        each trigger is armed or not as its sensor was, none is due to fire, no action is due. The loop polls
+        after each action and plant event (they may change the triggers or the timed actions), and in the next
+        step when this poll changed the triggers or when a trigger watches a sensor the plant lacks."""
+        actions = self.actions
+        polled = actions.polled
+        names = [item.action.when.signal for item in polled]  # type: ignore[union-attr]
+        watch: Callable[[Any], Any] = itemgetter(*names)
+        seen = watch(sensors) if all(name in sensors for name in names) else None
+        actions.poll(t, sensors)
+        if seen is None or actions.polled is not polled:
+            return watch, seen, t
+        return watch, seen, actions.next_time()
 
     def _sample_frame(self, t: int, quiet: Callable[[], bool] | None) -> None:
         """Record the plant's shapes; a quiescent plant looks the same as at its last frame, so one is enough

@@ -183,6 +183,11 @@ class Wiring:
             return
         self._copy_inputs(inputs, now_ns)
 
+    @property
+    def faulted(self) -> bool:
+        """Whether a fault acts on a wire (then :attr:`step_inputs` is :meth:`read_inputs`, which needs the time)."""
+        return self.step_inputs is not self._copy_inputs
+
     def _faults_changed(self) -> None:
         self.step_inputs = self.read_inputs if self.faults or self._chatter else self._copy_inputs
 

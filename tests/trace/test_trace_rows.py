@@ -132,6 +132,21 @@ def test_an_input_the_recorder_cannot_pack_takes_the_general_path_with_the_same_
     assert same_bits(recorder.trace.table, dense(rows))
 
 
+def test_a_regular_row_the_recorder_cannot_pack_is_kept_as_it_is_with_the_same_table():
+    """The rows a co-simulation's fused step writes (the recorder's regular row, after the CPU's fused scan): an
+    odd level is kept as a tuple with its whole head, among rows that keep their start alone."""
+    cpu = CPU(tags={"S1": Tag("%I0.0"), "N": Tag("%MW10", Int)}, program="def OB1(t):\n    t.N = t.N + 1\n")
+    recorder = Recorder(cpu)
+    recorder.attach()
+    step = cpu.fused_scan(None, recorder.regular_row(1_000_000, 1), recorder.scan_hook)
+    rows = []
+    for k, level in enumerate([False, False, 300, 300, None, True, True]):
+        cpu.inputs["S1"] = level
+        assert step(cpu.now + 1_000_000)
+        rows.append((k * 1_000_000, (k + 1) * 1_000_000, 1, level, k + 1))
+    assert same_bits(recorder.trace.table, dense(rows))
+
+
 def test_regular_rows_keep_their_start_alone_and_read_back_as_rows_with_whole_heads():
     """A co-simulation's fused step (plcsim.sim.stepping) appends a regular row's start time alone: among rows
     with whole heads (an interrupt's, one past Int64 kept as a tuple), across blocks and a change of the regular

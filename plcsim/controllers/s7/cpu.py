@@ -49,7 +49,7 @@ from plcsim.controllers.s7.execution import (
     switched_off,
     tuple_getter,
 )
-from plcsim.controllers.s7.fused import FusedScan
+from plcsim.controllers.s7.fused import FusedScan, InputsIn, ScanRow, fused_scan
 from plcsim.controllers.s7.instructions import bind_instructions, block_of
 from plcsim.controllers.s7.instructions.timers import IecTimer
 from plcsim.controllers.s7.profile import DEFAULT_INTERRUPT_PERIOD, PROFILE
@@ -378,19 +378,34 @@ class CPU(TaskRunner, HostAccess):
 
     def scan(self, count: int = 1) -> None:
         """Run ``count`` OB1 executions (scans), interrupts included; the clock stops at the last scan's end."""
+        fused = self._fused
+        if count == 1 and fused is not None and fused(NEVER):
+            return  # the common case: one whole scan in one call
         if self.mode != RUN:
             return
-        fused = self._fused
-        if count == 1 and fused is not None and not self._stack and fused(NEVER):
-            return  # the common case: one whole scan in one call
         target = self.scan_count + count
-        while fused is not None and not self._stack and fused(NEVER):  # whole scans, one call each
+        while fused is not None and fused(NEVER):  # whole scans, one call each
             if self.mode != RUN or self.scan_count >= target:
                 return
             fused = self._fused  # a subscriber may have downloaded another program
         # a scan that run_until() left unfinished (its networks already ran) is finished, not counted
         pending = bool(self._stack) and any(ex.task is self._ob1 for ex in self._stack)
         self._run(NEVER, target + pending)
+
+    def fused_scan(
+        self, before: InputsIn | None = None, after: ScanRow | None = None, replaces: Any = None, fills: bool = False
+    ) -> FusedScan | None:
+        """One whole OB1 scan per call (``scan(until_ns)``, whether it ran) with a host's work at its two ends:
+        ``before(inputs, t0)`` once the scan is sure to run, before it reads the inputs; ``after(t0, end)`` at
+        its end in place of the :attr:`scan_end` subscriber ``replaces``; with ``fills``, only a scan that ends
+        at ``until_ns``. None where this program's scans cannot be fused
+        (:func:`plcsim.controllers.s7.fused.fused_scan`); build it again after a download."""
+        return fused_scan(self, before, after, replaces, fills)
+
+    @property
+    def fixed_cycle_ns(self) -> int:
+        """How long every OB1 scan lasts, or 0 when it varies (a jitter, a cost per network)."""
+        return self._cyclic_plan[0]
 
     def next_event_ns(self) -> int:
         """When the CPU next does something (a task start, a network, an output write); far future in STOP."""
@@ -408,9 +423,9 @@ class CPU(TaskRunner, HostAccess):
         scan. So whatever happens at ``until_ns`` itself (an operator's press, an HMI write, a plant's
         new sensor values) is seen by the tasks that start at ``until_ns`` and by no scan before.
         """
-        fused = self._fused if self.mode == RUN else None
-        while fused is not None and not self._stack and fused(until_ns):  # whole scans, one call each
-            fused = self._fused if self.mode == RUN else None  # a subscriber may have downloaded or stopped
+        fused = self._fused
+        while fused is not None and fused(until_ns):  # whole scans, one call each (none in STOP)
+            fused = self._fused  # a subscriber may have downloaded another program
         if self.mode == RUN and (self._stack or self._ob1_next < until_ns or self._next_irq < until_ns):
             if self._interrupts:  # TaskRunner._run without a call of its own: this is every physics step's
                 self._run_preemptive(until_ns, None)
