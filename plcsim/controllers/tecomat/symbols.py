@@ -95,6 +95,13 @@ def sampler(operands: Sequence[Operand], area: str) -> tuple[list[str], dict[str
     return lines, names
 
 
+def loader(pad: Scratchpad, area: str, operands: Sequence[Operand]) -> Callable[[tuple[Any, ...]], None]:
+    """A function writing a tuple of levels into their operands of ``area`` (the input terminals), by the lines
+    of :func:`sampler`: 0.1's name for it, kept for the old import path (:mod:`plcsim.core.moved`)."""
+    lines, names = sampler(operands, "terminals")
+    return function("levels", lines, {**names, "terminals": pad.areas[area]})
+
+
 class _Packed(dict):
     """The byte of each tuple of bit levels (every tuple of bools is a key; 0 and 1 find the same entries);
     any other values are packed on the miss, a bit set where its level is true, as the wiring means it."""

@@ -153,3 +153,13 @@ def test_the_manual_s_pulse_filter_on_the_panel_rig_wired_by_its_own_names():
     assert sim.trace.names == ["signal", "vystup", "casovac"]
     ms = [(a // 1_000_000, b // 1_000_000) for a, b in sim.trace.intervals("vystup")]
     assert ms == [(1251, 2001)]  # the 200 ms pulse is suppressed; the 1 s one passes, 250 ms late
+
+
+def test_the_0_1_loader_writes_levels_into_their_terminals_as_the_sampler_does():
+    """``symbols.loader`` (0.1's name, kept for the old import path) stores bits by mask and a byte whole."""
+    from plcsim.controllers.tecomat.memory import Scratchpad, parse_address
+    from plcsim.controllers.tecomat.symbols import loader
+
+    pad = Scratchpad({"X": bytearray([0b1000_0000, 0, 0])})
+    loader(pad, "X", [parse_address(a) for a in ("X0.0", "X0.3", "X1")])((True, 1, 0x5A))
+    assert list(pad.areas["X"]) == [0b1000_1001, 0x5A, 0]
