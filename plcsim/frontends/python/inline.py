@@ -42,7 +42,7 @@ def inline_boxes(func: ast.FunctionDef, root: StructType, aliased: frozenset[str
     ``root`` is the tag schema (an instance's type says which box it is), ``aliased`` the tags that alias
     memory, ``shadowed`` the names the program defines itself (its own ``P`` is not the contact).
     Returns whether anything was written out."""
-    if not func.body or not _binds_root_dict(func.body[0]):
+    if not func.body or not binds_root_dict(func.body[0]):
         return False  # the code reaches its tags through ``_t_dict``, bound by the first statement
     writer = _Writer(root, aliased, shadowed, func)
     func.body = writer.top_level(func.body)
@@ -51,7 +51,9 @@ def inline_boxes(func: ast.FunctionDef, root: StructType, aliased: frozenset[str
     return writer.count > 0
 
 
-def _binds_root_dict(stmt: ast.stmt) -> bool:
+def binds_root_dict(stmt: ast.stmt) -> bool:
+    """Whether ``stmt`` is ``_t_dict = ...``: the first statement of a merged function that reads its tags
+    through the tag dict."""
     return (
         isinstance(stmt, ast.Assign)
         and len(stmt.targets) == 1

@@ -27,7 +27,7 @@ import ast
 from collections.abc import Collection
 
 from plcsim.controllers.s7.instructions import PURE_INSTRUCTIONS
-from plcsim.frontends.python.inline import CHECK_EDGE, COERCE_BOOL
+from plcsim.frontends.python.inline import CHECK_EDGE, COERCE_BOOL, binds_root_dict
 from plcsim.frontends.python.merge import MERGED_ROOT
 from plcsim.frontends.python.rewrite import ROOT_DICT, TICK
 from plcsim.frontends.python.safe_math import SAFE_FUNCTIONS
@@ -50,7 +50,7 @@ def localize_tags(func: ast.FunctionDef, root: StructType, shadowed: Collection[
 
     ``root`` is the tag schema, ``shadowed`` the names the program defines itself (its own ``abs`` is no
     builtin)."""
-    if not func.body or not _binds_root_dict(func.body[0]):
+    if not func.body or not binds_root_dict(func.body[0]):
         return
     body: list[ast.stmt] = [func.body[0]]
     run: list[ast.stmt] = []
@@ -64,15 +64,6 @@ def localize_tags(func: ast.FunctionDef, root: StructType, shadowed: Collection[
             body.append(stmt)
     func.body = body
     ast.fix_missing_locations(func)
-
-
-def _binds_root_dict(stmt: ast.stmt) -> bool:
-    return (
-        isinstance(stmt, ast.Assign)
-        and len(stmt.targets) == 1
-        and isinstance(stmt.targets[0], ast.Name)
-        and stmt.targets[0].id == ROOT_DICT
-    )
 
 
 def _tag_key(node: ast.AST, root: StructType) -> str | None:
