@@ -212,8 +212,8 @@ def test_parts_faults_and_the_watch_table_from_the_page_replay(browser, tmp_path
 
 
 def test_the_sorters_own_verbs_and_a_coloured_part_from_the_page_replay(browser, tmp_path):
-    """4.3.17 live: a red part (properties typed as ``colour=2``), then daylight on the colour sensor from the
-    'Machine' card; the saved session holds both and replays to the page's digest."""
+    """4.3.17 live: daylight on the colour sensor from the 'Machine' card, then a red part (properties typed as
+    ``colour=2``); the saved session holds both and replays to the page's digest."""
     from plcsim.apps.live.server import open_live
 
     program = "exercises/solutions/4_3_17/reference.py"
@@ -224,14 +224,16 @@ def test_the_sorters_own_verbs_and_a_coloured_part_from_the_page_replay(browser,
         page.on("pageerror", lambda exc: errors.append(str(exc)))
         page.goto(panel.url)
         page.locator("#rig-card").wait_for(timeout=10_000)  # shown: the rig brings verbs
-        page.fill("#part-props", "colour=2")
-        page.click('[data-station="OS1"]')
-        page.locator('#machine [data-part="p1"]').wait_for(timeout=10_000)
+        # daylight first: applied while the part is being measured, it could change the colour the program sees,
+        # and when that happens would depend on how fast the browser is (the session paces to the wall clock)
         page.select_option("#rig-verb", "set_ambient")
         page.select_option("#rig-target", "FARBA")
         page.fill('#rig-args input[data-arg="offset"]', "1500")
         page.click("#rig-apply")
         page.wait_for_function("window.plcsimLive.state.events.some((e) => e.includes('scenario set_ambient FARBA'))")
+        page.fill("#part-props", "colour=2")
+        page.click('[data-station="OS1"]')
+        page.locator('#machine [data-part="p1"]').wait_for(timeout=10_000)
         page.wait_for_function("window.plcsimLive.state.watch['DATA.POZ2_DETEKCIA'] === 2", timeout=20_000)
         saved = paused_and_saved(page, tmp_path / "sort.png")
     finally:
@@ -239,8 +241,8 @@ def test_the_sorters_own_verbs_and_a_coloured_part_from_the_page_replay(browser,
     assert errors == []
     target = Target.find("4.3.17")
     rec = Recording.from_toml(saved["toml"], "saved from the page", target.verbs())
-    assert [(a.verb, a.target) for a in rec.actions] == [("place", "p1"), ("set_ambient", "FARBA")]
-    assert rec.actions[0].args["properties"] == {"colour": 2} and rec.actions[1].args == {"offset": 1500}
+    assert [(a.verb, a.target) for a in rec.actions] == [("set_ambient", "FARBA"), ("place", "p1")]
+    assert rec.actions[1].args["properties"] == {"colour": 2} and rec.actions[0].args == {"offset": 1500}
     sim = target.simulation(program, rec.scenario(), seed=rec.seed)
     sim.run()
     assert sim.trace.digest() == saved["digest"]
