@@ -11,9 +11,8 @@ trace is the same bit for bit. Its row keeps its start time alone as its head (a
 
 The scan declines, having touched nothing, whatever it cannot do whole (a scan that does not end at the step's
 end, STOP, an unfinished scan, an interrupt or a force, another program since it was built); the simulation
-then takes the general path. A wiring with a
-fault has no fused step (its copy depends on the time and the faults): build it again when an action may have
-changed the faults or the program.
+then takes the general path. A wiring with a fault has no fused step (its copy depends on the time and the
+faults): build it again when an action may have changed the faults or the program.
 """
 
 from __future__ import annotations
