@@ -6,8 +6,8 @@ The mutants come from the operators of the reference's language, chosen by its s
 list (``.il``, loaded through the Tecomat front end), :mod:`plcsim.mutate.mech` for PLC836 mechanisms
 (``.mech``); all are graded and classified alike.
 
-Each mutant is graded with :func:`plcsim.grading.grader.grade` (in this process: the mutants derive from
-the trusted reference) on seeds 1..N. It is **killed** if some check fails on some seed that the
+Each mutant is graded as :func:`plcsim.grading.grader.grade` grades it (in this process: the mutants derive
+from the trusted reference) on seeds 1..N. It is **killed** if some check fails on some seed that the
 reference passes on that seed, **stillborn** if it does not load (counted apart, not as killed).
 A surviving mutant is **equivalent** if its behaviour equals the reference's in every scenario and
 seed: the same changes of every tag of the exercise's I/O table and data blocks at the same times
@@ -43,8 +43,10 @@ from plcsim.controllers.s7.cpu import CLOCK_BITS, SYSTEM_BITS
 from plcsim.core.errors import ExerciseError, PlcError, did_you_mean
 from plcsim.exercise.model import Exercise
 from plcsim.frontends.python.program import Program
-from plcsim.grading.grader import grade
-from plcsim.grading.report import Report
+from plcsim.grading.report import NOT_EXERCISED, Report
+from plcsim.grading.run import load_error_kind, run_scenarios
+from plcsim.grading.run_result import RunResult
+from plcsim.grading.scoring import evaluate, failure_report
 from plcsim.mutate import il, mech, python
 from plcsim.mutate.mutant import Mutant
 
@@ -214,7 +216,12 @@ def _explain(outcome: Outcome, reason: str | None, misleading: list[str]) -> Non
 
 
 class _Job:
-    """The reference's verdicts and behaviour per seed, and the grading of one mutant against them."""
+    """The reference's verdicts and behaviour per seed, and the grading of one mutant against them.
+
+    A mutant runs each scenario once per seed, shortest scenario first: a check it fails there that the
+    reference passes kills it at once (most mutants die in the first short scenario); a survivor's
+    behaviour is read from the same runs that graded it. The verdicts equal :func:`~plcsim.grading.grader.grade`'s:
+    the seed's runs are evaluated together, as a grade evaluates them, before a mutant is called a survivor."""
 
     def __init__(self, exercise: Exercise, seeds: list[int]):
         self.exercise = exercise
@@ -222,8 +229,15 @@ class _Job:
         self.reference = exercise.reference.program()
         self.language = LANGUAGES[Path(exercise.reference.path).suffix]
         self.ignore = edge_memories(self.reference) if isinstance(self.reference, Program) else set()
-        self._failed = {s: _failures(grade(exercise, self.reference, seed=s)) for s in seeds}
+        self._order = sorted(exercise.scenarios, key=lambda s: s.duration_ns)
+        self._rank = {s.name: i for i, s in enumerate(exercise.scenarios)}
+        self._failed: dict[int, set[str]] = {}
         self._behaviour: dict[tuple[int, str], dict[str, str]] = {}
+        for seed in seeds:
+            runs: list[RunResult] = []
+            report = self._graded(self.reference, seed, runs, kills=None)
+            self._failed[seed] = _failures(report)
+            self._behaviour |= {(seed, run.scenario): self._behaviour_of(self.reference, run) for run in runs}
 
     def reference_failures(self) -> list[str]:
         return [f"seed {s}: {f}" for s in self.seeds for f in sorted(self._failed[s])]
@@ -233,22 +247,20 @@ class _Job:
             program = self.load(mutant)
         except PlcError as exc:
             return Outcome(mutant, STILLBORN, str(exc))
+        behaviour: dict[tuple[int, str], dict[str, str]] = {}
         for seed in self.seeds:
-            report = grade(self.exercise, program, seed=seed)
+            runs: list[RunResult] = []
+            report = self._graded(program, seed, runs, kills=self._failed[seed])
             if report.error is not None:
                 return Outcome(mutant, STILLBORN, report.error)
             new = sorted(_failures(report) - self._failed[seed])
             if new:
                 return Outcome(mutant, KILLED, f"seed {seed}: {new[0]}")
+            behaviour |= {(seed, run.scenario): self._behaviour_of(program, run) for run in runs}
         for seed in self.seeds:
             for scenario in self.exercise.scenarios:
-                key = (seed, scenario.name)
-                if key not in self._behaviour:
-                    self._behaviour[key] = self._run(self.reference, scenario.name, seed)
-                mine = self._run(program, scenario.name, seed)
-                differ = sorted(
-                    k for k in mine.keys() | self._behaviour[key].keys() if mine.get(k) != self._behaviour[key].get(k)
-                )
+                mine, theirs = behaviour[seed, scenario.name], self._behaviour[seed, scenario.name]
+                differ = sorted(k for k in mine.keys() | theirs.keys() if mine.get(k) != theirs.get(k))
                 if differ:
                     shown = ", ".join(differ[:4]) + (" ..." if len(differ) > 4 else "")
                     return Outcome(
@@ -262,18 +274,42 @@ class _Job:
         """The mutant as a program of the reference's front end (PlcError if it does not load)."""
         return self.language.load(mutant.source, f"<mutant {mutant.number}>", self.exercise)
 
-    def _run(self, program: SourceProgram, scenario: str, seed: int) -> dict[str, str]:
-        sim = self.exercise.simulation(program, scenario, seed=seed)
-        error = ""
+    def _graded(self, program: SourceProgram, seed: int, runs: list[RunResult], kills: set[str] | None) -> Report:
+        """``program`` graded on ``seed`` as :func:`~plcsim.grading.grader.grade` grades it, its runs appended to
+        ``runs``. With ``kills`` (the reference's failures), it stops at the first scenario where a check
+        fails that the reference passes: that failure is in the grade whatever the other scenarios do
+        (a check's verdict in a run depends on that run alone; only "not exercised" looks across runs, so
+        it waits for the whole grade)."""
+        exercise = self.exercise
+        report = Report(exercise.number, exercise.title, getattr(program, "filename", ""), seed=seed)
+        analysis = None
         try:
-            sim.run()
+            for scenario in self._order:
+                (run,), found = run_scenarios(exercise, program, seed=seed, scenarios=[scenario.name], geometry=False)
+                analysis = analysis if analysis is not None else found
+                runs.append(run)
+                if kills is None or len(runs) == len(self._order):
+                    continue
+                alone = evaluate(exercise, [run], analysis, Report(exercise.number, exercise.title, report.submission))
+                if alone.error is not None:
+                    return alone
+                if _failures(alone, real_only=True) - kills:
+                    alone.checks = [c for c in alone.checks if c.status != NOT_EXERCISED]
+                    return alone
         except PlcError as exc:
-            error = str(exc)
-        return behaviour(self.exercise, sim.trace, error, self.ignore, getattr(program, "filename", ""))
+            return failure_report(report, load_error_kind(exc), str(exc), exercise)
+        runs.sort(key=lambda r: self._rank[r.scenario])
+        return evaluate(exercise, runs, analysis, report)
+
+    def _behaviour_of(self, program: SourceProgram, run: RunResult) -> dict[str, str]:
+        return behaviour(self.exercise, run.trace, run.plant_error or "", self.ignore, getattr(program, "filename", ""))
 
 
-def _failures(report: Report) -> set[str]:
-    return {f"scenario {c.scenario!r}: {c.check}" for c in report.failed()}
+def _failures(report: Report, *, real_only: bool = False) -> set[str]:
+    """The report's failed checks by scenario and name (``real_only``: not those failed as not exercised)."""
+    return {
+        f"scenario {c.scenario!r}: {c.check}" for c in report.failed() if not (real_only and c.status == NOT_EXERCISED)
+    }
 
 
 def edge_memories(program: Program) -> set[str]:

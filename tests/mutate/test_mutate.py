@@ -9,6 +9,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import re
+from pathlib import Path
 
 import pytest
 from rich.console import Console
@@ -17,7 +18,8 @@ from exercises import all_exercises, get
 from plcsim.apps.cli import main
 from plcsim.core.errors import ExerciseError
 from plcsim.frontends.python.program import Program
-from plcsim.mutate import python
+from plcsim.grading.grader import grade
+from plcsim.mutate import engine, python
 from plcsim.mutate.engine import (
     EQUIVALENT,
     EXPLAINED,
@@ -26,6 +28,7 @@ from plcsim.mutate.engine import (
     SURVIVED,
     behaviour,
     declared_equivalents,
+    edge_memories,
     exercise_mutants,
     mutate_exercise,
     print_mutation_report,
@@ -251,6 +254,62 @@ def test_every_shipped_declaration_names_a_mutant_of_its_reference():
     assert {e.number for e in declaring} >= {"4.3.7", "4.3.8", "4.3.11", "4.3.13", "4.3.14", "4.3.15"}
     for exercise in declaring:
         assert len(declared_equivalents(exercise, exercise_mutants(exercise))) == len(exercise.spec_equivalent)
+
+
+def test_the_reference_itself_is_equivalent_though_a_scenario_alone_would_not_exercise_a_check():
+    # 4.3.5's "placed at S2" alone never runs the belt, so "the belt never runs while S2 sees an object" is not
+    # exercised there; the grade of all scenarios exercises it. A mutant stops early only on a real failure.
+    exercise = get("4.3.5")
+    unchanged = Mutant(1, "none", 1, "unchanged", Path(exercise.reference.path).read_text(encoding="utf-8"))
+    report = mutate_exercise(exercise, seeds=2, mutants=[unchanged])
+    assert report.outcomes[0].status == EQUIVALENT, report.outcomes[0].detail
+
+
+def test_a_killed_mutant_stops_at_the_first_scenario_that_kills_it(monkeypatch):
+    exercise = get("4.3.5")
+    mutant = next(m for m in exercise_mutants(exercise) if m.operator == "negate")
+    shortest = min(exercise.scenarios, key=lambda s: s.duration_ns).name
+    ran = []
+    real_run = engine.run_scenarios
+
+    def counted(exercise, program, *, seed, scenarios, geometry):
+        ran.append((str(program), scenarios))
+        return real_run(exercise, program, seed=seed, scenarios=scenarios, geometry=geometry)
+
+    monkeypatch.setattr(engine, "run_scenarios", counted)
+    report = mutate_exercise(exercise, seeds=1, mutants=[mutant])
+    assert report.outcomes[0].status == KILLED
+    mutant_runs = [scenarios for program, scenarios in ran if "mutant" in program]
+    assert mutant_runs[0] == [shortest] and len(mutant_runs) < len(exercise.scenarios)
+    assert report.outcomes[0].detail.startswith("seed 1: scenario ")
+
+
+def test_the_verdicts_are_those_of_a_whole_grade_and_a_second_run():
+    # The oracle is the plain algorithm: grade() each seed, then run every scenario again for the behaviour.
+    exercise = get("4.3.12")
+    mutants = exercise_mutants(exercise)[::3]
+    report = mutate_exercise(exercise, seeds=1, mutants=mutants)
+    reference = exercise.reference.program()
+    failed = {f"{c.scenario}: {c.check}" for c in grade(exercise, reference, seed=1).failed()}
+
+    def ran(program):
+        runs = []
+        for scenario in exercise.scenarios:
+            sim = exercise.simulation(program, scenario, seed=1)
+            sim.run()
+            runs.append(behaviour(exercise, sim.trace, "", edge_memories(reference), getattr(program, "filename", "")))
+        return runs
+
+    theirs = ran(reference)
+    expected = []
+    for m in mutants:
+        program = Program(m.source, f"<mutant {m.number}>")
+        if {f"{c.scenario}: {c.check}" for c in grade(exercise, program, seed=1).failed()} - failed:
+            expected.append(KILLED)
+        else:
+            expected.append(EQUIVALENT if ran(program) == theirs else SURVIVED)
+    assert [SURVIVED if o.status == EXPLAINED else o.status for o in report.outcomes] == expected
+    assert KILLED in expected and len(set(expected)) > 1
 
 
 def test_a_mutant_that_does_not_load_is_counted_apart():
