@@ -93,9 +93,9 @@ TASK = (
     "watch automatic travel only, since a manual ascent outlasts 32 s; ALARM_CHYBA_SPOMAL_SN within 1 scan of "
     "reaching SNIMAC_HORNY moving up without having passed SNIMAC_SPOMAL; no alarm when nothing is wrong;\n"
     "6. position states for the visualisation: DB_SKIP.POZ1 TRUE while the skip is between SNIMAC_DOLNY and "
-    "SNIMAC_SPOMAL after leaving one of them towards the other, DB_SKIP.POZ2 likewise between SNIMAC_SPOMAL and "
-    "SNIMAC_HORNY; both FALSE while any sensor is actuated, and after a restart of the PLC until the skip leaves "
-    "a sensor again. Put the edge memory bits in %M."
+    "SNIMAC_SPOMAL as the sensors report it (after leaving one of them towards the other), DB_SKIP.POZ2 "
+    "likewise between SNIMAC_SPOMAL and SNIMAC_HORNY; both FALSE while any sensor is actuated, and after a restart "
+    "of the PLC until the skip leaves a sensor again. Put the edge memory bits in %M."
 )
 
 # The words of the task each check grades (``plcsim show 4.3.16`` prints every requirement with its checks).
@@ -131,9 +131,9 @@ SLOW_ALARM = (
 )
 NO_ALARM = "no alarm when nothing is wrong"
 POSITIONS = (
-    "DB_SKIP.POZ1 TRUE while the skip is between SNIMAC_DOLNY and SNIMAC_SPOMAL after leaving one of them towards "
-    "the other, DB_SKIP.POZ2 likewise between SNIMAC_SPOMAL and SNIMAC_HORNY; both FALSE while any sensor is "
-    "actuated, and after a restart of the PLC until the skip leaves a sensor again"
+    "DB_SKIP.POZ1 TRUE while the skip is between SNIMAC_DOLNY and SNIMAC_SPOMAL as the sensors report it (after "
+    "leaving one of them towards the other), DB_SKIP.POZ2 likewise between SNIMAC_SPOMAL and SNIMAC_HORNY; both "
+    "FALSE while any sensor is actuated, and after a restart of the PLC until the skip leaves a sensor again"
 )
 
 EXERCISE = Exercise(
