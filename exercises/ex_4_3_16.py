@@ -583,6 +583,13 @@ EXERCISE = Exercise(
             "it differs only when AUTO is selected with that empty skip between the sensors (it goes on down, the "
             "reference waits), of which the task says nothing"
         ),
+        "not s.AUTO and (t.START_HORE or t.START_DOLE) → not s.AUTO": (
+            "N10 without the direction test holds RYCHLOST_POMALY in manual mode also while the skip stands: item 4 "
+            "asks that manual travel be slow and that every direction come with exactly one speed, never a speed "
+            "only with a direction; the task's converter brakes whenever no direction is commanded, so a speed bit "
+            "alone moves nothing (no check of the converter's complaints fails), and with a direction it is the "
+            "manual speed the task asks for"
+        ),
         "s.AUTO and t.SNIMAC_HORNY and (not s.PLNY) → s.AUTO and (not s.PLNY)": (
             "N8 without SNIMAC_HORNY is the textbook's item 3 as worded ('travel down in automatic mode if the skip is "
             "empty'); the reference is its solution (down from the top). Both set AUTO_DOLE when the dump ends, and "

@@ -417,7 +417,8 @@ def print_mutation_report(report: MutationReport, console: Any) -> None:
         for line in report.misleading:
             console.print(Text(f"  {line}"))
     score = report.score
-    shown = "n/a (no mutant changes behaviour)" if score is None else f"{100 * score:.0f} %"
+    # one decimal, so that a survivor among hundreds never shows as 100 %
+    shown = "n/a (no mutant changes behaviour)" if score is None else f"{100 * score:.1f}".removesuffix(".0") + " %"
     console.print(
         Text.assemble(
             ("mutation score: ", "bold"),

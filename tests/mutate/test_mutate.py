@@ -26,6 +26,8 @@ from plcsim.mutate.engine import (
     KILLED,
     STILLBORN,
     SURVIVED,
+    MutationReport,
+    Outcome,
     behaviour,
     declared_equivalents,
     edge_memories,
@@ -203,6 +205,14 @@ def test_a_survivor_the_exercise_declares_correct_is_explained_and_leaves_the_sc
     data = json.loads(report.to_json())
     assert data["counts"] == {"killed": 1, "survived": 0, "explained": 1, "equivalent": 0, "stillborn": 0}
     assert data["outcomes"][1]["status"] == "explained" and data["outcomes"][1]["reason"] == explained.reason
+
+
+def test_one_survivor_among_hundreds_never_shows_as_a_full_score():
+    mutant = Mutant(1, "drop", 1, "x", "")
+    report = MutationReport("9.9.9", "t", [1], [Outcome(mutant, KILLED, "k")] * 227 + [Outcome(mutant, SURVIVED, "s")])
+    console = Console(record=True, width=200)
+    print_mutation_report(report, console)
+    assert "mutation score: 99.6 %" in console.export_text()
 
 
 def test_a_declared_mutant_that_does_not_exist_is_an_error_naming_the_exercise():
