@@ -43,7 +43,7 @@ def _run(source: str, schedule: list[dict[str, bool]], tags: dict[str, Tag]) -> 
         cpu.scan()
         if cpu.mode != "RUN":
             break
-    values = {k: repr(v) for k, v in cpu.t.__dict__.items() if isinstance(v, bool | int | float | str)}
+    values = {k: v for k, v in cpu.t.__dict__.items() if isinstance(v, bool | int | float | str)}
     if "D" in cpu.t.__dict__:  # the data block of the vocabulary's ``blocks`` (a NaN compared by its repr)
         values.update({f"D.{k}": repr(v) for k, v in cpu.t.D.__dict__.items()})
     diagnostics = [(d.event, d.message, d.network, d.line) for d in cpu.diagnostics]
