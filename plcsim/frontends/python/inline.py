@@ -12,8 +12,9 @@ instance's own helpers), the S7 refresh of a timer's Q and ET when they are read
 statement carries the line of the call it replaces, so an error still names its network and line.
 
 What is not written out is left as the call it was: a box with a PT or PV that is not a constant, an edge
-memory bit that is not a plain BOOL tag of the root (a DB member, an aliased bit), a call inside a larger
-expression (where Python's short-circuit decides whether it runs at all).
+memory bit that is neither a plain BOOL tag of the root nor a BOOL member of a data block of the root (an aliased
+bit, a bit deeper in a struct), a call inside a larger expression (where Python's short-circuit decides whether it
+runs at all).
 """
 
 from __future__ import annotations

@@ -19,6 +19,13 @@ program's own functions, of an instruction bound to the CPU such as ``MOVE`` or 
 DB member or an aliased tag; any use of the tag object or of the dict other than a constant key; a
 comprehension, which has a scope of its own) is left as it was, between two runs, and the next run reads
 its tags again. Typed stores keep their conversions; the local takes the converted value.
+
+A data block (a struct of the root) reached twice or more in a run gets a local for its member dict, read and
+written by subscripts (``_dict_DB["member"]``) instead of attribute reads through the block's object::
+
+    _dict_OS_X = _t_dict["OS_X"].__dict__
+    if _dict_OS_X["ziadana"] > _dict_OS_X["aktualna"]:
+        _dict_OS_X["bol_pohyb_vpravo"] = True
 """
 
 from __future__ import annotations

@@ -1,10 +1,11 @@
 """The rewrite of a checked program into the code the CPU runs: typed stores and a watchdog.
 
 :class:`StoreRewriter` turns every store into a tag into a converted store (an INT wraps, a BOOL
-refuses a number), checks tag names against the tag table at load time (a typo is reported with the
-nearest names before the program runs), puts a watchdog tick into every loop, and turns ``**``,
-``*``, ``<<`` and ``%`` into the bounded operators of :mod:`plcsim.frontends.python.safe_math`. The
-code it writes calls the runtime's hooks by the names below (:data:`TICK`, :data:`ROOT_GUARD`,
+refuses a number; a constant is converted once, at load; a REAL rounds a float through :data:`REAL_CELL`),
+checks tag names against the tag table at load time (a typo is reported with the nearest names before the
+program runs), puts a watchdog tick into every loop, and turns ``**``, ``*``, ``<<`` and ``%`` into the
+bounded operators of :mod:`plcsim.frontends.python.safe_math` (a ``*`` with a float constant stays a ``*``).
+The code it writes calls the runtime's hooks by the names below (:data:`TICK`, :data:`ROOT_GUARD`,
 :data:`STORE`, :data:`FB_STORE`); :mod:`plcsim.frontends.python.link` binds them when it links.
 """
 
