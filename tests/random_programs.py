@@ -68,6 +68,13 @@ class Vocabulary:
     stores and boxes that refuse an INT."""
     interrupt: bool = False
     """Now and then an OB30 that pre-empts OB1 between its networks."""
+    blocks: bool = False
+    """A data block ``D`` (:data:`BLOCK`): -|P|- and -|N|- on its bits, REAL arithmetic that rounds, overflows to an
+    infinity and makes a NaN, constants stored into it, a REAL stored into an INT (a NaN or an infinity refused)."""
+
+
+BLOCK = "D = DB(r=Real(0.0), f=Bool(False), e0=Bool(False), e1=Bool(False), k=Int(0))"
+"""The data block of :attr:`Vocabulary.blocks`."""
 
 
 def bool_expr(vocabulary: Vocabulary, depth: int = 2) -> st.SearchStrategy[str]:
@@ -133,6 +140,17 @@ def statement(v: Vocabulary) -> st.SearchStrategy[list[str]]:
             st.builds(lambda x, r: [f"t.C0.CTU(R={r}, CU={x}, PV=3)"], b, b),
             st.builds(lambda x, e, q: [f"edge = N({x}, {e!r})", f"t.{q} = edge"], b, e, q),
         ]
+    if v.blocks:
+        real = st.sampled_from(["0.1", "-0.0", "1e39", "16777217", "2.5", "t.D.r * 1.5", "t.D.r - t.D.r * 2.0"])
+        kinds += [
+            st.builds(lambda x: [f'if P({x}, "D.e0"):', "    t.D.r = t.D.r + 0.5"], b),
+            st.builds(lambda x, q: [f'edge = N({x}, "D.e1")', f"t.{q} = edge"], b, q),
+            st.builds(lambda x: [f"t.D.f = {x}"], b),
+            st.builds(lambda q, n: [f"t.{q} = t.D.f and t.D.r > {n} or t.D.r != t.D.r"], q, st.integers(-3, 40)),
+            st.builds(lambda w: [f"t.D.r = t.D.r * 1.1 - t.{w} / 3"], w),  # rounds; grows to an infinity
+            st.builds(lambda value: [f"t.D.r = {value}"], real),  # a NaN from the infinity minus itself
+            st.builds(lambda w: ["t.D.k = t.D.r", f"t.{w} = t.D.k + 1"], w),  # a NaN or an infinity is refused
+        ]
     if v.jumps:
         kinds.append(st.builds(lambda x: [f"if {x}:", '    JMP("last")'], b))
     if v.calls:
@@ -155,6 +173,8 @@ def programs(draw: st.DrawFn, vocabulary: Vocabulary) -> str:
     v = vocabulary
     lines = [f"{name} = IEC_TIMER()" for name in TIMERS] + ["C0 = IEC_COUNTER()"]
     lines += [f"{name} = Bool()" for name in v.edges]
+    if v.blocks:
+        lines.append(BLOCK)
     if v.calls:
         lines += HELPERS.splitlines()
     names = []

@@ -26,6 +26,8 @@ from plcsim.core.errors import DeclarationError, LiteralError, PlcTypeError
 from plcsim.core.literals import datetime_literal, time_ms
 
 _F32 = struct.Struct(">f")
+FLOAT32_MAX = 3.4028234663852886e38
+"""The largest finite REAL; a float beyond it converts to an infinity (or to FLOAT32_MAX, if it rounds to it)."""
 
 
 def _describe(value: Any) -> str:

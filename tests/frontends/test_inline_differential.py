@@ -24,6 +24,7 @@ from plcsim.sim.recorder import Recorder
 SCANS = 120
 VOCABULARY = Vocabulary(compare=("<", ">=", "!="), edges=("E0", "E1", "E2"), max_ms=12, modulus=7, more_boxes=True)
 CALLS = Vocabulary(compare=("<", ">=", "!="), edges=("E0", "E1"), modulus=7, more_boxes=True, calls=True)
+BLOCKS = Vocabulary(compare=("<", ">=", "!="), edges=("E0",), modulus=7, more_boxes=True, blocks=True)
 WAYS = {
     "by network": (False, False, False),
     "merged": (True, False, False),
@@ -43,6 +44,8 @@ def _run(source: str, schedule: list[dict[str, bool]], tags: dict[str, Tag]) -> 
         if cpu.mode != "RUN":
             break
     values = {k: v for k, v in cpu.t.__dict__.items() if isinstance(v, bool | int | float | str)}
+    if "D" in cpu.t.__dict__:  # the data block of the vocabulary's ``blocks`` (a NaN compared by its repr)
+        values.update({f"D.{k}": repr(v) for k, v in cpu.t.D.__dict__.items()})
     diagnostics = [(d.event, d.message, d.network, d.line) for d in cpu.diagnostics]
     return recorder.trace.digest(), cpu.mode, diagnostics, cpu.scan_count, values
 
@@ -83,6 +86,14 @@ def test_tags_as_locals_run_as_the_networks_one_by_one(ways, source: str, schedu
     locals for, loops, and faults in the middle of a task (a division by zero, an INT stored into a BOOL, the
     watchdog): the same rows, diagnostics and tag values at the end (at a STOP, the tags as the fault left
     them)."""
+    _all_alike(ways(source, schedule), source)
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(source=programs(BLOCKS), schedule=schedules(SCANS))
+def test_data_block_members_run_as_the_networks_one_by_one(ways, source: str, schedule: list) -> None:
+    """Edge contacts on a data block's bits written out, its member dict kept in a local, its REAL stores rounded
+    in the generated code (constants converted at load), up to a NaN or an infinity stored into an INT."""
     _all_alike(ways(source, schedule), source)
 
 

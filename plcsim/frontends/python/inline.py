@@ -12,8 +12,9 @@ instance's own helpers), the S7 refresh of a timer's Q and ET when they are read
 statement carries the line of the call it replaces, so an error still names its network and line.
 
 What is not written out is left as the call it was: a box with a PT or PV that is not a constant, an edge
-memory bit that is not a plain BOOL tag of the root (a DB member, an aliased bit), a call inside a larger
-expression (where Python's short-circuit decides whether it runs at all).
+memory bit that is neither a plain BOOL tag of the root nor a BOOL member of a data block of the root (an aliased
+bit, a bit deeper in a struct), a call inside a larger expression (where Python's short-circuit decides whether it
+runs at all).
 """
 
 from __future__ import annotations
@@ -222,15 +223,21 @@ class _Writer:
             if call.keywords or len(call.args) != 2:
                 return None
             bit = call.args[1]
-            if not (isinstance(bit, ast.Constant) and isinstance(bit.value, str) and self.plain_bit(bit.value)):
+            place = self.plain_bit(bit.value) if isinstance(bit, ast.Constant) and isinstance(bit.value, str) else None
+            if place is None:
                 return None
+            block, key = place
+            template = EDGE_WRITTEN_OUT.replace("RESULT", EDGE_RESULTS[func.id])
+            if block is not None:  # the bit in a data block's dict: the same stores, one step further
+                template = template.replace(f"{ROOT_DICT}[BIT]", f"{ROOT_DICT}[BLOCK].__dict__[BIT]")
             return self.expand(
-                EDGE_WRITTEN_OUT.replace("RESULT", EDGE_RESULTS[func.id]),
+                template,
                 where,
                 {"_x"} if self.is_bool(call.args[0]) else set(),
                 OPERAND=call.args[0],
                 NAME=ast.Constant(func.id),
-                BIT=ast.Constant(bit.value),
+                BLOCK=ast.Constant(block),
+                BIT=ast.Constant(key),
             )
         return None
 
@@ -247,9 +254,23 @@ class _Writer:
         mtype = getattr(member, "type", None)
         return mtype.name if isinstance(mtype, FBType) else None
 
-    def plain_bit(self, name: str) -> bool:
-        member = self.root.members.get(name)
-        return member is not None and member.type is Bool and name not in self.aliased
+    def plain_bit(self, name: str) -> tuple[str | None, str] | None:
+        """Where the edge memory bit ``name`` lives, when it is a BOOL that aliases nothing: ``(None, name)`` for
+        a tag of the root, ``(block, member)`` for a member of a data block of the root (``"DATA.SB"``, the
+        container and key the edge instruction's lookup finds for it); None for any other bit."""
+        block, dot, key = name.rpartition(".")
+        if dot and not (block.isidentifier() and key.isidentifier()):
+            return None
+        members = self.root.members
+        if dot:
+            owner = members.get(block)
+            if owner is None or not isinstance(owner.type, StructType):
+                return None
+            members = owner.type.members
+        member = members.get(key)
+        if member is None or member.type is not Bool or name in self.aliased:
+            return None
+        return (block or None), key
 
     def expand(self, template: str, where: ast.stmt, bools: set[str], **parts: Any) -> tuple[list[ast.stmt], ast.expr]:
         """The template's statements with its parts put in and its temporaries made unique; without the

@@ -10,6 +10,7 @@ bound here to the names the rewrite writes into the code (:data:`~plcsim.fronten
 from __future__ import annotations
 
 import builtins
+from array import array
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
@@ -19,7 +20,7 @@ from plcsim.core.errors import ProgramError
 from plcsim.frontends.python.inline import HELPERS
 from plcsim.frontends.python.names import TIME, TYPE_NAMES
 from plcsim.frontends.python.pipeline import CompiledProgram
-from plcsim.frontends.python.rewrite import FB_STORE, ROOT_GUARD, STORE, TICK, coerce_name
+from plcsim.frontends.python.rewrite import FB_STORE, REAL_CELL, ROOT_GUARD, STORE, TICK, coerce_name
 from plcsim.frontends.python.safe_math import SAFE_FUNCTIONS, bounded_range
 from plcsim.frontends.python.subset import ALLOWED_BUILTINS
 from plcsim.tags import types as plc_types
@@ -86,6 +87,7 @@ def runtime_namespace(
     namespace: dict[str, Any] = {"__builtins__": safe_builtins(), **TYPE_NAMES, "TIME": TIME, **PURE_INSTRUCTIONS}
     for dtype in plc_types.ELEMENTARY.values():
         namespace[coerce_name(dtype)] = dtype.coerce
+    namespace[REAL_CELL] = array("f", [0.0])  # this program's own: only its code writes and reads it
     namespace.update(SAFE_FUNCTIONS)
     namespace.update(compiled.program.constants)
     namespace.update(instructions)

@@ -19,6 +19,13 @@ program's own functions, of an instruction bound to the CPU such as ``MOVE`` or 
 DB member or an aliased tag; any use of the tag object or of the dict other than a constant key; a
 comprehension, which has a scope of its own) is left as it was, between two runs, and the next run reads
 its tags again. Typed stores keep their conversions; the local takes the converted value.
+
+A data block (a struct of the root) reached twice or more in a run gets a local for its member dict, read and
+written by subscripts (``_dict_DB["member"]``) instead of attribute reads through the block's object::
+
+    _dict_OS_X = _t_dict["OS_X"].__dict__
+    if _dict_OS_X["ziadana"] > _dict_OS_X["aktualna"]:
+        _dict_OS_X["bol_pohyb_vpravo"] = True
 """
 
 from __future__ import annotations
@@ -34,6 +41,7 @@ from plcsim.frontends.python.safe_math import SAFE_FUNCTIONS
 from plcsim.frontends.python.subset import ALLOWED_BUILTINS
 from plcsim.tags.table import FBType
 from plcsim.tags.types import StructType
+from plcsim.tags.values import PlcStruct
 
 _PURE_CALLS = (
     frozenset(SAFE_FUNCTIONS) | frozenset(PURE_INSTRUCTIONS) | ALLOWED_BUILTINS | {TICK, COERCE_BOOL, CHECK_EDGE}
@@ -108,6 +116,69 @@ def _pure_call(func: ast.expr, root: StructType, shadowed: Collection[str]) -> b
 
 
 def _localized(run: list[ast.stmt], root: StructType) -> list[ast.stmt]:
+    """The run with locals for the member dicts of its blocks (:func:`_with_block_dicts`), then for the tags
+    where they pay (:func:`_with_tag_locals`)."""
+    return _with_tag_locals(_with_block_dicts(run, root), root)
+
+
+def _block_key(node: ast.AST, root: StructType) -> str | None:
+    """NAME of ``_t_dict["NAME"]`` when NAME is a struct of the root (a data block): its value is a
+    :class:`~plcsim.tags.values.PlcStruct`, whose members live in its ``__dict__``."""
+    key = _tag_key(node, root)
+    return key if key is not None and isinstance(root.members[key].type, StructType) else None
+
+
+def _member_read(node: ast.AST, root: StructType) -> tuple[str, str] | None:
+    """(block, member) of ``_t_dict["BLOCK"].member`` read, when ``__dict__["member"]`` is what the read finds:
+    a declared member (every one is in the dict) that no attribute of the class shadows."""
+    if not (isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Load)):
+        return None
+    block = _block_key(node.value, root)
+    if block is None:
+        return None
+    attr = node.attr
+    if attr == "__dict__" or (attr in root.members[block].type.members and not hasattr(PlcStruct, attr)):  # type: ignore[attr-defined]
+        return block, attr
+    return None
+
+
+def _with_block_dicts(run: list[ast.stmt], root: StructType) -> list[ast.stmt]:
+    """The run with a local for the member dict of each block it reaches twice or more (``_t_dict["DB"].__dict__``,
+    a store into a member, or ``_t_dict["DB"].member``, a read): one subscript of the local instead of a lookup of
+    the block and an attribute read through it. The block's object, and so its dict, is the same for the whole
+    run: nothing in it stores into the tag itself (a whole struct is stored through a call, which ends a run)."""
+    uses: dict[str, int] = {}
+    first: dict[str, int] = {}
+    replaced: set[str] = set()  # blocks the run stores into as tags: they keep their lookups
+    for index, stmt in enumerate(run):
+        for node in ast.walk(stmt):
+            read = _member_read(node, root)
+            if read is not None:
+                uses[read[0]] = uses.get(read[0], 0) + 1
+                first.setdefault(read[0], index)
+            elif isinstance(node, ast.Subscript) and not isinstance(node.ctx, ast.Load):
+                block = _block_key(node, root)
+                if block is not None:
+                    replaced.add(block)
+    names = {
+        block: _local_name(block, number, "_dict")
+        for number, block in enumerate(first)
+        if uses[block] > 1 and block not in replaced
+    }
+    if not names:
+        return run
+    out: list[ast.stmt] = []
+    reads = _BlockDicts(root, names)
+    for index, stmt in enumerate(run):
+        for block in names:
+            if first[block] == index:
+                value = ast.Attribute(_subscript(block, ast.Load()), "__dict__", ast.Load())
+                out.append(ast.copy_location(ast.Assign([ast.Name(names[block], ast.Store())], value), stmt))
+        out.append(reads.visit(stmt))
+    return out
+
+
+def _with_tag_locals(run: list[ast.stmt], root: StructType) -> list[ast.stmt]:
     """The run with locals for the tags where they pay: each read of the local saves two operations, each
     store costs two more (the local beside the dict), so does a first use that copies the tag into a local
     (``_i_1 = _t_dict["T1"]``), a read before the first use four."""
@@ -180,12 +251,28 @@ def _defines(stmt: ast.stmt, key: str, root: StructType) -> bool:
     )
 
 
-def _local_name(key: str, index: int) -> str:
-    return f"_tag_{key}" if key.isidentifier() else f"_tag{index}"
+def _local_name(key: str, index: int, prefix: str = "_tag") -> str:
+    return f"{prefix}_{key}" if key.isidentifier() else f"{prefix}{index}"
 
 
 def _subscript(key: str, ctx: ast.expr_context) -> ast.Subscript:
     return ast.Subscript(ast.Name(ROOT_DICT, ast.Load()), ast.Constant(key), ctx)
+
+
+class _BlockDicts(ast.NodeTransformer):
+    """``_t_dict["DB"].__dict__`` -> the local holding it, ``_t_dict["DB"].member`` (a read) -> ``local["member"]``."""
+
+    def __init__(self, root: StructType, names: dict[str, str]):
+        self.root, self.names = root, names
+
+    def visit_Attribute(self, node: ast.Attribute) -> ast.AST:
+        read = _member_read(node, self.root)
+        if read is None or read[0] not in self.names:
+            return self.generic_visit(node)
+        local = ast.Name(self.names[read[0]], ast.Load())
+        if read[1] == "__dict__":
+            return ast.copy_location(local, node)
+        return ast.copy_location(ast.Subscript(local, ast.Constant(read[1]), ast.Load()), node)
 
 
 class _Locals(ast.NodeTransformer):

@@ -1,10 +1,11 @@
 """The rewrite of a checked program into the code the CPU runs: typed stores and a watchdog.
 
 :class:`StoreRewriter` turns every store into a tag into a converted store (an INT wraps, a BOOL
-refuses a number), checks tag names against the tag table at load time (a typo is reported with the
-nearest names before the program runs), puts a watchdog tick into every loop, and turns ``**``,
-``*``, ``<<`` and ``%`` into the bounded operators of :mod:`plcsim.frontends.python.safe_math`. The
-code it writes calls the runtime's hooks by the names below (:data:`TICK`, :data:`ROOT_GUARD`,
+refuses a number; a constant is converted once, at load; a REAL rounds a float through :data:`REAL_CELL`),
+checks tag names against the tag table at load time (a typo is reported with the nearest names before the
+program runs), puts a watchdog tick into every loop, and turns ``**``, ``*``, ``<<`` and ``%`` into the
+bounded operators of :mod:`plcsim.frontends.python.safe_math` (a ``*`` with a float constant stays a ``*``).
+The code it writes calls the runtime's hooks by the names below (:data:`TICK`, :data:`ROOT_GUARD`,
 :data:`STORE`, :data:`FB_STORE`); :mod:`plcsim.frontends.python.link` binds them when it links.
 """
 
@@ -20,7 +21,7 @@ from plcsim.frontends.python.safe_math import SAFE_FUNCTIONS, SAFE_OPS
 from plcsim.frontends.python.subset import place
 from plcsim.frontends.python.typecheck import Typing, safe_type
 from plcsim.tags.table import FBType
-from plcsim.tags.types import Bool, ElementaryType, StructType, Time
+from plcsim.tags.types import FLOAT32_MAX, Bool, ElementaryType, Real, StructType, Time
 
 ROOT_DICT = "_t_dict"
 ROOT_GUARD = "_tags_of"
@@ -28,6 +29,22 @@ ROOT_GUARD = "_tags_of"
 TICK = "_tick"
 STORE = "_store"
 FB_STORE = "_fb_store"
+REAL_CELL = "_f32"
+"""A one-item ``array('f')`` of the program's namespace: a finite float stored into it and read back is rounded to
+single precision by the C cast, IEEE round-to-nearest-even, exactly as :data:`~plcsim.tags.types.Real`'s conversion
+rounds it (the same cast inside :mod:`struct`), in two subscripts instead of a call."""
+REAL_STORE = f"""
+_real = VALUE
+if _real.__class__ is float and -{FLOAT32_MAX!r} <= _real <= {FLOAT32_MAX!r}:
+    {REAL_CELL}[0] = _real
+    _real = {REAL_CELL}[0]
+else:
+    _real = CONVERT(_real, WHERE)
+TARGET = _real
+"""
+"""A store into a REAL whose value is no constant: a float within the REAL's range is rounded through
+:data:`REAL_CELL`; anything else (an int, a NaN, an infinity, a float beyond the range, a value that is no
+number) takes the conversion every other store takes, with its messages."""
 _NAMED_OPERANDS = {f.name: f.named for f in FUNCTIONS.values() if f.named}
 """Arguments of edge instructions that name a memory bit; ``t.SB1`` there means the tag's name."""
 _BOX_TYPES = {box: block.name for block in BLOCKS.values() for box in block.boxes}
@@ -219,6 +236,10 @@ class StoreRewriter(ast.NodeTransformer):
                 value = None
             if isinstance(value, int | float | str):
                 return ast.copy_location(ast.Constant(value), node)
+        if name == "_mul" and any(
+            isinstance(o, ast.Constant) and o.value.__class__ is float for o in (node.left, node.right)
+        ):
+            return node  # a float operand: _mul multiplies at once (a float cannot repeat a text or grow an int)
         call = ast.Call(ast.Name(name, ast.Load()), [node.left, node.right], [])
         return ast.copy_location(call, node)
 
@@ -311,30 +332,40 @@ class StoreRewriter(ast.NodeTransformer):
             return self._call_stmt(STORE, [base_node, ast.Constant(key), value], node)
         if not isinstance(mtype, ElementaryType):
             return self._call_stmt(STORE, [base_node, ast.Constant(key), value], node)
+        convert = None
         if not (mtype is Bool and self.typing.type_of(value, self.env) is Bool):
             self.coercers.add(mtype)
             path = _tag_path(base_node, self.root_name or "")
             where = key if is_root else f"{path or ast.unparse(base_node)}.{key}"
-            self._check_constant(mtype, value, where, node)
-            value = ast.Call(ast.Name(coerce_name(mtype), ast.Load()), [value, ast.Constant(where)], [])
+            constant = self._check_constant(mtype, value, where, node)
+            if constant:  # converted once, here: the store writes the value the conversion gives it each time
+                value = ast.Constant(constant[0])
+            elif mtype is Real:
+                convert = ast.Name(coerce_name(mtype), ast.Load()), ast.Constant(where)
+            else:
+                value = ast.Call(ast.Name(coerce_name(mtype), ast.Load()), [value, ast.Constant(where)], [])
         if is_root and isinstance(base_node, ast.Name) and base_node.id == self.root_name:
             self.uses_root_dict = True
             dict_node: ast.expr = ast.Name(ROOT_DICT, ast.Load())
         else:
             self.uses_root_dict = True  # the chain starts at the tags: check that they are the CPU's
             dict_node = ast.Attribute(base_node, "__dict__", ast.Load())
-        store = ast.Assign([ast.Subscript(dict_node, ast.Constant(key), ast.Store())], value)
-        return ast.copy_location(store, node)  # the whole module's locations are fixed once, after rewriting
+        target = ast.Subscript(dict_node, ast.Constant(key), ast.Store())
+        if convert is not None:
+            parts = {"VALUE": value, "CONVERT": convert[0], "WHERE": convert[1], "TARGET": target}
+            return _Parts(parts).statements(REAL_STORE, node)
+        return ast.copy_location(ast.Assign([target], value), node)  # the module's locations are fixed once, after
 
-    def _check_constant(self, mtype: ElementaryType, value: ast.expr, where: str, node: ast.stmt) -> None:
-        """A constant that the store would refuse at run time (``t.DB.FLAG = 1`` into a Bool) is refused now,
-        at load, naming the file and line: the CPU would otherwise go to STOP on the first scan that stores it."""
+    def _check_constant(self, mtype: ElementaryType, value: ast.expr, where: str, node: ast.stmt) -> tuple[Any, ...]:
+        """The constant ``value`` converted, in a tuple (empty for a value that is no constant). A constant that
+        the store would refuse at run time (``t.DB.FLAG = 1`` into a Bool) is refused now, at load, naming the
+        file and line: the CPU would otherwise go to STOP on the first scan that stores it."""
         try:
             constant = ast.literal_eval(value)
         except (ValueError, TypeError, SyntaxError, MemoryError, RecursionError):
-            return  # not a constant: the store converts (or refuses) it when it runs
+            return ()  # not a constant: the store converts (or refuses) it when it runs
         try:
-            mtype.coerce(constant, where)
+            return (mtype.coerce(constant, where),)
         except PlcTypeError as exc:
             raise ProgramError(f"{place(self.typing.filename, node)}: {exc}") from None
 
@@ -358,6 +389,25 @@ def _tag_path(node: ast.expr, root: str) -> str | None:
     if isinstance(node, ast.Name) and node.id == root and parts and parts[-1].startswith("."):
         return "".join(reversed(parts))[1:]
     return None
+
+
+class _Parts(ast.NodeTransformer):
+    """A template's statements with its upper-case names replaced by the nodes given for them."""
+
+    def __init__(self, parts: dict[str, ast.expr]):
+        self.parts = parts
+
+    def statements(self, template: str, where: ast.stmt) -> list[ast.stmt]:
+        """The statements, the template's own nodes at the line of ``where`` (the parts keep theirs)."""
+        body = ast.parse(template.strip()).body
+        for stmt in body:
+            for node in ast.walk(stmt):
+                if hasattr(node, "lineno"):
+                    ast.copy_location(node, where)
+        return [self.visit(stmt) for stmt in body]
+
+    def visit_Name(self, node: ast.Name) -> ast.AST:
+        return self.parts.get(node.id, node)
 
 
 def _as_list(x: ast.AST | list[ast.stmt]) -> list[ast.stmt]:

@@ -178,7 +178,8 @@ def bind_edge(name: str) -> Callable[[Any], Callable[..., bool]]:
 
 # The bodies of P and N written out, for the generated code of a whole task (plcsim.frontends.python.inline):
 # the same stores in the same order, on the operand ``OPERAND``, the instruction's ``NAME`` and the memory
-# bit ``BIT`` (a plain BOOL of the root dict ``_t_dict``); the result is left in ``_r``. A change to P or N
+# bit ``BIT`` (a plain BOOL of the root dict ``_t_dict``, or of a data block's, ``_t_dict[BLOCK].__dict__``); the
+# result is left in ``_r``. A change to P or N
 # changes its copy here; tests/frontends/test_inline_differential.py runs random programs both ways.
 EDGE_WRITTEN_OUT = """
 _x = OPERAND
