@@ -209,7 +209,7 @@ class CPU(TaskRunner, HostAccess):
         for name, cell in self._input_cells.items():
             self._terminals.write(cell.address, cell.dtype, self.inputs[name])
         self._out_getter = tuple_getter(self.output_names)
-        self._last_out: tuple[Any, ...] = tuple(self.outputs[n] for n in self.output_names)
+        self._last_out: tuple[Any, ...] = self._out_getter(self.outputs)
         if self.config.retentive_markers:
             self._retentive_m = bytes(self.memories[("M", None)].data[: self.config.retentive_markers])
 

@@ -106,3 +106,23 @@ def test_every_writer_of_an_input_reaches_the_next_fused_scan():
     expected = [False, False, True, False, True, False, False]
     assert lamps == expected
     assert recorder.trace.column("Start").tolist() == expected
+
+
+def test_a_single_output_is_written_when_it_changes_and_only_then():
+    """With one output the image is compared as a pair taken in C (``tuple_getter``); every image it is compared
+    with (at the download, after STOP, after an interrupt's partition) must be the same pair, or each scan would
+    count a change that is none."""
+    program = "def OB1(t):\n    t.Lamp = t.S\n"
+    cpu = CPU(tags={"S": Tag("%I0.0"), "Lamp": Tag("%Q0.0")}, program=program)
+    seen = []
+    for s in [False, False, True, True]:
+        cpu.set_input("S", s)
+        cpu.scan()
+        seen.append((cpu.outputs["Lamp"], cpu.output_version))
+    cpu.stop()  # switches the lamp off: one change
+    cpu.set_input("S", False)
+    cpu.start()
+    for _ in range(2):
+        cpu.scan()
+        seen.append((cpu.outputs["Lamp"], cpu.output_version))
+    assert seen == [(False, 0), (False, 0), (True, 1), (True, 1), (False, 2), (False, 2)]
