@@ -7,6 +7,7 @@ tools and doctests build ``t`` alone.
 
 from __future__ import annotations
 
+import sys
 from typing import Any
 
 from plcsim.tags.aliasing import AliasCell, MemoryLayout, area_memories, link_aliases, non_optimized_offsets
@@ -33,7 +34,7 @@ def build_runtime(
     numbers = table.db_numbers()
     for name, entry in table.entries.items():
         value = instantiate(entry.member, name, context)
-        t.__dict__[name] = value
+        t.__dict__[sys.intern(name)] = value  # the program's constants are interned: lookups match by identity
         if entry.address is not None:
             cells.append((t, name, entry.address, entry.member.type))  # type: ignore[arg-type]
         if entry.db is not None and not entry.db.optimized:

@@ -10,6 +10,7 @@ scan, hence kept to plain attribute and dict accesses.
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Iterator, Mapping
 from typing import Any
 
@@ -163,7 +164,7 @@ def instantiate(member: Member, path: str, context: Any = None) -> Any:
         for key, sub in mtype.members.items():
             if isinstance(start, Mapping) and key in start:
                 sub = Member(sub.type, start[key], sub.retain, sub.comment)
-            obj.__dict__[key] = instantiate(sub, f"{path}.{key}", context)
+            obj.__dict__[sys.intern(key)] = instantiate(sub, f"{path}.{key}", context)  # (as build_runtime's)
         return obj
     if isinstance(mtype, ArrayType):
         element = Member(mtype.element, mtype.element_start)

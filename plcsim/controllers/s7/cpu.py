@@ -31,6 +31,7 @@ from __future__ import annotations
 import datetime as _dt
 import pkgutil
 import random
+import sys
 from collections import deque
 from collections.abc import Mapping
 from dataclasses import replace
@@ -192,8 +193,9 @@ class CPU(TaskRunner, HostAccess):
                 for key, (off, dtype) in offsets.items():
                     addr = Address("DB", off.byte, off.bit, off.bits, numbers[e.name])
                     self._cells.append((self.t.__dict__[e.name], key, addr, dtype))
-        self.input_names = [e.name for e in table if e.address is not None and e.address.area == "I"]
-        self.output_names = [e.name for e in table if e.address is not None and e.address.area == "Q"]
+        # interned as the keys of t: the image copies and the output getter find them by identity
+        self.input_names = [sys.intern(e.name) for e in table if e.address is not None and e.address.area == "I"]
+        self.output_names = [sys.intern(e.name) for e in table if e.address is not None and e.address.area == "Q"]
         self.inputs = {name: self.inputs.get(name, self.t.__dict__[name]) for name in self.input_names}
         self.outputs = {name: switched_off(self.t.__dict__[name]) for name in self.output_names}
         # each input as the plant delivered it at its last refresh (what the trace records)
@@ -207,7 +209,7 @@ class CPU(TaskRunner, HostAccess):
         for name, cell in self._input_cells.items():
             self._terminals.write(cell.address, cell.dtype, self.inputs[name])
         self._out_getter = tuple_getter(self.output_names)
-        self._last_out: tuple[Any, ...] = tuple(self.outputs[n] for n in self.output_names)
+        self._last_out: tuple[Any, ...] = self._out_getter(self.outputs)
         if self.config.retentive_markers:
             self._retentive_m = bytes(self.memories[("M", None)].data[: self.config.retentive_markers])
 

@@ -609,7 +609,7 @@ class TaskRunner:
                 self.outputs[name] = d[name]
                 changed = True
         if changed:
-            self._last_out = tuple(self.outputs[n] for n in self.output_names)
+            self._last_out = self._out_getter(self.outputs)
             self.output_version += 1
 
     def _switch_outputs_off(self) -> None:
@@ -617,7 +617,7 @@ class TaskRunner:
         if off != self.outputs:
             self.outputs = off
             self.output_version += 1
-        self._last_out = tuple(off[n] for n in self.output_names)
+        self._last_out = self._out_getter(off)
 
     def _apply_forces(self) -> None:
         for name, value in self.forces.items():
@@ -666,12 +666,13 @@ def switched_off(value: Any) -> Any:
 
 
 def tuple_getter(names: list[str]) -> Callable[[dict[str, Any]], tuple[Any, ...]]:
+    """The values of ``names`` in a mapping as one tuple, taken in C: the output image's compare and write at
+    every scan end. One name is taken twice, ``(v, v)``: ``itemgetter`` gives a bare value for one name, and a
+    Python function making it a 1-tuple cost a call per scan; zipped with the one name, the pair writes it once.
+    Every tuple the image is compared with (the CPU's ``_last_out``) comes from this getter."""
     if not names:
         return lambda d: ()
-    if len(names) == 1:
-        only = operator.itemgetter(names[0])
-        return lambda d: (only(d),)
-    return operator.itemgetter(*names)
+    return operator.itemgetter(*names) if len(names) > 1 else operator.itemgetter(names[0], names[0])
 
 
 def describe_error(exc: BaseException) -> str:

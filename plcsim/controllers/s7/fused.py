@@ -62,6 +62,7 @@ def fused_scan(
         return None
     clock, ticks, t, inputs = cpu.clock, cpu._ticks, cpu.t, cpu.inputs
     d = t.__dict__
+    refresh, snapshot = d.update, inputs.copy  # the input image's two copies, bound once
     out_getter, output_names = cpu._out_getter, cpu.output_names
     scan_end = cpu.scan_end
     latch, after_exception, push_scan = cpu._latch_clock_memory, cpu._after_exception, cpu._push_scan
@@ -86,8 +87,8 @@ def fused_scan(
         ticks[0] = 0
         if t0 >= cpu._clock_next:
             latch(t0)
-        d.update(inputs)
-        cpu.image_in = inputs.copy()
+        refresh(inputs)
+        cpu.image_in = snapshot()
         cpu.scan_start_ns = t0
         # -- the networks --
         try:

@@ -21,6 +21,7 @@ Rules these tests pin:
 from __future__ import annotations
 
 import itertools
+import sys
 import time
 
 import pytest
@@ -615,3 +616,19 @@ def test_a_cpu_without_a_program_stays_in_stop_and_keeps_reading_inputs():
     cpu.set_input("TL", True)
     cpu.run("5ms")
     assert (cpu.mode, cpu.now, cpu.t.TL, cpu.outputs["LED"]) == ("STOP", 5_000_000, True, False)
+
+
+def test_tag_names_are_the_interned_strings_of_the_programs_constants():
+    """The generated code looks the tags up by constant names, which Python interns: the names of ``t`` (a DB's
+    members too), of the input image and of the output getter are those very strings, so that every lookup
+    matches by identity (issue 29: 8 % of a scan of the benchmark workload). Names built at run time, as a tag
+    table read from a file has them, are not interned unless the CPU does it."""
+    start, lamp = "".join(["Sta", "rt"]), "".join(["La", "mp"])
+    program = "D = DB(number=1, Seen=Bool)\ndef OB1(t):\n    t.Lamp = t.Start\n    t.D.Seen = t.Start\n"
+    cpu = CPU(tags={start: Tag("%I0.0"), lamp: Tag("%Q0.0")}, program=program)
+    names = [*cpu.t.__dict__, *cpu.t.D.__dict__, *cpu.inputs, *cpu.image_in, *cpu.outputs, *cpu.output_names]
+    assert {"Start", "Lamp", "D", "Seen"} <= set(names)
+    assert [n for n in names if n is not sys.intern(n)] == []
+    cpu.set_input("Start", True)
+    cpu.scan()
+    assert (cpu.outputs["Lamp"], cpu.read("D.Seen")) == (True, True)

@@ -15,7 +15,7 @@ import hypothesis.strategies as st
 from hypothesis import given, settings
 from random_programs import Vocabulary, programs, schedules, tags
 
-from plcsim import CPU
+from plcsim import CPU, Tag
 from plcsim.controllers.s7.fused import fused_scan
 from plcsim.sim.recorder import Recorder
 
@@ -79,3 +79,50 @@ def test_the_workload_scans_fused():
     assert cpu._fused is not None
     cpu.config.fuse = False
     assert fused_scan(cpu) is None
+
+
+def test_every_writer_of_an_input_reaches_the_next_fused_scan():
+    """The fused scan reads the whole input image at each start, whoever wrote the terminals since the last one
+    (the dict itself, :meth:`set_input`, an HMI write, ``update``) and even when nobody did: the program's own
+    store into its input image does not outlive its scan, and the trace records the terminals, not that store."""
+    program = "def OB1(t):\n    t.Lamp = t.Start\n    t.Start = True\n"
+    cpu = CPU(tags={"Start": Tag("%I0.0"), "Lamp": Tag("%Q0.0")}, program=program)
+    assert cpu._fused is not None
+    recorder = Recorder(cpu)
+    recorder.attach()
+    writers = [
+        lambda: None,  # nothing: the image still forgets the program's store
+        lambda: cpu.inputs.__setitem__("Start", True),
+        lambda: cpu.set_input("Start", False),
+        lambda: cpu.write("Start", True),
+        lambda: cpu.inputs.update({"Start": False}),
+        lambda: None,
+    ]
+    lamps = []
+    for write in [lambda: None, *writers]:
+        write()
+        cpu.scan()
+        lamps.append(cpu.outputs["Lamp"])
+    expected = [False, False, True, False, True, False, False]
+    assert lamps == expected
+    assert recorder.trace.column("Start").tolist() == expected
+
+
+def test_a_single_output_is_written_when_it_changes_and_only_then():
+    """With one output the image is compared as a pair taken in C (``tuple_getter``); every image it is compared
+    with (at the download, after STOP, after an interrupt's partition) must be the same pair, or each scan would
+    count a change that is none."""
+    program = "def OB1(t):\n    t.Lamp = t.S\n"
+    cpu = CPU(tags={"S": Tag("%I0.0"), "Lamp": Tag("%Q0.0")}, program=program)
+    seen = []
+    for s in [False, False, True, True]:
+        cpu.set_input("S", s)
+        cpu.scan()
+        seen.append((cpu.outputs["Lamp"], cpu.output_version))
+    cpu.stop()  # switches the lamp off: one change
+    cpu.set_input("S", False)
+    cpu.start()
+    for _ in range(2):
+        cpu.scan()
+        seen.append((cpu.outputs["Lamp"], cpu.output_version))
+    assert seen == [(False, 0), (False, 0), (True, 1), (True, 1), (False, 2), (False, 2)]
