@@ -11,8 +11,8 @@ import plcsim.frontends.python.pipeline
 from plcsim import CPU, Int, Tag
 
 BLOCKS = """
-D = DB(A=Bool(False), B=Bool(False), N=Int(0), R=Real(0.0))
-E = DB(A=Bool(False), B=Bool(False), N=Int(0), R=Real(0.0))
+D = DB(A=Bool(False), B=Bool(False), N=Int(0), R=Real(0.0), W=Time("0ms"))
+E = DB(A=Bool(False), B=Bool(False), N=Int(0), R=Real(0.0), W=Time("0ms"))
 T0 = IEC_TIMER()
 
 """
@@ -159,3 +159,10 @@ def test_a_name_bound_to_something_that_is_no_block_keeps_todays_path():
     word = program("s = t.M0\nt.M0 = s + 1\nt.Q0 = s > 2")
     _, _, values = both_ways(word)
     assert values["M0"] == 6 and values["Q0"] is True
+
+
+def test_a_time_member_read_through_the_local_is_compared_as_today():
+    """``s.W < "5ms"``: only a TIME the typing knows has its literal folded, so through the local the comparison of
+    a number with a text fails when it runs, merged or not (written ``t.D.W`` it would compare two TIMEs)."""
+    mode, diagnostics, _ = both_ways(program('s = t.D\nt.Q0 = s.W < "5ms"'), scans=1)
+    assert mode == "STOP" and any("TypeError" in message for _, message, _, _ in diagnostics)

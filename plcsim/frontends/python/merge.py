@@ -13,7 +13,7 @@ from collections.abc import Iterable
 
 from plcsim.controllers.s7.instructions import FUNCTIONS
 from plcsim.frontends.python.rewrite import ROOT_DICT
-from plcsim.tags.types import ElementaryType, StructType
+from plcsim.tags.types import ElementaryType, StructType, Time
 
 MERGED_ROOT = "_t"
 _TAG_OPERANDS = frozenset({f.name for f in FUNCTIONS.values() if f.named} | {"MOVE"})
@@ -73,10 +73,12 @@ def _block_aliases(func: ast.FunctionDef, root: str, schema: StructType) -> dict
     wherever it is read, so that ``NAME.X`` may run as ``root.BLOCK.X`` with the same effect and messages.
 
     NAME is bound once, by ``NAME = root.BLOCK`` at the top level of the body (BLOCK a struct of ``schema``), and
-    in no other way anywhere (no other target, parameter, ``del``, ``except ... as``, ``global``); it is read
-    only after that statement and only as ``NAME.X``, X an elementary member of the block, outside the operands
-    that name tags (``P(..., NAME.X)``); a constant stored into ``NAME.X`` converts (a constant the conversion
-    refuses is refused when the program loads if written ``root.BLOCK.X``, when it runs if written ``NAME.X``).
+    in no other way anywhere (no other target, parameter, ``del``, ``except ... as``, ``global``), and read only
+    after that statement. Every ``NAME.X`` names an elementary member X of the block, no TIME (a TIME compared
+    with a text is folded only where the typing knows it), outside the operands that name tags
+    (``P(..., NAME.X)``), read or the target of ``=`` or ``+=``; a constant stored into ``NAME.X`` converts (a
+    constant the conversion refuses is refused when the program loads if written ``root.BLOCK.X``, when it runs
+    if written ``NAME.X``). A bare ``NAME`` (``f(NAME)``) still names the block: the local keeps its binding.
     Anything else keeps the local as it is."""
     bindings: dict[str, list[tuple[int, ast.Assign]]] = {}
     for index, stmt in enumerate(func.body):
@@ -124,6 +126,7 @@ def _block_aliases(func: ast.FunctionDef, root: str, schema: StructType) -> dict
                 if (
                     member is None
                     or not isinstance(member.type, ElementaryType)
+                    or member.type is Time
                     or id(node) in operands
                     or not (isinstance(node.ctx, ast.Load) or id(node) in stores)
                 ):
