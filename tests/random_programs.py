@@ -70,7 +70,9 @@ class Vocabulary:
     """Now and then an OB30 that pre-empts OB1 between its networks."""
     blocks: bool = False
     """A data block ``D`` (:data:`BLOCK`): -|P|- and -|N|- on its bits, REAL arithmetic that rounds, overflows to an
-    infinity and makes a NaN, constants stored into it, a REAL stored into an INT (a NaN or an infinity refused)."""
+    infinity and makes a NaN, constants stored into it, a REAL stored into an INT (a NaN or an infinity refused);
+    now and then a network names it by a local, ``d = t.D`` (the merged function reads and writes ``d.X`` as
+    ``t.D.X``), or by a local bound again in a branch (which stays a local)."""
 
 
 BLOCK = "D = DB(r=Real(0.0), f=Bool(False), e0=Bool(False), e1=Bool(False), k=Int(0))"
@@ -182,8 +184,11 @@ def programs(draw: st.DrawFn, vocabulary: Vocabulary) -> str:
     for k in range(count):
         names.append(f"n{k}")
         lines += ["", ""] + (['@label("last")'] if v.jumps and k == count - 1 else []) + [f"def n{k}(t):"]
-        for lines_of in draw(st.lists(statement(v), min_size=1, max_size=3)):
-            lines += [f"    {line}" for line in lines_of]
+        body = [line for lines_of in draw(st.lists(statement(v), min_size=1, max_size=3)) for line in lines_of]
+        local = draw(st.sampled_from(["", "d = t.D", "d = t.D\nif t.I0:\n    d = t.D"])) if v.blocks else ""
+        if local:
+            body = [*local.splitlines(), *(line.replace("t.D.", "d.") for line in body)]
+        lines += [f"    {line}" for line in body]
     lines += ["", "", f"OB1 = [{', '.join(names)}]", ""]
     if v.interrupt and draw(st.booleans()):
         period = draw(st.sampled_from(["3ms", "7ms", "10ms"]))

@@ -73,7 +73,7 @@ def compile_program(
     for task in program.tasks.values():
         funcs = [functions[n.name] for n in task.networks]
         if len(funcs) > 1 and sum(len(f.body) for f in funcs) <= MAX_MERGED_STATEMENTS:
-            combined = merge_networks(funcs, task.name, root_params)
+            combined = merge_networks(funcs, task.name, root_params, typing.root)
             if combined is not None:
                 tree.body.append(combined)
                 typing.root_params[combined.name] = MERGED_ROOT
