@@ -10,12 +10,30 @@ runtime's names (:class:`RuntimeHooks`); a front end binds them to whatever name
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from plcsim.controllers.s7.config import CPUConfig
 from plcsim.tags.table import TagTable
+
+_MERGED_LOCAL = re.compile(r"\b_n\d+_([A-Za-z_]\w*)")
+
+
+def merged_local(network: int, name: str) -> str:
+    """The name the local ``name`` of a task's ``network``-th network takes in the task's merged function (two
+    networks may name a local alike); :func:`student_names` undoes it in a message."""
+    return f"_n{network}_{name}"
+
+
+def student_names(message: str) -> str:
+    """``message`` with the merged function's locals named as the program wrote them (``'_n1_s'`` -> ``'s'``).
+
+    >>> student_names("cannot access local variable '_n1_s' where it is not associated with a value")
+    "cannot access local variable 's' where it is not associated with a value"
+    """
+    return _MERGED_LOCAL.sub(r"\1", message)
 
 
 @dataclass(frozen=True)

@@ -12,7 +12,7 @@ from bisect import bisect_left
 from collections.abc import Callable
 from typing import Any
 
-from plcsim.controllers.loaded import SourceProgram, TaskSpec
+from plcsim.controllers.loaded import SourceProgram, TaskSpec, student_names
 from plcsim.controllers.protocol import RUN
 from plcsim.controllers.s7.config import CLOCK_BITS, CPUConfig
 from plcsim.controllers.s7.fused import FusedScan, fused_scan
@@ -682,6 +682,8 @@ def describe_error(exc: BaseException) -> str:
         return text
     if isinstance(exc, RecursionError):
         return f"{name}: {text} (a network or function calls itself, directly or through another, without end)"
+    if isinstance(exc, NameError):  # (UnboundLocalError too) a local of merged networks, in the program's name
+        text = student_names(text)
     return f"{name}: {text}" if text else name
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 import ast
 from collections.abc import Iterable
 
+from plcsim.controllers.loaded import merged_local
 from plcsim.controllers.s7.instructions import FUNCTIONS
 from plcsim.frontends.python.rewrite import ROOT_DICT
 from plcsim.tags.types import ElementaryType, StructType, Time
@@ -43,7 +44,7 @@ def merge_networks(
         aliases = _block_aliases(func, root, schema)
         local = {n.id for n in ast.walk(func) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
         local |= {a.arg for a in func.args.args}
-        renames = {name: f"_n{index}_{name}" for name in local if name != root}
+        renames = {name: merged_local(index, name) for name in local if name != root}
         renames[root] = MERGED_ROOT
         statements = func.body
         if statements and isinstance(statements[0], ast.Expr) and isinstance(statements[0].value, ast.Constant):
