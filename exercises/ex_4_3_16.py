@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from exercises._common import solution
 from exercises._skip import DOLNY, HORNY, SPOMAL, WrongPosition, auto_cycle, refill
-from plants.skip import Skip
+from plants.skip import FILL, Skip
 from plcsim.check import all_of, any_of, becomes, event, event_data, holds, never, off, on, rises
 from plcsim.exercise import IO, Exercise, only
 from plcsim.scenario import FAULTS, Scenario, after_event, jam_motor, power_cycle, stuck, write
@@ -46,9 +46,10 @@ DEAD_SLOW = "slow-down sensor dead"
 DEAD_TOP = "top sensor dead"
 DEAD_BOTTOM = "bottom sensor dead"
 MIXER_WAITS = "mixer not ready yet"
+OTHER_MODE = "the other mode's commands"
 CYCLES = (ONE, TWO)
 """Normal automatic cycles: everything the task asks of a cycle holds in them."""
-NORMAL = (ONE, TWO, MODE, BETWEEN, MANUAL, BOTH, MIXER_WAITS)
+NORMAL = (ONE, TWO, MODE, BETWEEN, MANUAL, BOTH, MIXER_WAITS, OTHER_MODE)
 """No fault: no alarm may be raised and the converter and the buffers must not be troubled."""
 ARRIVALS = (ONE, TWO, MODE, JAM_UP, JAM_DOWN)
 """An automatic ascent with a working slow-down sensor reaches the top (or is meant to)."""
@@ -246,6 +247,23 @@ EXERCISE = Exercise(
             "the skip waits for it, then goes up",
         ),
         Scenario(
+            OTHER_MODE,
+            FILL("skip", t="0.2s..0.4s"),
+            write(PLNY, True, t="0.5s..0.7s"),
+            write(POVOL, True, t="0.5s..0.9s"),
+            write("DB_SKIP.MAN_HORE", True, t="1.5s..2s"),
+            write("DB_SKIP.MAN_HORE", False, t="5s..6s"),
+            write(AUTO, True, t="7s..7.5s"),
+            write("DB_SKIP.MAN_DOLE", True, t="9s..9.5s"),
+            write("DB_SKIP.MAN_DOLE", False, t="10.5s..11s"),
+            write("DB_SKIP.MAN_HORE", True, t="12s..12.5s"),
+            write("DB_SKIP.MAN_HORE", False, t="13.5s..14s"),
+            duration="16s",
+            description="in manual mode, the skip full at the bottom and the mixer ready, the operator runs the skip "
+            "up by hand for 3..4.5 s, selects AUTO away from the bottom, then presses MAN_DOLE and MAN_HORE: "
+            "nothing may move in AUTO",
+        ),
+        Scenario(
             JAM_UP,
             *auto_cycle(),
             jam_motor(UP, t="10s..14s"),
@@ -388,6 +406,7 @@ EXERCISE = Exercise(
             .grades(MODES),
             MANUAL,
             BETWEEN,
+            OTHER_MODE,
         ),
         only(
             never(all_of(off(AUTO), "DB_SKIP.MAN_DOLE", off("DB_SKIP.MAN_HORE"), off(DOLNY), off(DOWN)))
@@ -405,6 +424,21 @@ EXERCISE = Exercise(
             MODE,
             MANUAL,
             BETWEEN,
+            OTHER_MODE,
+        ),
+        only(
+            never(all_of(AUTO, any_of(UP, DOWN), any_of("DB_SKIP.MAN_HORE", "DB_SKIP.MAN_DOLE")))
+            .for_more_than("1 scan")
+            .named("AUTO: MAN_HORE and MAN_DOLE move nothing")
+            .grades(MODES),
+            OTHER_MODE,
+        ),
+        only(
+            never(all_of(AUTO, UP, off(DOLNY), off("DB_SKIP.MAN_HORE"), off("DB_SKIP.MAN_DOLE")))
+            .for_more_than("1 scan")
+            .named("AUTO selected away from the bottom starts no automatic ascent")
+            .grades(FROM_THE_BOTTOM),
+            OTHER_MODE,
         ),
         # criterion 6: the position states
         never(WrongPosition("DB_SKIP.POZ1", 1))
