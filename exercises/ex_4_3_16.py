@@ -205,9 +205,12 @@ EXERCISE = Exercise(
             *auto_cycle(),
             write(AUTO, False, t="9s..12s"),
             write(AUTO, True, t="14s..16s"),
-            duration="45s",
+            write(AUTO, False, when=after_event("pour ended"), delay="8s..10s"),
+            write(AUTO, True, when=after_event("pour ended"), delay="12s..13s"),
+            duration="58s",
             description="AUTO is switched off for 3..6 s during the fast ascent (the skip stops and waits), then on "
-            "again: the ascent goes on; the run ends during the dump",
+            "again: the ascent goes on; after the dump AUTO is switched off again for 2..5 s during the descent, "
+            "then on: the descent goes on",
         ),
         Scenario(
             BETWEEN,
